@@ -1,0 +1,5 @@
+//! `ehl-bearing` command line.
+
+fn main() {
+    println!("ehl-bearing");
+}

@@ -1,0 +1,26 @@
+//! The crate error: one variant per module, each carrying the module's own error.
+
+use thiserror::Error;
+
+/// Any error of the library.
+#[derive(Debug, Error)]
+pub enum Error {
+    /// Hertz contact.
+    #[error(transparent)]
+    Hertz(#[from] crate::hertz::HertzError),
+    /// Bearing model and equilibrium.
+    #[error(transparent)]
+    Bearing(#[from] crate::bearing::BearingError),
+    /// Case files and other inputs.
+    #[error(transparent)]
+    Input(#[from] crate::io::InputError),
+    /// EHL contact solver.
+    #[error(transparent)]
+    Ehl(#[from] crate::ehl::EhlError),
+    /// Contact-law fit.
+    #[error(transparent)]
+    Fit(#[from] crate::fit::FitError),
+}
+
+/// Result with the crate error.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
