@@ -1,0 +1,2 @@
+//! `ehl-bearing ehl`: one EHL contact (placeholder).
+pub const PLACEHOLDER: () = ();

@@ -1,0 +1,2 @@
+//! Plots: SVG and PNG (placeholder).
+pub const PLACEHOLDER: () = ();
