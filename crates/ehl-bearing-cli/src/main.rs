@@ -1,9 +1,37 @@
-//! `ehl-bearing` command line.
+//! `ehl-bearing` command line: thin layer over the `ehl-bearing` library.
 
 mod ehl_cmd;
+mod equilibrium_cmd;
 mod plot;
 
-fn main() {
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Lubricated angular-contact ball bearings: equilibrium, EHL contacts, fitted contact laws.
+#[derive(Parser)]
+#[command(name = "ehl-bearing", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Quasi-static 5-DOF equilibrium of a bearing case with dry Hertz contacts.
+    Equilibrium(equilibrium_cmd::EquilibriumArgs),
+}
+
+fn main() -> ExitCode {
     let _ = (ehl_cmd::PLACEHOLDER, plot::PLACEHOLDER);
-    println!("ehl-bearing");
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Equilibrium(a) => equilibrium_cmd::run(a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
 }

@@ -1,0 +1,917 @@
+//! Quasi-static 5-DOF equilibrium of an angular-contact ball bearing (Jones 1960; Harris,
+//! *Rolling Bearing Analysis*), with centrifugal force and gyroscopic moment.
+//!
+//! # Coordinates and signs
+//! Right-handed: x axial (positive along the applied axial force), y and z radial, θy about +y,
+//! θz about +z. Ball j sits at azimuth ψ_j = 2πj/Z measured from +y toward +z (ball 0 on +y).
+//! In the plane of a ball, r̂ = (0, cos ψ, sin ψ) points radially outward and t̂ = x̂ × r̂ =
+//! (0, −sin ψ, cos ψ) along increasing ψ.
+//!
+//! Displacements are those of the inner ring relative to the fixed outer ring, from the position
+//! where the unloaded balls touch both raceways at the free contact angle α0. The inner groove
+//! curvature centre of ball j moves axially by A1 − A sin α0 = x + ℜ_i(θy sin ψ − θz cos ψ) and
+//! radially by A2 − A cos α0 = y cos ψ + z sin ψ (ℜ_i: radius of the inner groove-centre locus).
+//!
+//! # Ball equilibrium
+//! Unknowns per ball: the ball centre (X1, X2) relative to the outer groove centre. The inner race
+//! pushes the ball along n̂_i = (sin α_i, cos α_i) (axial, radial), the outer race along
+//! −(sin α_o, cos α_o). The gyroscopic moment is derived from dH/dt = ω_m x̂ × J·Ω_ball: with the
+//! ball's rolling axis ê = (cos β, −sin β) and its signed roll speed ω_R (negative for a rotating
+//! inner ring), the races must apply G·t̂ with G = −J·ω_m·ω_R·sin β, through friction forces
+//! F_i = λ_i·G/D at the inner contact and F_o = −λ_o·G/D at the outer contact, along the contact
+//! tangents τ̂ = (cos α, −sin α). λ_i + λ_o = 2 (outer-race control: λ_i = 0, λ_o = 2).
+
+use super::geometry::{Bearing, Race};
+use super::linalg;
+use super::{dual::D4, BearingError};
+use crate::contact_law::{ContactLaw, HertzLaw};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+use std::sync::Arc;
+
+/// Race-control hypothesis for the ball's spin axis and the sharing of the gyroscopic moment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum RaceControl {
+    /// Outer-race control: no spin at the outer contact, λ_i = 0, λ_o = 2 (Harris' default).
+    #[default]
+    Outer,
+    /// Inner-race control: no spin at the inner contact, λ_i = 2, λ_o = 0.
+    Inner,
+    /// Neither race controls: λ_i = λ_o = 1; the rolling axis is the bisector of the outer- and
+    /// inner-control axes.
+    None,
+    /// No gyroscopic moment (kinematics as outer-race control, G = 0).
+    NoGyroscopic,
+}
+
+impl RaceControl {
+    fn lambdas(self) -> (f64, f64) {
+        match self {
+            RaceControl::Outer => (0.0, 2.0),
+            RaceControl::Inner => (2.0, 0.0),
+            RaceControl::None => (1.0, 1.0),
+            RaceControl::NoGyroscopic => (0.0, 0.0),
+        }
+    }
+}
+
+/// How one degree of freedom is driven.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Control {
+    /// Load-controlled: applied force (N) or moment (N·m); the displacement is solved for.
+    Load(f64),
+    /// Displacement-controlled: imposed displacement (m) or tilt (rad); the reaction is computed.
+    Displacement(f64),
+}
+
+/// Names of the five degrees of freedom, in the order used everywhere.
+pub const DOF_NAMES: [&str; 5] = ["x", "y", "z", "theta_y", "theta_z"];
+
+/// An operating point: speeds and the control of each DOF.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct OperatingPoint {
+    /// Inner ring speed about +x, rad/s.
+    pub inner_speed: f64,
+    /// Outer ring speed about +x, rad/s.
+    pub outer_speed: f64,
+    /// Control of x, y, z (N or m) and θy, θz (N·m or rad).
+    pub dofs: [Control; 5],
+    /// Race-control hypothesis.
+    pub race_control: RaceControl,
+}
+
+/// The contact law of every ball at the inner and the outer raceway.
+#[derive(Debug, Clone)]
+pub struct ContactLaws {
+    /// Inner-race laws, one per ball (index = ball number).
+    pub inner: Vec<Arc<dyn ContactLaw>>,
+    /// Outer-race laws, one per ball.
+    pub outer: Vec<Arc<dyn ContactLaw>>,
+}
+
+impl ContactLaws {
+    /// Dry Hertz laws Q = K·δ^1.5 with K evaluated at the free contact angle α0 (the change of K
+    /// with the operating contact angle is below 0.5 % for the 7006 between 15° and 20°).
+    pub fn hertz(bearing: &Bearing) -> Result<Self, BearingError> {
+        let a0 = bearing.geometry.free_contact_angle;
+        let ki = bearing.hertz(Race::Inner, a0)?.stiffness;
+        let ko = bearing.hertz(Race::Outer, a0)?.stiffness;
+        let z = bearing.geometry.ball_count;
+        Ok(ContactLaws {
+            inner: vec![Arc::new(HertzLaw { stiffness: ki }); z],
+            outer: vec![Arc::new(HertzLaw { stiffness: ko }); z],
+        })
+    }
+}
+
+/// Convergence settings of the equilibrium solver.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct EquilibriumSettings {
+    /// Relative force tolerance: converged when every load-controlled residual (moments divided
+    /// by d_m/2) is below `tolerance`·max(largest applied load, 1 N).
+    pub tolerance: f64,
+    /// Newton iteration limit.
+    pub max_iterations: usize,
+    /// Largest deflection accepted, as a fraction of the ball diameter; beyond it the load is
+    /// reported as one the bearing cannot carry.
+    pub max_deflection_ratio: f64,
+}
+
+impl Default for EquilibriumSettings {
+    fn default() -> Self {
+        EquilibriumSettings {
+            tolerance: 1e-11,
+            max_iterations: 100,
+            max_deflection_ratio: 0.02,
+        }
+    }
+}
+
+/// State of one ball/raceway contact.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ContactState {
+    /// Normal load Q, N.
+    pub load: f64,
+    /// Contact angle α, rad.
+    pub contact_angle: f64,
+    /// Approach (deflection) δ, m; negative when separated.
+    pub deflection: f64,
+    /// Hertz semi-axis along the larger curvature radius (transverse), m (0 when unloaded).
+    pub semi_major: f64,
+    /// Hertz semi-axis in the rolling direction, m.
+    pub semi_minor: f64,
+    /// Hertz maximum pressure, Pa.
+    pub max_pressure: f64,
+    /// Curvature radius in the rolling direction at the current contact angle, m.
+    pub rx: f64,
+    /// Transverse curvature radius, m.
+    pub ry: f64,
+    /// Sum velocity u_s = u1 + u2 of ball and race surfaces relative to the contact, m/s.
+    pub sum_velocity: f64,
+}
+
+/// State of one ball.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BallState {
+    /// Azimuth ψ, rad, from +y toward +z.
+    pub azimuth: f64,
+    /// Orbital (cage) speed ω_m, rad/s.
+    pub orbital_speed: f64,
+    /// Signed roll speed ω_R of the ball about its rolling axis, relative to the cage, rad/s
+    /// (negative for a rotating inner ring).
+    pub spin_speed: f64,
+    /// Pitch angle β of the rolling axis, rad.
+    pub pitch_angle: f64,
+    /// Centrifugal force F_c = ½·m·d_m·ω_m², N.
+    pub centrifugal_force: f64,
+    /// Gyroscopic moment the races apply to the ball, G (positive along t̂), N·m.
+    pub gyroscopic_moment: f64,
+    /// Inner contact.
+    pub inner: ContactState,
+    /// Outer contact.
+    pub outer: ContactState,
+}
+
+/// Result of an equilibrium solve.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Equilibrium {
+    /// Whether the residual met the tolerance (always true for a returned result; a failed
+    /// solve is an error).
+    pub converged: bool,
+    /// Newton iterations used.
+    pub iterations: usize,
+    /// Final largest load-controlled residual, N (moments divided by d_m/2).
+    pub residual: f64,
+    /// Residual after each iteration, N.
+    pub residual_history: Vec<f64>,
+    /// Inner ring displacements x, y, z (m) and tilts θy, θz (rad).
+    pub displacement: [f64; 5],
+    /// Load on the inner ring in equilibrium with the balls: F_x, F_y, F_z (N), M_y, M_z (N·m).
+    /// The bearing acts on the shaft with the opposite.
+    pub reaction: [f64; 5],
+    /// Stiffness matrix ∂reaction/∂displacement, order x, y, z, θy, θz (N/m, N, N·m/rad).
+    /// Not symmetrized.
+    pub stiffness: [[f64; 5]; 5],
+    /// Per-ball states, ball 0 on +y.
+    pub balls: Vec<BallState>,
+}
+
+/// Bearing reactions and their Jacobian at given ring displacements: the bearing as a force
+/// element for rotor simulations.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ForceResult {
+    /// Load on the inner ring in equilibrium with the balls (N, N·m); the bearing acts on the
+    /// shaft with the opposite.
+    pub reaction: [f64; 5],
+    /// ∂reaction/∂displacement (N/m, N, N·m/rad).
+    pub jacobian: [[f64; 5]; 5],
+}
+
+/// Per-ball evaluation: terms as dual numbers seeded in (X1, X2, A1, A2).
+struct Terms {
+    r: [D4; 2],
+    /// Force on the ball from the inner race: axial, radial; and the friction-moment term f_i·λ_i·G.
+    g: [D4; 3],
+    qi: f64,
+    qo: f64,
+    di: f64,
+    dout: f64,
+    sin_ai: f64,
+    cos_ai: f64,
+    sin_ao: f64,
+    cos_ao: f64,
+    om_m: f64,
+    om_r: f64,
+    beta: f64,
+    fc: f64,
+    gyro: f64,
+}
+
+/// The bearing model at one operating speed and set of contact laws.
+pub struct BearingModel<'a> {
+    bearing: &'a Bearing,
+    laws: &'a ContactLaws,
+    inner_speed: f64,
+    outer_speed: f64,
+    race_control: RaceControl,
+    ri: f64,
+    ro: f64,
+    a0: f64,
+    frak_ri: f64,
+    psi: Vec<f64>,
+    mass: f64,
+    inertia: f64,
+}
+
+/// Per-ball solution at given groove-centre offsets.
+#[derive(Clone, Copy)]
+struct BallSolution {
+    x: [f64; 2],
+    /// g = (v_x, v_r, f_i λ_i G) and dg/dA (3×2).
+    g: [f64; 3],
+    dg: [[f64; 2]; 3],
+}
+
+impl<'a> BearingModel<'a> {
+    /// A model of `bearing` with `laws` at the speeds of `op` (the DOF controls of `op` are not
+    /// used here).
+    pub fn new(
+        bearing: &'a Bearing,
+        laws: &'a ContactLaws,
+        inner_speed: f64,
+        outer_speed: f64,
+        race_control: RaceControl,
+    ) -> Result<Self, BearingError> {
+        bearing.validate()?;
+        let g = &bearing.geometry;
+        let z = g.ball_count;
+        if laws.inner.len() != z || laws.outer.len() != z {
+            return Err(BearingError::Invalid(format!(
+                "contact laws given for {} inner and {} outer contacts, bearing has {} balls",
+                laws.inner.len(),
+                laws.outer.len(),
+                z
+            )));
+        }
+        for (name, v) in [("inner_speed", inner_speed), ("outer_speed", outer_speed)] {
+            if !v.is_finite() {
+                return Err(BearingError::invalid(name, v, "a finite speed in rad/s"));
+            }
+        }
+        let d = g.ball_diameter;
+        Ok(BearingModel {
+            bearing,
+            laws,
+            inner_speed,
+            outer_speed,
+            race_control,
+            ri: (g.inner_conformity - 0.5) * d,
+            ro: (g.outer_conformity - 0.5) * d,
+            a0: g.center_distance(),
+            frak_ri: g.inner_groove_center_radius(),
+            psi: (0..z).map(|j| 2.0 * PI * j as f64 / z as f64).collect(),
+            mass: bearing.ball_mass(),
+            inertia: bearing.ball_inertia(),
+        })
+    }
+
+    fn groove_offsets(&self, j: usize, q: &[f64; 5]) -> [f64; 2] {
+        let (s, c) = self.psi[j].sin_cos();
+        let alpha0 = self.bearing.geometry.free_contact_angle;
+        [
+            self.a0 * alpha0.sin() + q[0] + self.frak_ri * (q[3] * s - q[4] * c),
+            self.a0 * alpha0.cos() + q[1] * c + q[2] * s,
+        ]
+    }
+
+    fn terms(&self, j: usize, x: [D4; 2], a: [D4; 2]) -> Terms {
+        let geo = &self.bearing.geometry;
+        let d = geo.ball_diameter;
+        let dm = geo.pitch_diameter;
+        let gamma = d / dm;
+        // Inner contact.
+        let dxi = a[0] - x[0];
+        let dri = a[1] - x[1];
+        let li = (dxi * dxi + dri * dri).sqrt();
+        let sin_ai = dxi / li;
+        let cos_ai = dri / li;
+        let di = li - self.ri;
+        // Outer contact.
+        let lo = (x[0] * x[0] + x[1] * x[1]).sqrt();
+        let sin_ao = x[0] / lo;
+        let cos_ao = x[1] / lo;
+        let dout = lo - self.ro;
+        let (fi, dfi) = self.laws.inner[j].force(di.v);
+        let (fo, dfo) = self.laws.outer[j].force(dout.v);
+        let qi = di.chain(fi, dfi);
+        let qo = dout.chain(fo, dfo);
+        // Rolling axis ê = (cos β, −sin β): outer control tan β = sin α_o/(cos α_o + γ),
+        // inner control tan β = sin α_i/(cos α_i − γ).
+        let axis_outer = || {
+            let cx = cos_ao + gamma;
+            let n = (cx * cx + sin_ao * sin_ao).sqrt();
+            (cx / n, sin_ao / n)
+        };
+        let axis_inner = || {
+            let cx = cos_ai - gamma;
+            let n = (cx * cx + sin_ai * sin_ai).sqrt();
+            (cx / n, sin_ai / n)
+        };
+        let (cos_b, sin_b) = match self.race_control {
+            RaceControl::Outer | RaceControl::NoGyroscopic => axis_outer(),
+            RaceControl::Inner => axis_inner(),
+            RaceControl::None => {
+                let (c1, s1) = axis_outer();
+                let (c2, s2) = axis_inner();
+                let (c, s) = (c1 + c2, s1 + s2);
+                let n = (c * c + s * s).sqrt();
+                (c / n, s / n)
+            }
+        };
+        // Pure rolling at both contact centres (cage frame):
+        //  −(D/2)·ω_R·cos(α_i − β) = (ω_i − ω_m)·r_i,   (D/2)·ω_R·cos(α_o − β) = (ω_o − ω_m)·r_o
+        let ci = (cos_ai * cos_b + sin_ai * sin_b) * (0.5 * d);
+        let co = (cos_ao * cos_b + sin_ao * sin_b) * (0.5 * d);
+        let rpi = D4::cst(0.5 * dm) - cos_ai * (0.5 * d);
+        let rpo = D4::cst(0.5 * dm) + cos_ao * (0.5 * d);
+        let om_m =
+            (rpi * co * self.inner_speed + rpo * ci * self.outer_speed) / (rpi * co + rpo * ci);
+        let om_r = (D4::cst(self.outer_speed) - om_m) * rpo / co;
+        let fc = om_m * om_m * (0.5 * self.mass * dm);
+        let gyro = if self.race_control == RaceControl::NoGyroscopic {
+            D4::cst(0.0)
+        } else {
+            -(om_m * om_r * sin_b) * self.inertia
+        };
+        let (lam_i, lam_o) = self.race_control.lambdas();
+        let gd = gyro / d;
+        let r1 = qi * sin_ai - qo * sin_ao + gd * (cos_ai * lam_i - cos_ao * lam_o);
+        let r2 = qi * cos_ai - qo * cos_ao - gd * (sin_ai * lam_i - sin_ao * lam_o) + fc;
+        let vx = qi * sin_ai + gd * cos_ai * lam_i;
+        let vr = qi * cos_ai - gd * sin_ai * lam_i;
+        let gf = gyro * (geo.inner_conformity * lam_i);
+        Terms {
+            r: [r1, r2],
+            g: [vx, vr, gf],
+            qi: qi.v,
+            qo: qo.v,
+            di: di.v,
+            dout: dout.v,
+            sin_ai: sin_ai.v,
+            cos_ai: cos_ai.v,
+            sin_ao: sin_ao.v,
+            cos_ao: cos_ao.v,
+            om_m: om_m.v,
+            om_r: om_r.v,
+            beta: sin_b.v.atan2(cos_b.v),
+            fc: fc.v,
+            gyro: gyro.v,
+        }
+    }
+
+    fn terms_at(&self, j: usize, x: [f64; 2], a: [f64; 2]) -> Terms {
+        self.terms(
+            j,
+            [D4::var(x[0], 0), D4::var(x[1], 1)],
+            [D4::var(a[0], 2), D4::var(a[1], 3)],
+        )
+    }
+
+    /// Rough orbital speed for starting values, rad/s.
+    fn orbital_guess(&self) -> f64 {
+        let g = &self.bearing.geometry;
+        let gc = g.ball_diameter / g.pitch_diameter * g.free_contact_angle.cos();
+        0.5 * (self.inner_speed * (1.0 - gc) + self.outer_speed * (1.0 + gc))
+    }
+
+    /// Solve ball j's equilibrium for groove-centre offsets `a`, starting from `warm` if given.
+    fn solve_ball(
+        &self,
+        j: usize,
+        a: [f64; 2],
+        warm: Option<[f64; 2]>,
+    ) -> Result<BallSolution, BearingError> {
+        let la = (a[0] * a[0] + a[1] * a[1]).sqrt();
+        let u = [a[0] / la, a[1] / la];
+        let s = la - self.ri - self.ro; // total approach along the line of centres
+        let x0 = match warm {
+            Some(w) => w,
+            None => {
+                let om = self.orbital_guess();
+                let fc = 0.5 * self.mass * self.bearing.geometry.pitch_diameter * om * om;
+                let d_o = if s > 0.0 {
+                    0.5 * s
+                } else {
+                    self.laws.outer[j].approach_at(fc).unwrap_or(0.0).max(0.0)
+                };
+                [u[0] * (self.ro + d_o), u[1] * (self.ro + d_o)]
+            }
+        };
+        let mut x = x0;
+        let mut t = self.terms_at(j, x, a);
+        // A ball that touches nothing and feels no body force carries nothing: its position is
+        // undetermined; take the midpoint of the gap.
+        let unloaded = |t: &Terms| t.qi == 0.0 && t.qo == 0.0 && t.fc == 0.0 && t.gyro == 0.0;
+        if unloaded(&t) {
+            let mid = self.ro + 0.5 * s;
+            let xm = [u[0] * mid, u[1] * mid];
+            let tm = self.terms_at(j, xm, a);
+            if unloaded(&tm) {
+                return Ok(BallSolution {
+                    x: xm,
+                    g: [0.0; 3],
+                    dg: [[0.0; 2]; 3],
+                });
+            }
+            x = xm;
+            t = tm;
+        }
+        let scale = |t: &Terms| t.qi.abs() + t.qo.abs() + t.fc.abs() + 1e-6;
+        let norm = |t: &Terms| t.r[0].v.hypot(t.r[1].v);
+        for _ in 0..60 {
+            let res = norm(&t);
+            if res <= 1e-13 * scale(&t) {
+                break;
+            }
+            let mut jac = [t.r[0].d[0], t.r[0].d[1], t.r[1].d[0], t.r[1].d[1]];
+            let mut step = [-t.r[0].v, -t.r[1].v];
+            if linalg::solve(&mut jac, &mut step, 2).is_none() {
+                // Singular (e.g. a contact exactly at zero load): nudge both contacts into load.
+                let n = (x[0] * x[0] + x[1] * x[1]).sqrt();
+                step = [1e-9 * x[0] / n, 1e-9 * x[1] / n];
+            }
+            // Backtracking on the residual norm.
+            let mut lam = 1.0;
+            let mut accepted = false;
+            for _ in 0..40 {
+                let xn = [x[0] + lam * step[0], x[1] + lam * step[1]];
+                let tn = self.terms_at(j, xn, a);
+                if norm(&tn) < res || lam < 1e-10 {
+                    x = xn;
+                    t = tn;
+                    accepted = true;
+                    break;
+                }
+                lam *= 0.5;
+            }
+            if !accepted || (lam * step[0]).hypot(lam * step[1]) < 1e-17 {
+                break;
+            }
+        }
+        let res = norm(&t);
+        if !(res <= 1e-9 * scale(&t)) {
+            return Err(BearingError::BallNotConverged {
+                ball: j,
+                residual: res,
+            });
+        }
+        // Implicit function theorem: dX/dA = −R_X⁻¹·R_A; dg/dA = g_A + g_X·dX/dA.
+        let rx = [[t.r[0].d[0], t.r[0].d[1]], [t.r[1].d[0], t.r[1].d[1]]];
+        let det = rx[0][0] * rx[1][1] - rx[0][1] * rx[1][0];
+        let mut dx_da = [[0.0; 2]; 2];
+        if det.abs() > 0.0 {
+            for k in 0..2 {
+                let ra = [t.r[0].d[2 + k], t.r[1].d[2 + k]];
+                dx_da[0][k] = -(rx[1][1] * ra[0] - rx[0][1] * ra[1]) / det;
+                dx_da[1][k] = -(-rx[1][0] * ra[0] + rx[0][0] * ra[1]) / det;
+            }
+        }
+        let mut dg = [[0.0; 2]; 3];
+        for (m, row) in dg.iter_mut().enumerate() {
+            for (k, v) in row.iter_mut().enumerate() {
+                *v = t.g[m].d[2 + k] + t.g[m].d[0] * dx_da[0][k] + t.g[m].d[1] * dx_da[1][k];
+            }
+        }
+        Ok(BallSolution {
+            x,
+            g: [t.g[0].v, t.g[1].v, t.g[2].v],
+            dg,
+        })
+    }
+
+    /// Reactions and Jacobian at displacement `q`, using and updating warm starts `warm`.
+    fn evaluate_with(
+        &self,
+        q: &[f64; 5],
+        warm: &mut [Option<[f64; 2]>],
+    ) -> Result<ForceResult, BearingError> {
+        let mut f = [0.0; 5];
+        let mut jac = [[0.0; 5]; 5];
+        for j in 0..self.psi.len() {
+            let a = self.groove_offsets(j, q);
+            let sol = self.solve_ball(j, a, warm[j])?;
+            warm[j] = Some(sol.x);
+            let (s, c) = self.psi[j].sin_cos();
+            let rr = self.frak_ri;
+            // reaction = T·g, A = A(q) with dA/dq = P.
+            let t: [[f64; 3]; 5] = [
+                [1.0, 0.0, 0.0],
+                [0.0, c, 0.0],
+                [0.0, s, 0.0],
+                [rr * s, 0.0, -s],
+                [-rr * c, 0.0, c],
+            ];
+            let p: [[f64; 5]; 2] = [[1.0, 0.0, 0.0, rr * s, -rr * c], [0.0, c, s, 0.0, 0.0]];
+            let mut dg_dq = [[0.0; 5]; 3];
+            for m in 0..3 {
+                for n in 0..5 {
+                    dg_dq[m][n] = sol.dg[m][0] * p[0][n] + sol.dg[m][1] * p[1][n];
+                }
+            }
+            for r in 0..5 {
+                for m in 0..3 {
+                    if t[r][m] != 0.0 {
+                        f[r] += t[r][m] * sol.g[m];
+                        for n in 0..5 {
+                            jac[r][n] += t[r][m] * dg_dq[m][n];
+                        }
+                    }
+                }
+            }
+        }
+        Ok(ForceResult {
+            reaction: f,
+            jacobian: jac,
+        })
+    }
+
+    /// Reactions and their Jacobian at ring displacements `q` (x, y, z in m; θy, θz in rad):
+    /// the bearing as a force element. Each call solves every ball's equilibrium from scratch.
+    pub fn evaluate(&self, q: &[f64; 5]) -> Result<ForceResult, BearingError> {
+        check_finite_displacement(q)?;
+        let mut warm = vec![None; self.psi.len()];
+        self.evaluate_with(q, &mut warm)
+    }
+
+    /// Full per-ball state at displacement `q`.
+    fn ball_states(
+        &self,
+        q: &[f64; 5],
+        warm: &mut [Option<[f64; 2]>],
+    ) -> Result<Vec<BallState>, BearingError> {
+        let geo = &self.bearing.geometry;
+        let mut out = Vec::with_capacity(self.psi.len());
+        for j in 0..self.psi.len() {
+            let a = self.groove_offsets(j, q);
+            let sol = self.solve_ball(j, a, warm[j])?;
+            let t = self.terms_at(j, sol.x, a);
+            let alpha_i = t.sin_ai.atan2(t.cos_ai);
+            let alpha_o = t.sin_ao.atan2(t.cos_ao);
+            let d = geo.ball_diameter;
+            let dm = geo.pitch_diameter;
+            let rpi = 0.5 * dm - 0.5 * d * t.cos_ai;
+            let rpo = 0.5 * dm + 0.5 * d * t.cos_ao;
+            let contact = |race: Race, load: f64, alpha: f64, defl: f64, us: f64| {
+                let (rx, ry) = geo.curvature_radii(race, alpha);
+                let h = self.bearing.hertz(race, alpha)?.contact(load);
+                Ok::<_, BearingError>(ContactState {
+                    load,
+                    contact_angle: alpha,
+                    deflection: defl,
+                    semi_major: h.semi_major,
+                    semi_minor: h.semi_minor,
+                    max_pressure: h.max_pressure,
+                    rx,
+                    ry,
+                    sum_velocity: us,
+                })
+            };
+            out.push(BallState {
+                azimuth: self.psi[j],
+                orbital_speed: t.om_m,
+                spin_speed: t.om_r,
+                pitch_angle: t.beta,
+                centrifugal_force: t.fc,
+                gyroscopic_moment: t.gyro,
+                inner: contact(
+                    Race::Inner,
+                    t.qi,
+                    alpha_i,
+                    t.di,
+                    2.0 * ((self.inner_speed - t.om_m) * rpi).abs(),
+                )?,
+                outer: contact(
+                    Race::Outer,
+                    t.qo,
+                    alpha_o,
+                    t.dout,
+                    2.0 * ((self.outer_speed - t.om_m) * rpo).abs(),
+                )?,
+            });
+        }
+        Ok(out)
+    }
+}
+
+fn check_finite_displacement(q: &[f64; 5]) -> Result<(), BearingError> {
+    for (k, v) in q.iter().enumerate() {
+        if !v.is_finite() {
+            return Err(BearingError::invalid(
+                DOF_NAMES[k],
+                *v,
+                "a finite displacement (m) or tilt (rad)",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Solve the bearing's quasi-static equilibrium at operating point `op` with contact laws `laws`.
+///
+/// Newton–Raphson on the load-controlled DOFs with an exact Jacobian and a backtracking line
+/// search; Levenberg–Marquardt steps when the Jacobian is singular (all balls unloaded).
+/// Non-convergence, or a load that needs deflections beyond `settings.max_deflection_ratio`·D or
+/// reverses the contact angles of an angular-contact bearing, is an error that carries the
+/// residual.
+pub fn solve_equilibrium(
+    bearing: &Bearing,
+    laws: &ContactLaws,
+    op: &OperatingPoint,
+    settings: &EquilibriumSettings,
+) -> Result<Equilibrium, BearingError> {
+    let model = BearingModel::new(
+        bearing,
+        laws,
+        op.inner_speed,
+        op.outer_speed,
+        op.race_control,
+    )?;
+    let geo = &bearing.geometry;
+    let lever = 0.5 * geo.pitch_diameter;
+    let mut q = [0.0; 5];
+    let mut target = [0.0; 5];
+    let mut free = Vec::new();
+    for (k, c) in op.dofs.iter().enumerate() {
+        match *c {
+            Control::Load(f) => {
+                if !f.is_finite() {
+                    return Err(BearingError::invalid(
+                        DOF_NAMES[k],
+                        f,
+                        "a finite load (N or N·m)",
+                    ));
+                }
+                target[k] = f;
+                free.push(k);
+            }
+            Control::Displacement(v) => {
+                if !v.is_finite() {
+                    return Err(BearingError::invalid(
+                        DOF_NAMES[k],
+                        v,
+                        "a finite displacement (m) or tilt (rad)",
+                    ));
+                }
+                q[k] = v;
+            }
+        }
+    }
+    let unit = |k: usize| if k >= 3 { 1.0 / lever } else { 1.0 };
+    let load_scale = free
+        .iter()
+        .map(|&k| (target[k] * unit(k)).abs())
+        .fold(1.0_f64, f64::max);
+    let tol = settings.tolerance * load_scale;
+    initial_guess(bearing, laws, &free, &target, &mut q)?;
+
+    let z = geo.ball_count;
+    let mut warm: Vec<Option<[f64; 2]>> = vec![None; z];
+    let residual_of = |fr: &ForceResult| -> (Vec<f64>, f64) {
+        let r: Vec<f64> = free
+            .iter()
+            .map(|&k| (fr.reaction[k] - target[k]) * unit(k))
+            .collect();
+        let n = r.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        (r, n)
+    };
+    let mut fr = model.evaluate_with(&q, &mut warm)?;
+    let (mut r, mut rn) = residual_of(&fr);
+    let mut history = vec![rn];
+    let mut iterations = 0;
+    let mut mu = 0.0_f64;
+    while rn > tol && iterations < settings.max_iterations {
+        iterations += 1;
+        let n = free.len();
+        // Scaled Jacobian: rows scaled like r, columns in m or rad.
+        let mut jac = vec![0.0; n * n];
+        for (a, &ka) in free.iter().enumerate() {
+            for (b, &kb) in free.iter().enumerate() {
+                jac[a * n + b] = fr.jacobian[ka][kb] * unit(ka);
+            }
+        }
+        let mut step: Vec<f64> = r.iter().map(|x| -x).collect();
+        let newton_ok = mu == 0.0 && linalg::solve(&mut jac.clone(), &mut step, n).is_some();
+        if !newton_ok {
+            // Levenberg–Marquardt: (JᵀJ + μ·diag(JᵀJ) + ε)·s = −Jᵀr
+            let mut jtj = vec![0.0; n * n];
+            let mut g = vec![0.0; n];
+            for a in 0..n {
+                for b in 0..n {
+                    jtj[a * n + b] = (0..n).map(|m| jac[m * n + a] * jac[m * n + b]).sum();
+                }
+                g[a] = -(0..n).map(|m| jac[m * n + a] * r[m]).sum::<f64>();
+            }
+            let dmax = (0..n).map(|a| jtj[a * n + a]).fold(0.0_f64, f64::max);
+            mu = if mu == 0.0 { 1e-3 } else { mu };
+            for a in 0..n {
+                jtj[a * n + a] += mu * jtj[a * n + a] + 1e-12 * dmax.max(1e-30);
+            }
+            if linalg::solve(&mut jtj, &mut g, n).is_none() {
+                // Jacobian identically zero: push every free DOF toward its load.
+                g = free
+                    .iter()
+                    .map(|&k| 1e-7 * (target[k] - fr.reaction[k]).signum())
+                    .collect();
+            }
+            step = g;
+        }
+        // Backtracking line search on the residual; limit a step to 10 % of D.
+        let smax = step.iter().fold(0.0_f64, |m, x| m.max(x.abs())) * lever.max(1.0);
+        let mut lam: f64 = (0.1 * geo.ball_diameter / smax.max(1e-300)).min(1.0);
+        let mut accepted = false;
+        for _ in 0..50 {
+            let mut qn = q;
+            for (a, &k) in free.iter().enumerate() {
+                qn[k] += lam * step[a];
+            }
+            let mut wn = warm.clone();
+            if let Ok(frn) = model.evaluate_with(&qn, &mut wn) {
+                let (rnv, rnn) = residual_of(&frn);
+                if rnn < rn || rnn <= tol {
+                    q = qn;
+                    warm = wn;
+                    fr = frn;
+                    r = rnv;
+                    rn = rnn;
+                    accepted = true;
+                    break;
+                }
+            }
+            lam *= 0.5;
+        }
+        if accepted {
+            mu = if newton_ok {
+                0.0
+            } else {
+                (mu * 0.3).max(1e-12)
+            };
+            if mu < 1e-9 {
+                mu = 0.0;
+            }
+        } else if mu > 1e12 {
+            break;
+        } else {
+            mu = if mu == 0.0 { 1e-3 } else { mu * 10.0 };
+        }
+        history.push(rn);
+    }
+    if rn > tol {
+        return Err(BearingError::NotConverged {
+            iterations,
+            residual: rn,
+            tolerance: tol,
+        });
+    }
+    let balls = model.ball_states(&q, &mut warm)?;
+    check_carried(bearing, &balls, settings)?;
+    let full = model.evaluate_with(&q, &mut warm)?;
+    Ok(Equilibrium {
+        converged: true,
+        iterations,
+        residual: rn,
+        residual_history: history,
+        displacement: q,
+        reaction: full.reaction,
+        stiffness: full.jacobian,
+        balls,
+    })
+}
+
+/// A solution outside what the bearing can physically carry is an error.
+fn check_carried(
+    bearing: &Bearing,
+    balls: &[BallState],
+    settings: &EquilibriumSettings,
+) -> Result<(), BearingError> {
+    let d = bearing.geometry.ball_diameter;
+    let angular = bearing.geometry.free_contact_angle > 1e-6;
+    for (j, b) in balls.iter().enumerate() {
+        for (race, c) in [("inner", &b.inner), ("outer", &b.outer)] {
+            if c.deflection > settings.max_deflection_ratio * d {
+                return Err(BearingError::Overloaded {
+                    reason: format!(
+                        "ball {j} {race} deflection {:.3e} m exceeds {} × D (load {:.4e} N, Hertz pressure {:.2} GPa)",
+                        c.deflection,
+                        settings.max_deflection_ratio,
+                        c.load,
+                        c.max_pressure * 1e-9
+                    ),
+                });
+            }
+            if angular && c.load > 0.0 && c.contact_angle < -1e-3 {
+                return Err(BearingError::Overloaded {
+                    reason: format!(
+                        "ball {j} {race} contact angle {:.2}° is reversed: a single-row angular-contact bearing cannot carry this axial load direction",
+                        c.contact_angle.to_degrees()
+                    ),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Starting displacements from the dry thrust and radial load relations (Jones; Stribeck's 4.37
+/// factor for zero clearance), so that the first Newton step sees loaded balls.
+fn initial_guess(
+    bearing: &Bearing,
+    laws: &ContactLaws,
+    free: &[usize],
+    target: &[f64; 5],
+    q: &mut [f64; 5],
+) -> Result<(), BearingError> {
+    let geo = &bearing.geometry;
+    let z = geo.ball_count as f64;
+    let a0 = geo.free_contact_angle;
+    // Series constant from the laws of ball 0 at a reference load.
+    let qref = {
+        let f = target[..3].iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        (f / z).max(1.0)
+    };
+    let di = laws.inner[0].approach_at(qref).unwrap_or(0.0).max(0.0);
+    let dn = di + laws.outer[0].approach_at(qref).unwrap_or(0.0).max(0.0);
+    // δ_n ∝ Q^(2/3) near the reference load.
+    let approach = |per_ball: f64| dn * (per_ball.abs() / qref).powf(2.0 / 3.0);
+    let lever = geo.inner_groove_center_radius();
+    for &k in free {
+        let f = target[k];
+        let g = match k {
+            0 => approach(f / (z * a0.sin().max(0.1))) / a0.sin().max(0.1),
+            1 | 2 => approach(4.37 * f / (z * a0.cos())) / a0.cos(),
+            _ => approach(4.37 * f / (z * lever * a0.sin().max(0.1))) / (lever * a0.sin().max(0.1)),
+        };
+        q[k] = g.copysign(f);
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bearing::geometry::BearingGeometry;
+    use crate::material::Solid;
+
+    pub(crate) fn b7006() -> Bearing {
+        Bearing {
+            geometry: BearingGeometry::new(11, 7e-3, 42.5e-3, 0.51, 0.54, 15f64.to_radians())
+                .unwrap(),
+            ball_material: Solid::AISI_52100,
+            ring_material: Solid::AISI_52100,
+        }
+    }
+
+    #[test]
+    fn seed_case_converges() {
+        let b = b7006();
+        let laws = ContactLaws::hertz(&b).unwrap();
+        let op = OperatingPoint {
+            inner_speed: 5000.0 * PI / 30.0,
+            outer_speed: 0.0,
+            dofs: [
+                Control::Load(1000.0),
+                Control::Load(1000.0),
+                Control::Load(1000.0),
+                Control::Displacement(0.001f64.to_radians()),
+                Control::Displacement(0.001f64.to_radians()),
+            ],
+            race_control: RaceControl::Outer,
+        };
+        let e = solve_equilibrium(&b, &laws, &op, &EquilibriumSettings::default()).unwrap();
+        assert!(e.converged);
+        for k in 0..3 {
+            assert!((e.reaction[k] - 1000.0).abs() < 1e-7, "{:?}", e.reaction);
+        }
+    }
+}
