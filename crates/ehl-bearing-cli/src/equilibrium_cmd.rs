@@ -64,7 +64,7 @@ pub fn table(case: &Case, eq: &Equilibrium) -> String {
         "{:<8} {:>10} {:>14} {:>16}",
         "DOF", "control", "displacement", "load"
     );
-    for k in 0..5 {
+    for (k, name) in DOF_NAMES.iter().enumerate() {
         let (dunit, dfac, lunit) = if k < 3 {
             ("µm", 1e6, "N")
         } else {
@@ -77,7 +77,7 @@ pub fn table(case: &Case, eq: &Equilibrium) -> String {
         let _ = writeln!(
             s,
             "{:<8} {:>10} {:>11.4} {:<4} {:>11.4} {:<4}",
-            DOF_NAMES[k],
+            name,
             ctl,
             eq.displacement[k] * dfac,
             dunit,

@@ -94,7 +94,7 @@ pub fn ellipse_parameter(ratio: f64) -> Result<f64, HertzError> {
         let h = 1e-7 * s.max(1e-6);
         let slope = (f(s + h) - fs) / h;
         let mut next = s - fs / slope;
-        if !(next > lo && next < hi) || !next.is_finite() {
+        if !(next > lo && next < hi && next.is_finite()) {
             next = 0.5 * (lo + hi);
         }
         if (next - s).abs() < 1e-15 * s.max(1.0) {

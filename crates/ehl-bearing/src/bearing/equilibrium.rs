@@ -21,6 +21,9 @@
 //! F_i = λ_i·G/D at the inner contact and F_o = −λ_o·G/D at the outer contact, along the contact
 //! tangents τ̂ = (cos α, −sin α). λ_i + λ_o = 2 (outer-race control: λ_i = 0, λ_o = 2).
 
+// Index loops mirror the matrix formulas here; iterator chains would obscure them.
+#![allow(clippy::needless_range_loop)]
+
 use super::geometry::{Bearing, Race};
 use super::linalg;
 use super::{dual::D4, BearingError};
@@ -100,10 +103,14 @@ impl ContactLaws {
         let ko = bearing.hertz(Race::Outer, a0)?.stiffness;
         let z = bearing.geometry.ball_count;
         Ok(ContactLaws {
-            inner: vec![Arc::new(HertzLaw { stiffness: ki }); z],
-            outer: vec![Arc::new(HertzLaw { stiffness: ko }); z],
+            inner: (0..z).map(|_| shared(HertzLaw { stiffness: ki })).collect(),
+            outer: (0..z).map(|_| shared(HertzLaw { stiffness: ko })).collect(),
         })
     }
+}
+
+fn shared(law: HertzLaw) -> Arc<dyn ContactLaw> {
+    Arc::new(law)
 }
 
 /// Convergence settings of the equilibrium solver.
@@ -481,7 +488,7 @@ impl<'a> BearingModel<'a> {
             }
         }
         let res = norm(&t);
-        if !(res <= 1e-9 * scale(&t)) {
+        if res.is_nan() || res > 1e-9 * scale(&t) {
             return Err(BearingError::BallNotConverged {
                 ball: j,
                 residual: res,
