@@ -109,6 +109,26 @@ impl ContactLaws {
     }
 }
 
+/// Largest friction coefficient available to resist the gyroscopic moment (a typical EHL
+/// traction limit).
+pub const MU_MAX: f64 = 0.1;
+
+/// Smooth saturation of a friction force `f` at `limit` ≥ 0: f/(1 + (|f|/limit)^8)^(1/8).
+fn saturate(f: D4, limit: D4) -> D4 {
+    if f.v == 0.0 {
+        return f;
+    }
+    if limit.v <= 0.0 {
+        return D4::cst(0.0);
+    }
+    let r = f / limit;
+    let r8 = r.v.powi(8);
+    // g(r) = (1 + r⁸)^(−1/8); f·g(f/limit)
+    let g = 1.0 / (1.0 + r8).powf(0.125);
+    let dg = -r.v.powi(7) * g / (1.0 + r8);
+    f * r.chain(g, dg)
+}
+
 fn shared(law: HertzLaw) -> Arc<dyn ContactLaw> {
     Arc::new(law)
 }
@@ -171,10 +191,17 @@ pub struct BallState {
     pub spin_speed: f64,
     /// Pitch angle β of the rolling axis, rad.
     pub pitch_angle: f64,
+    /// Angle of the line of groove-curvature centres, rad: the contact angle at which the ball
+    /// speeds are evaluated (equal to both contact angles at rest).
+    pub kinematic_angle: f64,
     /// Centrifugal force F_c = ½·m·d_m·ω_m², N.
     pub centrifugal_force: f64,
-    /// Gyroscopic moment the races apply to the ball, G (positive along t̂), N·m.
+    /// Gyroscopic moment the ball's motion requires, G = dH/dt along t̂, N·m.
     pub gyroscopic_moment: f64,
+    /// Friction force of the inner race on the ball along τ̂_i = (cos α_i, −sin α_i), N.
+    pub inner_friction: f64,
+    /// Friction force of the outer race on the ball along τ̂_o = (cos α_o, −sin α_o), N.
+    pub outer_friction: f64,
     /// Inner contact.
     pub inner: ContactState,
     /// Outer contact.
@@ -234,6 +261,8 @@ struct Terms {
     beta: f64,
     fc: f64,
     gyro: f64,
+    fi: f64,
+    fo: f64,
 }
 
 /// The bearing model at one operating speed and set of contact laws.
@@ -313,7 +342,7 @@ impl<'a> BearingModel<'a> {
         ]
     }
 
-    fn terms(&self, j: usize, x: [D4; 2], a: [D4; 2]) -> Terms {
+    fn terms(&self, j: usize, x: [D4; 2], a: [D4; 2], ignore_inner: bool) -> Terms {
         let geo = &self.bearing.geometry;
         let d = geo.ball_diameter;
         let dm = geo.pitch_diameter;
@@ -330,21 +359,34 @@ impl<'a> BearingModel<'a> {
         let sin_ao = x[0] / lo;
         let cos_ao = x[1] / lo;
         let dout = lo - self.ro;
-        let (fi, dfi) = self.laws.inner[j].force(di.v);
+        let (fi, dfi) = if ignore_inner {
+            (0.0, 0.0)
+        } else {
+            self.laws.inner[j].force(di.v)
+        };
         let (fo, dfo) = self.laws.outer[j].force(dout.v);
         let qi = di.chain(fi, dfi);
         let qo = dout.chain(fo, dfo);
+        // Kinematic angle: the ball's speeds (ω_m, ω_R, β) are evaluated with both contact angles
+        // taken as the angle of the line of groove-curvature centres, atan(A1/A2). It equals both
+        // contact angles at rest and differs from them by the small centrifugal/gyroscopic split
+        // at speed; unlike the contact angles it stays defined for a ball that leaves a race, and
+        // it depends on the ring displacement only, which keeps each ball's equilibrium well
+        // conditioned (see README, "Modelling choices").
+        let la = (a[0] * a[0] + a[1] * a[1]).sqrt();
+        let (ksin_i, kcos_i) = (a[0] / la, a[1] / la);
+        let (ksin_o, kcos_o) = (ksin_i, kcos_i);
         // Rolling axis ê = (cos β, −sin β): outer control tan β = sin α_o/(cos α_o + γ),
         // inner control tan β = sin α_i/(cos α_i − γ).
         let axis_outer = || {
-            let cx = cos_ao + gamma;
-            let n = (cx * cx + sin_ao * sin_ao).sqrt();
-            (cx / n, sin_ao / n)
+            let cx = kcos_o + gamma;
+            let n = (cx * cx + ksin_o * ksin_o).sqrt();
+            (cx / n, ksin_o / n)
         };
         let axis_inner = || {
-            let cx = cos_ai - gamma;
-            let n = (cx * cx + sin_ai * sin_ai).sqrt();
-            (cx / n, sin_ai / n)
+            let cx = kcos_i - gamma;
+            let n = (cx * cx + ksin_i * ksin_i).sqrt();
+            (cx / n, ksin_i / n)
         };
         let (cos_b, sin_b) = match self.race_control {
             RaceControl::Outer | RaceControl::NoGyroscopic => axis_outer(),
@@ -359,10 +401,10 @@ impl<'a> BearingModel<'a> {
         };
         // Pure rolling at both contact centres (cage frame):
         //  −(D/2)·ω_R·cos(α_i − β) = (ω_i − ω_m)·r_i,   (D/2)·ω_R·cos(α_o − β) = (ω_o − ω_m)·r_o
-        let ci = (cos_ai * cos_b + sin_ai * sin_b) * (0.5 * d);
-        let co = (cos_ao * cos_b + sin_ao * sin_b) * (0.5 * d);
-        let rpi = D4::cst(0.5 * dm) - cos_ai * (0.5 * d);
-        let rpo = D4::cst(0.5 * dm) + cos_ao * (0.5 * d);
+        let ci = (kcos_i * cos_b + ksin_i * sin_b) * (0.5 * d);
+        let co = (kcos_o * cos_b + ksin_o * sin_b) * (0.5 * d);
+        let rpi = D4::cst(0.5 * dm) - kcos_i * (0.5 * d);
+        let rpo = D4::cst(0.5 * dm) + kcos_o * (0.5 * d);
         let om_m =
             (rpi * co * self.inner_speed + rpo * ci * self.outer_speed) / (rpi * co + rpo * ci);
         let om_r = (D4::cst(self.outer_speed) - om_m) * rpo / co;
@@ -372,13 +414,19 @@ impl<'a> BearingModel<'a> {
         } else {
             -(om_m * om_r * sin_b) * self.inertia
         };
+        // Friction forces that carry the gyroscopic moment: F_i = λ_i·G/D at the inner contact and
+        // F_o = −λ_o·G/D at the outer (along τ̂ = (cos α, −sin α)), each limited smoothly to
+        // μ_max·Q: where a contact cannot hold its share the ball pivots (Harris) and the moment is
+        // not fully resisted. The limit is inactive (< 1e-6 relative) wherever |F| < μ_max·Q/6.
         let (lam_i, lam_o) = self.race_control.lambdas();
-        let gd = gyro / d;
-        let r1 = qi * sin_ai - qo * sin_ao + gd * (cos_ai * lam_i - cos_ao * lam_o);
-        let r2 = qi * cos_ai - qo * cos_ao - gd * (sin_ai * lam_i - sin_ao * lam_o) + fc;
-        let vx = qi * sin_ai + gd * cos_ai * lam_i;
-        let vr = qi * cos_ai - gd * sin_ai * lam_i;
-        let gf = gyro * (geo.inner_conformity * lam_i);
+        let fi = saturate(gyro * (lam_i / d), qi * MU_MAX);
+        let fo = saturate(gyro * (-lam_o / d), qo * MU_MAX);
+        let r1 = qi * sin_ai - qo * sin_ao + fi * cos_ai + fo * cos_ao;
+        let r2 = qi * cos_ai - qo * cos_ao - fi * sin_ai - fo * sin_ao + fc;
+        let vx = qi * sin_ai + fi * cos_ai;
+        let vr = qi * cos_ai - fi * sin_ai;
+        // Moment of the inner friction about the inner groove centre: f_i·D·F_i along t̂.
+        let gf = fi * (geo.inner_conformity * d);
         Terms {
             r: [r1, r2],
             g: [vx, vr, gf],
@@ -395,14 +443,21 @@ impl<'a> BearingModel<'a> {
             beta: sin_b.v.atan2(cos_b.v),
             fc: fc.v,
             gyro: gyro.v,
+            fi: fi.v,
+            fo: fo.v,
         }
     }
 
     fn terms_at(&self, j: usize, x: [f64; 2], a: [f64; 2]) -> Terms {
+        self.terms_opt(j, x, a, false)
+    }
+
+    fn terms_opt(&self, j: usize, x: [f64; 2], a: [f64; 2], ignore_inner: bool) -> Terms {
         self.terms(
             j,
             [D4::var(x[0], 0), D4::var(x[1], 1)],
             [D4::var(a[0], 2), D4::var(a[1], 3)],
+            ignore_inner,
         )
     }
 
@@ -456,38 +511,23 @@ impl<'a> BearingModel<'a> {
             t = tm;
         }
         let scale = |t: &Terms| t.qi.abs() + t.qo.abs() + t.fc.abs() + 1e-6;
-        let norm = |t: &Terms| t.r[0].v.hypot(t.r[1].v);
-        for _ in 0..60 {
-            let res = norm(&t);
-            if res <= 1e-13 * scale(&t) {
-                break;
-            }
-            let mut jac = [t.r[0].d[0], t.r[0].d[1], t.r[1].d[0], t.r[1].d[1]];
-            let mut step = [-t.r[0].v, -t.r[1].v];
-            if linalg::solve(&mut jac, &mut step, 2).is_none() {
-                // Singular (e.g. a contact exactly at zero load): nudge both contacts into load.
-                let n = (x[0] * x[0] + x[1] * x[1]).sqrt();
-                step = [1e-9 * x[0] / n, 1e-9 * x[1] / n];
-            }
-            // Backtracking on the residual norm.
-            let mut lam = 1.0;
-            let mut accepted = false;
-            for _ in 0..40 {
-                let xn = [x[0] + lam * step[0], x[1] + lam * step[1]];
-                let tn = self.terms_at(j, xn, a);
-                if norm(&tn) < res || lam < 1e-10 {
-                    x = xn;
-                    t = tn;
-                    accepted = true;
-                    break;
-                }
-                lam *= 0.5;
-            }
-            if !accepted || (lam * step[0]).hypot(lam * step[1]) < 1e-17 {
-                break;
-            }
+        let converged = |t: &Terms| t.r[0].v.hypot(t.r[1].v) <= 1e-9 * scale(t);
+        let (mut xs, mut ts) = self.ball_newton(j, a, x, t, false);
+        if !converged(&ts) {
+            // Stalled at the onset of the inner contact, where a nearly unloaded but stiff inner
+            // contact makes the Jacobian singular: solve the ball in the outer groove alone. If the
+            // inner contact is open there, that is the solution; otherwise restart from it.
+            let t0 = self.terms_opt(j, x, a, true);
+            let (xo, _) = self.ball_newton(j, a, x, t0, true);
+            let tf = self.terms_at(j, xo, a);
+            (xs, ts) = if converged(&tf) {
+                (xo, tf)
+            } else {
+                self.ball_newton(j, a, xo, tf, false)
+            };
         }
-        let res = norm(&t);
+        let (x, t) = (xs, ts);
+        let res = t.r[0].v.hypot(t.r[1].v);
         if res.is_nan() || res > 1e-9 * scale(&t) {
             return Err(BearingError::BallNotConverged {
                 ball: j,
@@ -516,6 +556,98 @@ impl<'a> BearingModel<'a> {
             g: [t.g[0].v, t.g[1].v, t.g[2].v],
             dg,
         })
+    }
+
+    /// Damped Newton (with a Levenberg–Marquardt fallback) for one ball in polar coordinates
+    /// about the outer groove centre; returns the last iterate.
+    fn ball_newton(
+        &self,
+        j: usize,
+        a: [f64; 2],
+        x: [f64; 2],
+        t: Terms,
+        ignore_inner: bool,
+    ) -> ([f64; 2], Terms) {
+        let mut t = t;
+        let scale = |t: &Terms| t.qi.abs() + t.qo.abs() + t.fc.abs() + 1e-6;
+        let norm = |t: &Terms| t.r[0].v.hypot(t.r[1].v);
+        // Newton in polar coordinates about the outer groove centre, X = ρ·(sin φ, cos φ): a ball
+        // that slides along the outer groove keeps its outer approach, which a Cartesian step
+        // would not (the radial Hertz stiffness is orders of magnitude above the tangential one).
+        let polar = |x: [f64; 2]| (x[0].hypot(x[1]), x[0].atan2(x[1]));
+        let cart = |rho: f64, phi: f64| [rho * phi.sin(), rho * phi.cos()];
+        let (mut rho, mut phi) = polar(x);
+        for _ in 0..100 {
+            let res = norm(&t);
+            if res <= 1e-13 * scale(&t) {
+                break;
+            }
+            let (sp, cp) = phi.sin_cos();
+            // dX/dρ = (sin φ, cos φ), dX/dφ = ρ·(cos φ, −sin φ)
+            let jp = |row: usize| {
+                let (a, b) = (t.r[row].d[0], t.r[row].d[1]);
+                [a * sp + b * cp, rho * (a * cp - b * sp)]
+            };
+            let (j0, j1) = (jp(0), jp(1));
+            let mut jac = [j0[0], j0[1], j1[0], j1[1]];
+            let mut step = [-t.r[0].v, -t.r[1].v];
+            if linalg::solve(&mut jac, &mut step, 2).is_none() {
+                // Singular (a contact exactly at zero load): press the ball onto the outer race.
+                step = [1e-9, 0.0];
+            }
+            // Limit the step: a tenth of the groove offset radially, 0.2 rad in angle.
+            let lim = (0.1 * self.ro / step[0].abs().max(1e-300))
+                .min(0.2 / step[1].abs().max(1e-300))
+                .min(1.0);
+            let mut accepted = false;
+            let mut lam = lim;
+            for _ in 0..8 {
+                let (rn, pn) = (rho + lam * step[0], phi + lam * step[1]);
+                let tn = self.terms_opt(j, cart(rn, pn), a, ignore_inner);
+                if norm(&tn) < res {
+                    (rho, phi, t) = (rn, pn, tn);
+                    accepted = true;
+                    break;
+                }
+                lam *= 0.5;
+            }
+            if !accepted {
+                // Levenberg–Marquardt on ½|R|² with diagonal scaling: always a descent direction,
+                // robust where the Jacobian is nearly singular (balls close to losing contact).
+                let jt = [[j0[0], j1[0]], [j0[1], j1[1]]]; // Jᵀ
+                let r = [t.r[0].v, t.r[1].v];
+                let g = [
+                    -(jt[0][0] * r[0] + jt[0][1] * r[1]),
+                    -(jt[1][0] * r[0] + jt[1][1] * r[1]),
+                ];
+                let a11 = j0[0] * j0[0] + j1[0] * j1[0];
+                let a22 = j0[1] * j0[1] + j1[1] * j1[1];
+                let a12 = j0[0] * j0[1] + j1[0] * j1[1];
+                let mut mu = 1e-6;
+                for _ in 0..40 {
+                    let (b11, b22) = (a11 * (1.0 + mu), a22 * (1.0 + mu));
+                    let det = b11 * b22 - a12 * a12;
+                    if det > 0.0 {
+                        let s0 = (b22 * g[0] - a12 * g[1]) / det;
+                        let s1 = (b11 * g[1] - a12 * g[0]) / det;
+                        let (rn, pn) = (rho + s0, phi + s1);
+                        if rn > 0.0 {
+                            let tn = self.terms_opt(j, cart(rn, pn), a, ignore_inner);
+                            if norm(&tn) < res {
+                                (rho, phi, t) = (rn, pn, tn);
+                                accepted = true;
+                                break;
+                            }
+                        }
+                    }
+                    mu *= 10.0;
+                }
+            }
+            if !accepted {
+                break;
+            }
+        }
+        (cart(rho, phi), t)
     }
 
     /// Reactions and Jacobian at displacement `q`, using and updating warm starts `warm`.
@@ -610,8 +742,11 @@ impl<'a> BearingModel<'a> {
                 orbital_speed: t.om_m,
                 spin_speed: t.om_r,
                 pitch_angle: t.beta,
+                kinematic_angle: a[0].atan2(a[1]),
                 centrifugal_force: t.fc,
                 gyroscopic_moment: t.gyro,
+                inner_friction: t.fi,
+                outer_friction: t.fo,
                 inner: contact(
                     Race::Inner,
                     t.qi,
@@ -837,7 +972,9 @@ fn check_carried(
                     ),
                 });
             }
-            if angular && c.load > 0.0 && c.contact_angle < -1e-3 {
+            // The inner contact angle shows the direction of the ring's axial load; the outer one
+            // may dip below zero for a lightly loaded ball held by centrifugal force and friction.
+            if angular && race == "inner" && c.load > 0.0 && c.contact_angle < -1e-3 {
                 return Err(BearingError::Overloaded {
                     reason: format!(
                         "ball {j} {race} contact angle {:.2}° is reversed: a single-row angular-contact bearing cannot carry this axial load direction",
