@@ -21,8 +21,12 @@ mod lm;
 mod power_law;
 
 pub use law::{FittedLaw, RangeStatus, DEFAULT_JOINT_FRACTION};
-pub use lm::{covariance, levenberg_marquardt, LeastSquaresProblem, LmConvergence, LmReport, LmStop};
-pub use power_law::{fit_power_law, fit_power_law_damped, FitOptions, PowerLawFit, PowerLawStdErrors};
+pub use lm::{
+    covariance, levenberg_marquardt, LeastSquaresProblem, LmConvergence, LmReport, LmStop,
+};
+pub use power_law::{
+    fit_power_law, fit_power_law_damped, FitOptions, PowerLawFit, PowerLawStdErrors,
+};
 
 /// Errors of the fit. Every variant names the offending input and carries its numbers.
 #[derive(Debug, Error, Clone, PartialEq)]
@@ -78,7 +82,9 @@ pub enum FitError {
         max: f64,
     },
     /// The approach rates do not vary, so c cannot be separated from ΔF.
-    #[error("the approach rates are all equal ({value} m/s): the damping c cannot be separated from ΔF")]
+    #[error(
+        "the approach rates are all equal ({value} m/s): the damping c cannot be separated from ΔF"
+    )]
     DegenerateRate {
         /// The common rate, m/s.
         value: f64,

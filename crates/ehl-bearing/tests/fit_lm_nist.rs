@@ -7,7 +7,9 @@
 //! standard errors). The assertions use 1e-8 on the parameters and 1e-6 on the standard errors
 //! (linearized covariance, as certified), leaving margin for the convergence tolerances.
 
-use ehl_bearing::fit::{covariance, levenberg_marquardt, LeastSquaresProblem, LmConvergence, LmStop};
+use ehl_bearing::fit::{
+    covariance, levenberg_marquardt, LeastSquaresProblem, LmConvergence, LmStop,
+};
 
 /// y = b1·(1 − exp(−b2·x)) on (x, y) data.
 struct Misra1a {
@@ -23,8 +25,8 @@ impl LeastSquaresProblem for Misra1a {
         self.x.len()
     }
     fn residuals(&self, b: &[f64], r: &mut [f64]) {
-        for i in 0..self.x.len() {
-            r[i] = b[0] * (1.0 - (-b[1] * self.x[i]).exp()) - self.y[i];
+        for ((ri, x), y) in r.iter_mut().zip(&self.x).zip(&self.y) {
+            *ri = b[0] * (1.0 - (-b[1] * x).exp()) - y;
         }
     }
     fn jacobian(&self, b: &[f64], jac: &mut [f64]) {
@@ -40,9 +42,18 @@ impl LeastSquaresProblem for Misra1a {
 /// lower difficulty, 14 observations. Data and certified values from
 /// https://www.itl.nist.gov/div898/strd/nls/data/LINKS/DATA/Misra1a.dat (columns y, x).
 fn misra1a() -> Misra1a {
-    let y = [10.07, 14.73, 17.94, 23.93, 29.61, 35.18, 40.02, 44.82, 50.76, 55.05, 61.01, 66.40, 75.47, 81.78];
-    let x = [77.6, 114.9, 141.1, 190.8, 239.9, 289.0, 332.8, 378.4, 434.8, 477.3, 536.8, 593.1, 689.1, 760.0];
-    Misra1a { x: x.to_vec(), y: y.to_vec() }
+    let y = [
+        10.07, 14.73, 17.94, 23.93, 29.61, 35.18, 40.02, 44.82, 50.76, 55.05, 61.01, 66.40, 75.47,
+        81.78,
+    ];
+    let x = [
+        77.6, 114.9, 141.1, 190.8, 239.9, 289.0, 332.8, 378.4, 434.8, 477.3, 536.8, 593.1, 689.1,
+        760.0,
+    ];
+    Misra1a {
+        x: x.to_vec(),
+        y: y.to_vec(),
+    }
 }
 // Certified (NIST): b1 = 2.3894212918E+02 ± 2.7070075241E+00, b2 = 5.5015643181E-04 ± 7.2668688436E-06,
 // residual sum of squares 1.2455138894E-01.
@@ -65,8 +76,8 @@ impl LeastSquaresProblem for DanWood {
         self.x.len()
     }
     fn residuals(&self, b: &[f64], r: &mut [f64]) {
-        for i in 0..self.x.len() {
-            r[i] = b[0] * self.x[i].powf(b[1]) - self.y[i];
+        for ((ri, x), y) in r.iter_mut().zip(&self.x).zip(&self.y) {
+            *ri = b[0] * x.powf(b[1]) - y;
         }
     }
     fn jacobian(&self, b: &[f64], jac: &mut [f64]) {
@@ -94,7 +105,14 @@ fn rel(a: f64, b: f64) -> f64 {
     (a / b - 1.0).abs()
 }
 
-fn check<P: LeastSquaresProblem>(name: &str, p: &P, start: [f64; 2], cert: [f64; 2], sd: [f64; 2], rss: f64) {
+fn check<P: LeastSquaresProblem>(
+    name: &str,
+    p: &P,
+    start: [f64; 2],
+    cert: [f64; 2],
+    sd: [f64; 2],
+    rss: f64,
+) {
     let rep = levenberg_marquardt(p, &start, &LmConvergence::default()).unwrap();
     assert!(rep.converged, "{name} from {start:?}: {:?}", rep.stop);
     let cov = covariance(p, &rep.params).unwrap();
@@ -106,33 +124,71 @@ fn check<P: LeastSquaresProblem>(name: &str, p: &P, start: [f64; 2], cert: [f64;
         rep.iterations, rep.stop, rep.params, e[0], e[1], es[0], es[1]
     );
     assert!(e[0] < 1e-8 && e[1] < 1e-8, "{name}: parameter errors {e:?}");
-    assert!(es[0] < 1e-6 && es[1] < 1e-6, "{name}: standard-error errors {es:?}");
+    assert!(
+        es[0] < 1e-6 && es[1] < 1e-6,
+        "{name}: standard-error errors {es:?}"
+    );
     assert!(er < 1e-8, "{name}: RSS error {er}");
 }
 
 #[test]
 fn misra1a_matches_certified_values_from_both_nist_starts() {
     let p = misra1a();
-    check("Misra1a", &p, [500.0, 1e-4], MISRA1A_B, MISRA1A_SD, MISRA1A_RSS);
-    check("Misra1a", &p, [250.0, 5e-4], MISRA1A_B, MISRA1A_SD, MISRA1A_RSS);
+    check(
+        "Misra1a",
+        &p,
+        [500.0, 1e-4],
+        MISRA1A_B,
+        MISRA1A_SD,
+        MISRA1A_RSS,
+    );
+    check(
+        "Misra1a",
+        &p,
+        [250.0, 5e-4],
+        MISRA1A_B,
+        MISRA1A_SD,
+        MISRA1A_RSS,
+    );
 }
 
 #[test]
 fn danwood_matches_certified_values_from_both_nist_starts() {
     let p = danwood();
-    check("DanWood", &p, [1.0, 5.0], DANWOOD_B, DANWOOD_SD, DANWOOD_RSS);
-    check("DanWood", &p, [0.7, 4.0], DANWOOD_B, DANWOOD_SD, DANWOOD_RSS);
+    check(
+        "DanWood",
+        &p,
+        [1.0, 5.0],
+        DANWOOD_B,
+        DANWOOD_SD,
+        DANWOOD_RSS,
+    );
+    check(
+        "DanWood",
+        &p,
+        [0.7, 4.0],
+        DANWOOD_B,
+        DANWOOD_SD,
+        DANWOOD_RSS,
+    );
 }
 
 #[test]
 fn non_convergence_is_reported_not_swallowed() {
     let p = misra1a();
-    let conv = LmConvergence { max_iterations: 2, ..LmConvergence::default() };
+    let conv = LmConvergence {
+        max_iterations: 2,
+        ..LmConvergence::default()
+    };
     let rep = levenberg_marquardt(&p, &[500.0, 1e-4], &conv).unwrap();
     assert!(!rep.converged);
     assert_eq!(rep.stop, LmStop::MaxIterations);
     assert_eq!(rep.iterations, 2);
-    assert!(rep.cost > MISRA1A_RSS, "final cost {} is reported", rep.cost);
+    assert!(
+        rep.cost > MISRA1A_RSS,
+        "final cost {} is reported",
+        rep.cost
+    );
 }
 
 #[test]
@@ -151,6 +207,9 @@ fn bad_start_is_an_error_not_a_panic() {
     let p = misra1a();
     assert!(levenberg_marquardt(&p, &[1.0], &LmConvergence::default()).is_err());
     assert!(levenberg_marquardt(&p, &[f64::NAN, 1.0], &LmConvergence::default()).is_err());
-    let bad = LmConvergence { initial_damping: -1.0, ..LmConvergence::default() };
+    let bad = LmConvergence {
+        initial_damping: -1.0,
+        ..LmConvergence::default()
+    };
     assert!(levenberg_marquardt(&p, &[500.0, 1e-4], &bad).is_err());
 }

@@ -2,14 +2,18 @@
 //!
 //! For δ ≥ δ_j the law is the fitted power law. Below the joint δ_j it continues as
 //!
-//!     Q(δ) = Q_j·exp(s·(δ − δ_j)),   s = Q′(δ_j)/Q(δ_j) = K·d·δ_j^(d−1) / (K·δ_j^d + ΔF),
+//! ```text
+//! Q(δ) = Q_j·exp(s·(δ − δ_j)),   s = Q′(δ_j)/Q(δ_j) = K·d·δ_j^(d−1) / (K·δ_j^d + ΔF),
+//! ```
 //!
 //! which matches value and slope at δ_j (C¹), is positive with a positive slope everywhere (so a
 //! Newton solver never meets a flat region) and decays to 0 as δ → −∞ (the film thickens and the
 //! hydrodynamic force vanishes). The joint is δ_j = max(f·δ_min, δ*) with f the joint fraction
-//! (default 0.5) and δ* the approach where the power law falls to half its value at δ_min
-//! (only active when ΔF < 0), so that Q_j ≥ Q(δ_min)/2 > 0. A joint at δ_j > 0 also avoids the
-//! infinite slope of δ^d at 0 when d < 1.
+//! (default 0.5) and δ* = ((Q(δ_min)/2 − ΔF)/K)^(1/d) the approach where the power law falls to
+//! half its value at δ_min (δ* = 0 if it never does for δ > 0, i.e. ΔF ≥ Q(δ_min)/2). So
+//! Q_j ≥ Q(δ_min)/2 > 0 always (also for a fitted ΔF < 0), and the power law is never
+//! extrapolated far below the data. A joint at δ_j > 0 also avoids the infinite slope of δ^d at
+//! δ = 0 when d < 1.
 
 use super::FitError;
 use crate::contact_law::ContactLaw;
@@ -34,9 +38,20 @@ pub enum RangeStatus {
 }
 
 /// A fitted lubricated contact law Q = K·δ^d + ΔF (+ c·δ̇ via [`FittedLaw::force_with_rate`])
-/// with a C¹ exponential extension below the joint δ_j (see the module documentation of
-/// `fit::law` and `docs/fit.md`). Construct with [`FittedLaw::new`] or
-/// [`PowerLawFit::law`](super::PowerLawFit::law); the constructors check the invariants.
+/// with a C¹ exponential extension below a joint approach δ_j:
+///
+/// ```text
+/// Q(δ) = K·δ^d + ΔF                 for δ ≥ δ_j
+/// Q(δ) = Q_j·exp(s·(δ − δ_j))        for δ < δ_j,   Q_j = K·δ_j^d + ΔF,   s = K·d·δ_j^(d−1)/Q_j
+/// δ_j  = max(f·δ_min, δ*),  δ* = ((Q(δ_min)/2 − ΔF)/K)^(1/d)  (δ* = 0 if Q(δ_min)/2 ≤ ΔF)
+/// ```
+///
+/// Value and slope are continuous at δ_j; Q > 0 and dQ/dδ > 0 everywhere (no flat region for a
+/// Newton solver); Q → 0 as δ → −∞ (film thicker than at zero approach: the hydrodynamic force
+/// vanishes). f is the joint fraction ([`DEFAULT_JOINT_FRACTION`] = 0.5); δ* keeps
+/// Q_j ≥ Q(δ_min)/2, so a fitted ΔF < 0 still gives a positive law. Justification and tests:
+/// `docs/fit.md`. Construct with [`FittedLaw::new`] or [`PowerLawFit::law`](super::PowerLawFit::law);
+/// the constructors check the invariants (K > 0, d > 0, 0 < δ_min ≤ δ_max, Q(δ_min) > 0).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct FittedLaw {
     k: f64,
@@ -54,7 +69,13 @@ impl FittedLaw {
     /// The law with stiffness `k` (N/m^d, > 0), index `d` (> 0), lift `delta_f` (N), fitted on
     /// approaches [`delta_min`, `delta_max`] (m, 0 < min ≤ max), joint at
     /// [`DEFAULT_JOINT_FRACTION`]·δ_min (or higher if ΔF < 0, see the module documentation).
-    pub fn new(k: f64, d: f64, delta_f: f64, delta_min: f64, delta_max: f64) -> Result<Self, FitError> {
+    pub fn new(
+        k: f64,
+        d: f64,
+        delta_f: f64,
+        delta_min: f64,
+        delta_max: f64,
+    ) -> Result<Self, FitError> {
         Self::with_joint_fraction(k, d, delta_f, delta_min, delta_max, DEFAULT_JOINT_FRACTION)
     }
 
@@ -84,10 +105,12 @@ impl FittedLaw {
             )));
         }
         if !(fraction > 0.0 && fraction <= 1.0) {
-            return Err(FitError::InvalidLaw(format!("joint fraction {fraction} must lie in (0, 1]")));
+            return Err(FitError::InvalidLaw(format!(
+                "joint fraction {fraction} must lie in (0, 1]"
+            )));
         }
         let q_min = k * delta_min.powf(d) + delta_f;
-        if !(q_min > 0.0) {
+        if q_min.is_nan() || q_min <= 0.0 {
             return Err(FitError::InvalidLaw(format!(
                 "the law gives Q = {q_min} N ≤ 0 at the smallest fitted approach {delta_min} m (ΔF = {delta_f} N)"
             )));
@@ -105,13 +128,25 @@ impl FittedLaw {
                 "degenerate extension at δ_j = {delta_joint} m: Q_j = {force_joint} N, s = {tail_rate} 1/m"
             )));
         }
-        Ok(Self { k, d, delta_f, c: None, delta_min, delta_max, delta_joint, force_joint, tail_rate })
+        Ok(Self {
+            k,
+            d,
+            delta_f,
+            c: None,
+            delta_min,
+            delta_max,
+            delta_joint,
+            force_joint,
+            tail_rate,
+        })
     }
 
     /// The same law with a damping coefficient c (N·s/m, finite) for [`FittedLaw::force_with_rate`].
     pub fn with_damping(mut self, c: f64) -> Result<Self, FitError> {
         if !c.is_finite() {
-            return Err(FitError::InvalidLaw(format!("damping c = {c} N·s/m is not finite")));
+            return Err(FitError::InvalidLaw(format!(
+                "damping c = {c} N·s/m is not finite"
+            )));
         }
         self.c = Some(c);
         Ok(self)

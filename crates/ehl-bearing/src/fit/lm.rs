@@ -45,7 +45,13 @@ pub struct LmConvergence {
 
 impl Default for LmConvergence {
     fn default() -> Self {
-        Self { x_tol: 1e-10, g_tol: 1e-10, f_tol: 1e-12, max_iterations: 200, initial_damping: 1e-3 }
+        Self {
+            x_tol: 1e-10,
+            g_tol: 1e-10,
+            f_tol: 1e-12,
+            max_iterations: 200,
+            initial_damping: 1e-3,
+        }
     }
 }
 
@@ -70,7 +76,10 @@ pub enum LmStop {
 impl LmStop {
     /// Whether this reason counts as convergence.
     pub fn is_converged(self) -> bool {
-        matches!(self, LmStop::ZeroResidual | LmStop::Gradient | LmStop::Step | LmStop::Cost)
+        matches!(
+            self,
+            LmStop::ZeroResidual | LmStop::Gradient | LmStop::Step | LmStop::Cost
+        )
     }
 }
 
@@ -119,7 +128,11 @@ fn norm2(v: &[f64]) -> f64 {
 
 fn check_finite(what: &'static str, v: &[f64]) -> Result<(), FitError> {
     match v.iter().position(|a| !a.is_finite()) {
-        Some(index) => Err(FitError::NonFinite { what, index, value: v[index] }),
+        Some(index) => Err(FitError::NonFinite {
+            what,
+            index,
+            value: v[index],
+        }),
         None => Ok(()),
     }
 }
@@ -138,13 +151,20 @@ pub fn levenberg_marquardt<P: LeastSquaresProblem + ?Sized>(
     let n = problem.n_params();
     let m = problem.n_residuals();
     if n == 0 || x0.len() != n {
-        return Err(FitError::LengthMismatch { what: "initial parameters", expected: n, found: x0.len() });
+        return Err(FitError::LengthMismatch {
+            what: "initial parameters",
+            expected: n,
+            found: x0.len(),
+        });
     }
     if m < n {
-        return Err(FitError::TooFewPoints { points: m, required: n });
+        return Err(FitError::TooFewPoints {
+            points: m,
+            required: n,
+        });
     }
     let tols = [conv.x_tol, conv.g_tol, conv.f_tol, conv.initial_damping];
-    if tols.iter().any(|t| !(t.is_finite() && *t >= 0.0)) || !(conv.initial_damping > 0.0) {
+    if tols.iter().any(|t| !(t.is_finite() && *t >= 0.0)) || conv.initial_damping <= 0.0 {
         return Err(FitError::Invalid(format!(
             "Levenberg–Marquardt settings must be finite and non-negative with a positive initial damping: {conv:?}"
         )));
@@ -161,7 +181,14 @@ pub fn levenberg_marquardt<P: LeastSquaresProblem + ?Sized>(
     let mut evaluations = 1;
 
     let col_norms = |jac: &[f64]| -> Vec<f64> {
-        (0..n).map(|j| (0..m).map(|i| jac[i * n + j] * jac[i * n + j]).sum::<f64>().sqrt()).collect()
+        (0..n)
+            .map(|j| {
+                (0..m)
+                    .map(|i| jac[i * n + j] * jac[i * n + j])
+                    .sum::<f64>()
+                    .sqrt()
+            })
+            .collect()
     };
     let mut cn = col_norms(&jac);
     // Scaling D: column norms, never decreased (Moré); a zero column gets scale 1.
@@ -177,7 +204,9 @@ pub fn levenberg_marquardt<P: LeastSquaresProblem + ?Sized>(
     let mut x_trial = vec![0.0; n];
 
     let gradient = |jac: &[f64], r: &[f64]| -> Vec<f64> {
-        (0..n).map(|j| (0..m).map(|i| jac[i * n + j] * r[i]).sum()).collect()
+        (0..n)
+            .map(|j| (0..m).map(|i| jac[i * n + j] * r[i]).sum())
+            .collect()
     };
 
     let stop = loop {
@@ -215,7 +244,12 @@ pub fn levenberg_marquardt<P: LeastSquaresProblem + ?Sized>(
         let z = solve_upper(&rfac, n, &rhs[..n]);
         let h: Vec<f64> = z.iter().zip(&diag).map(|(zi, di)| zi / di).collect();
         let dh = norm2(&z);
-        let dx = norm2(&x.iter().zip(&diag).map(|(xi, di)| xi * di).collect::<Vec<_>>());
+        let dx = norm2(
+            &x.iter()
+                .zip(&diag)
+                .map(|(xi, di)| xi * di)
+                .collect::<Vec<_>>(),
+        );
         let step_small = dh <= conv.x_tol * (dx + conv.x_tol);
 
         // Predicted reduction L(0) − L(h) = ½(μ‖D h‖² − hᵀg), a sum of non-negative terms.
@@ -233,7 +267,11 @@ pub fn levenberg_marquardt<P: LeastSquaresProblem + ?Sized>(
                 trial_cost = 0.5 * norm2(&r_trial).powi(2);
             }
         }
-        let rho = if predicted > 0.0 && trial_cost.is_finite() { (cost - trial_cost) / predicted } else { -1.0 };
+        let rho = if predicted > 0.0 && trial_cost.is_finite() {
+            (cost - trial_cost) / predicted
+        } else {
+            -1.0
+        };
 
         if rho > 0.0 {
             let mut jac_trial = vec![0.0; m * n];
@@ -310,14 +348,24 @@ fn gradient_measure(g: &[f64], col_norms: &[f64], rnorm: f64) -> f64 {
 /// Computed from the QR factor of the column-scaled Jacobian (no normal equations). Errors when
 /// m ≤ n (no degrees of freedom), when r or J is not finite, or when J is numerically rank
 /// deficient (a parameter is not identifiable from the data).
-pub fn covariance<P: LeastSquaresProblem + ?Sized>(problem: &P, x: &[f64]) -> Result<Vec<f64>, FitError> {
+pub fn covariance<P: LeastSquaresProblem + ?Sized>(
+    problem: &P,
+    x: &[f64],
+) -> Result<Vec<f64>, FitError> {
     let n = problem.n_params();
     let m = problem.n_residuals();
     if x.len() != n {
-        return Err(FitError::LengthMismatch { what: "parameters", expected: n, found: x.len() });
+        return Err(FitError::LengthMismatch {
+            what: "parameters",
+            expected: n,
+            found: x.len(),
+        });
     }
     if m <= n {
-        return Err(FitError::TooFewPoints { points: m, required: n + 1 });
+        return Err(FitError::TooFewPoints {
+            points: m,
+            required: n + 1,
+        });
     }
     let mut r = vec![0.0; m];
     let mut jac = vec![0.0; m * n];
@@ -328,9 +376,14 @@ pub fn covariance<P: LeastSquaresProblem + ?Sized>(problem: &P, x: &[f64]) -> Re
     let s2 = r.iter().map(|v| v * v).sum::<f64>() / (m - n) as f64;
     let mut scale = vec![1.0; n];
     for (j, s) in scale.iter_mut().enumerate() {
-        let c = (0..m).map(|i| jac[i * n + j] * jac[i * n + j]).sum::<f64>().sqrt();
-        if !(c > 0.0) {
-            return Err(FitError::Singular { detail: format!("Jacobian column {j} is zero") });
+        let c = (0..m)
+            .map(|i| jac[i * n + j] * jac[i * n + j])
+            .sum::<f64>()
+            .sqrt();
+        if c.is_nan() || c <= 0.0 {
+            return Err(FitError::Singular {
+                detail: format!("Jacobian column {j} is zero"),
+            });
         }
         *s = 1.0 / c;
     }

@@ -2,7 +2,9 @@
 //!
 //! Internally the model is written in scaled, well-conditioned parameters
 //!
-//!     Q/q_ref = a·(δ/δ_ref)^d + b + e·(δ̇/v_ref)
+//! ```text
+//! Q/q_ref = a·(δ/δ_ref)^d + b + e·(δ̇/v_ref)
+//! ```
 //!
 //! with δ_ref the geometric mean of the approaches (so ln(δ/δ_ref) has zero mean and a and d are
 //! nearly uncorrelated), q_ref the root-mean-square force and v_ref the root-mean-square rate.
@@ -30,7 +32,11 @@ pub struct FitOptions {
 
 impl Default for FitOptions {
     fn default() -> Self {
-        Self { convergence: LmConvergence::default(), d_start_range: [0.3, 3.0], d_grid_points: 55 }
+        Self {
+            convergence: LmConvergence::default(),
+            d_start_range: [0.3, 3.0],
+            d_grid_points: 55,
+        }
     }
 }
 
@@ -120,7 +126,13 @@ impl PowerLawFit {
     /// The fitted law with its extension below the fitted range (joint at
     /// [`DEFAULT_JOINT_FRACTION`](super::DEFAULT_JOINT_FRACTION)·δ_min), carrying c if fitted.
     pub fn law(&self) -> Result<FittedLaw, FitError> {
-        let law = FittedLaw::new(self.k, self.d, self.delta_f, self.delta_range[0], self.delta_range[1])?;
+        let law = FittedLaw::new(
+            self.k,
+            self.d,
+            self.delta_f,
+            self.delta_range[0],
+            self.delta_range[1],
+        )?;
         match self.c {
             Some(c) => law.with_damping(c),
             None => Ok(law),
@@ -192,7 +204,11 @@ impl LeastSquaresProblem for ScaledPowerLaw {
 
 fn first_non_finite(what: &'static str, v: &[f64]) -> Result<(), FitError> {
     match v.iter().position(|a| !a.is_finite()) {
-        Some(index) => Err(FitError::NonFinite { what, index, value: v[index] }),
+        Some(index) => Err(FitError::NonFinite {
+            what,
+            index,
+            value: v[index],
+        }),
         None => Ok(()),
     }
 }
@@ -208,20 +224,36 @@ fn validate_options(opts: &FitOptions) -> Result<(), FitError> {
     Ok(())
 }
 
-fn fit_impl(delta: &[f64], delta_dot: Option<&[f64]>, q: &[f64], opts: &FitOptions) -> Result<PowerLawFit, FitError> {
+fn fit_impl(
+    delta: &[f64],
+    delta_dot: Option<&[f64]>,
+    q: &[f64],
+    opts: &FitOptions,
+) -> Result<PowerLawFit, FitError> {
     validate_options(opts)?;
     let n = q.len();
     if delta.len() != n {
-        return Err(FitError::LengthMismatch { what: "approach δ vs force Q", expected: n, found: delta.len() });
+        return Err(FitError::LengthMismatch {
+            what: "approach δ vs force Q",
+            expected: n,
+            found: delta.len(),
+        });
     }
     if let Some(v) = delta_dot {
         if v.len() != n {
-            return Err(FitError::LengthMismatch { what: "approach rate δ̇ vs force Q", expected: n, found: v.len() });
+            return Err(FitError::LengthMismatch {
+                what: "approach rate δ̇ vs force Q",
+                expected: n,
+                found: v.len(),
+            });
         }
     }
     let p = if delta_dot.is_some() { 4 } else { 3 };
     if n < p + 1 {
-        return Err(FitError::TooFewPoints { points: n, required: p + 1 });
+        return Err(FitError::TooFewPoints {
+            points: n,
+            required: p + 1,
+        });
     }
     first_non_finite("approach δ", delta)?;
     first_non_finite("force Q", q)?;
@@ -229,20 +261,30 @@ fn fit_impl(delta: &[f64], delta_dot: Option<&[f64]>, q: &[f64], opts: &FitOptio
         first_non_finite("approach rate δ̇", v)?;
     }
     if let Some(index) = delta.iter().position(|&x| x <= 0.0) {
-        return Err(FitError::NonPositiveApproach { index, value: delta[index] });
+        return Err(FitError::NonPositiveApproach {
+            index,
+            value: delta[index],
+        });
     }
     let mut sorted = delta.to_vec();
     sorted.sort_by(f64::total_cmp);
     let (dmin, dmax) = (sorted[0], sorted[n - 1]);
-    let distinct = 1 + sorted.windows(2).filter(|w| w[1] - w[0] > 1e-9 * w[1]).count();
+    let distinct = 1 + sorted
+        .windows(2)
+        .filter(|w| w[1] - w[0] > 1e-9 * w[1])
+        .count();
     if distinct < 3 {
-        return Err(FitError::DegenerateApproach { distinct, min: dmin, max: dmax });
+        return Err(FitError::DegenerateApproach {
+            distinct,
+            min: dmin,
+            max: dmax,
+        });
     }
     let v_ref = match delta_dot {
         Some(v) => {
             let vmin = v.iter().copied().fold(f64::INFINITY, f64::min);
             let vmax = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-            if !(vmax - vmin > 1e-9 * vmax.abs().max(vmin.abs())) {
+            if vmax - vmin <= 1e-9 * vmax.abs().max(vmin.abs()) {
                 return Err(FitError::DegenerateRate { value: v[0] });
             }
             (v.iter().map(|a| a * a).sum::<f64>() / n as f64).sqrt()
@@ -275,7 +317,9 @@ fn fit_impl(delta: &[f64], delta_dot: Option<&[f64]>, q: &[f64], opts: &FitOptio
                 a[i * lin_p + 2] = w[i];
             }
         }
-        let Some(sol) = least_squares(&a, n, lin_p, &problem.y, 1e-10) else { continue };
+        let Some(sol) = least_squares(&a, n, lin_p, &problem.y, 1e-10) else {
+            continue;
+        };
         let ssr: f64 = (0..n)
             .map(|i| {
                 let m: f64 = (0..lin_p).map(|j| a[i * lin_p + j] * sol[j]).sum();
@@ -302,6 +346,15 @@ fn fit_impl(delta: &[f64], delta_dot: Option<&[f64]>, q: &[f64], opts: &FitOptio
 
     let report = levenberg_marquardt(&problem, &x0, &opts.convergence)?;
     let x = &report.params;
+    // With a negligible power-law term d has no influence on the model: not identifiable.
+    if x[0].is_nan() || x[0].abs() <= 1e-9 {
+        return Err(FitError::Singular {
+            detail: format!(
+                "the fitted elastic force K·δ_ref^d = {:.3e} N is negligible against the forces (rms {q_ref:.3e} N): d is not identifiable (are all Q equal?)",
+                x[0] * q_ref
+            ),
+        });
+    }
     let cov_int = covariance(&problem, x)?;
 
     // Back to physical parameters: θ = (K, d, ΔF[, c]).
