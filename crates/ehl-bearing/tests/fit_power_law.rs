@@ -261,7 +261,10 @@ fn damped_fit_recovers_c() {
         ses.push(f.std_errors.c.unwrap());
     }
     let ratio = std_dev(&cs) / (ses.iter().sum::<f64>() / ses.len() as f64);
-    println!("damped, 100 noisy fits: sd(c) = {:.2} N·s/m, sd/mean SE = {ratio:.3}", std_dev(&cs));
+    println!(
+        "damped, 100 noisy fits: sd(c) = {:.2} N·s/m, sd/mean SE = {ratio:.3}",
+        std_dev(&cs)
+    );
     assert!((ratio - 1.0).abs() < 0.25);
 }
 

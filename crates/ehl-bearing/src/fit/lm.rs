@@ -62,7 +62,10 @@ pub enum LmStop {
     ZeroResidual,
     /// Gradient test met (converged).
     Gradient,
-    /// Relative step test met (converged).
+    /// Relative step test met (converged): either an accepted step, or — after rejected steps —
+    /// no step longer than the tolerance reduces the cost any more (as in MINPACK). With a wrong
+    /// analytic Jacobian the latter can also happen away from a minimum: check
+    /// `LmReport::gradient_measure`.
     Step,
     /// Relative cost-reduction test met (converged).
     Cost,
