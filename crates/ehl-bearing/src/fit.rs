@@ -1,11 +1,111 @@
-//! Levenberg–Marquardt fit of Q = K·δ^d + ΔF (placeholder: being written).
+//! Fit of the lubricated contact force law Q = K·δ^d + ΔF (optionally + c·δ̇) to (δ, Q) samples
+//! from EHL simulations, and the fitted law as a [`ContactLaw`](crate::contact_law::ContactLaw).
+//!
+//! - [`levenberg_marquardt`]: a small general Levenberg–Marquardt solver (scaled Marquardt step by
+//!   QR, Nielsen damping update) with a [`LmConvergence`] settings struct and an [`LmReport`];
+//!   [`covariance`] gives s²·(JᵀJ)⁻¹ at a solution.
+//! - [`fit_power_law`] / [`fit_power_law_damped`]: the contact-law fit, reparametrized for
+//!   conditioning, started by variable projection over d and polished by Levenberg–Marquardt,
+//!   returning a [`PowerLawFit`] with standard errors and goodness of fit.
+//! - [`FittedLaw`]: the fitted law with a C¹, positive, increasing exponential extension below a
+//!   joint approach δ_j (a fraction of the smallest fitted approach), so that it is defined for
+//!   every δ including negative approaches (film thicker than at zero approach).
+//!
+//! The method, the extension and the test figures are described in `docs/fit.md`.
 
 use thiserror::Error;
 
-/// Errors of the fit.
+mod law;
+mod linalg;
+mod lm;
+mod power_law;
+
+pub use law::{FittedLaw, RangeStatus, DEFAULT_JOINT_FRACTION};
+pub use lm::{
+    covariance, levenberg_marquardt, LeastSquaresProblem, LmConvergence, LmReport, LmStop,
+};
+pub use power_law::{
+    fit_power_law, fit_power_law_damped, FitOptions, PowerLawFit, PowerLawStdErrors,
+};
+
+/// Errors of the fit. Every variant names the offending input and carries its numbers.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum FitError {
-    /// Invalid input.
+    /// Invalid input or settings not covered by a more specific variant.
     #[error("invalid fit input: {0}")]
     Invalid(String),
+    /// Two input arrays that must have the same length do not.
+    #[error("length mismatch in {what}: expected {expected}, found {found}")]
+    LengthMismatch {
+        /// Which input.
+        what: &'static str,
+        /// Expected length.
+        expected: usize,
+        /// Actual length.
+        found: usize,
+    },
+    /// Too few samples for the number of parameters.
+    #[error("too few points: {points} given, at least {required} needed")]
+    TooFewPoints {
+        /// Samples given.
+        points: usize,
+        /// Samples needed (parameters + 1, so that the residual variance is defined).
+        required: usize,
+    },
+    /// A NaN or infinite value.
+    #[error("non-finite value in {what} at index {index}: {value}")]
+    NonFinite {
+        /// Which input.
+        what: &'static str,
+        /// Index of the first offending value.
+        index: usize,
+        /// The value.
+        value: f64,
+    },
+    /// An approach δ ≤ 0, where δ^d is undefined: the fit needs δ > 0 (samples with a negative
+    /// approach must be left out; the [`FittedLaw`] extension covers δ ≤ 0 afterwards).
+    #[error("approach at index {index} is {value} m: the power law needs δ > 0")]
+    NonPositiveApproach {
+        /// Index of the first offending sample.
+        index: usize,
+        /// The approach, m.
+        value: f64,
+    },
+    /// The approaches do not span enough distinct values to determine K, d and ΔF.
+    #[error("the approaches take only {distinct} distinct value(s) (from {min} m to {max} m); at least 3 are needed")]
+    DegenerateApproach {
+        /// Number of distinct approaches.
+        distinct: usize,
+        /// Smallest approach, m.
+        min: f64,
+        /// Largest approach, m.
+        max: f64,
+    },
+    /// The approach rates do not vary, so c cannot be separated from ΔF.
+    #[error(
+        "the approach rates are all equal ({value} m/s): the damping c cannot be separated from ΔF"
+    )]
+    DegenerateRate {
+        /// The common rate, m/s.
+        value: f64,
+    },
+    /// The least-squares problem is singular: some parameter is not identifiable.
+    #[error("singular fit: {detail}")]
+    Singular {
+        /// What was singular.
+        detail: String,
+    },
+    /// The iteration did not converge (returned only by [`PowerLawFit::require_converged`]).
+    #[error("fit did not converge after {iterations} iterations ({reason}); rms residual {rms_residual} N")]
+    NotConverged {
+        /// Iterations performed.
+        iterations: usize,
+        /// Why the iteration stopped.
+        reason: LmStop,
+        /// Root-mean-square residual at the last iterate, N.
+        rms_residual: f64,
+    },
+    /// Parameters that do not make a valid contact law.
+    #[error("invalid contact law: {0}")]
+    InvalidLaw(String),
 }
