@@ -20,6 +20,9 @@ pub enum Error {
     /// Contact-law fit.
     #[error(transparent)]
     Fit(#[from] crate::fit::FitError),
+    /// Characterization loop, study and trend curves.
+    #[error(transparent)]
+    Characterize(#[from] crate::characterize::CharacterizeError),
 }
 
 /// Result with the crate error.

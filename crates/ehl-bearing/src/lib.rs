@@ -10,6 +10,7 @@
 #![warn(missing_docs)]
 
 pub mod bearing;
+pub mod characterize;
 pub mod contact_law;
 pub mod ehl;
 pub mod error;
@@ -17,6 +18,7 @@ pub mod fit;
 pub mod hertz;
 pub mod io;
 pub mod material;
+pub mod study;
 
 pub use contact_law::{ContactLaw, HertzLaw};
 pub use error::{Error, Result};

@@ -1,0 +1,1 @@
+//! Load × speed studies and trend curves.
