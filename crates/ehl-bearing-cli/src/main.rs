@@ -1,8 +1,10 @@
 //! `ehl-bearing` command line: thin layer over the `ehl-bearing` library.
 
+mod characterize_cmd;
 mod ehl_cmd;
 mod equilibrium_cmd;
 mod plot;
+mod study_cmd;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -19,6 +21,10 @@ struct Cli {
 enum Command {
     /// Quasi-static 5-DOF equilibrium of a bearing case with dry Hertz contacts.
     Equilibrium(equilibrium_cmd::EquilibriumArgs),
+    /// Coupled loop: equilibrium and per-contact characterization (K, d, ΔF) until consistent.
+    Characterize(characterize_cmd::CharacterizeArgs),
+    /// Load × speed study: per-point results, CSV, trend curves and plots (resumable).
+    Study(study_cmd::StudyArgs),
 }
 
 fn main() -> ExitCode {
@@ -26,6 +32,8 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Equilibrium(a) => equilibrium_cmd::run(a),
+        Command::Characterize(a) => characterize_cmd::run(a),
+        Command::Study(a) => study_cmd::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -238,13 +238,17 @@ fn sample_loads(w0: f64, samples: usize, amplitude: f64) -> Vec<f64> {
 
 fn check_sampling(samples: usize, amplitude: f64) -> Result<(), crate::Error> {
     if !(4..=10_000).contains(&samples) {
-        return Err(CharacterizeError::setting("samples", samples, "an integer from 4 to 10000").into());
+        return Err(
+            CharacterizeError::setting("samples", samples, "an integer from 4 to 10000").into(),
+        );
     }
     if !(amplitude.is_finite() && amplitude > 0.0 && amplitude < 1.0) {
-        return Err(
-            CharacterizeError::setting("amplitude", amplitude, "a relative amplitude ε with 0 < ε < 1")
-                .into(),
-        );
+        return Err(CharacterizeError::setting(
+            "amplitude",
+            amplitude,
+            "a relative amplitude ε with 0 < ε < 1",
+        )
+        .into());
     }
     Ok(())
 }
@@ -669,7 +673,11 @@ fn contact_key(c: &ContactConditions) -> [f64; 3] {
 }
 
 /// Conditions of every contact (ball-major, inner then outer) at an equilibrium, with the floor.
-fn conditions_of(case: &Case, eq: &Equilibrium, floor_fraction: f64) -> Vec<(ContactConditions, bool)> {
+fn conditions_of(
+    case: &Case,
+    eq: &Equilibrium,
+    floor_fraction: f64,
+) -> Vec<(ContactConditions, bool)> {
     let qmax = eq
         .balls
         .iter()
@@ -931,4 +939,160 @@ fn laws_of(contacts: &[(CharacterizedContact, bool, LawSource, f64)]) -> Contact
         }
     }
     ContactLaws { inner, outer }
+}
+
+/// One contact as a flat record in SI units (a row of `results.csv`; the names carry the units).
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
+pub struct ContactRow {
+    /// Ball index (ball 0 on +y).
+    pub ball: usize,
+    /// `inner` or `outer`.
+    pub race: String,
+    /// Equilibrium load Q, N.
+    pub load_n: f64,
+    /// Equilibrium approach δ, m.
+    pub approach_m: f64,
+    /// Equilibrium contact angle, rad.
+    pub contact_angle_rad: f64,
+    /// Stiffness K, N/m^d.
+    pub k: f64,
+    /// Nonlinear index d.
+    pub d: f64,
+    /// Lift at zero approach ΔF, N.
+    pub delta_f_n: f64,
+    /// Moes M at the characterization load.
+    pub moes_m: f64,
+    /// Moes L.
+    pub moes_l: f64,
+    /// Ry/Rx.
+    pub ry_over_rx: f64,
+    /// R² of the contact's fit (null if undefined).
+    pub r_squared: Option<f64>,
+    /// RMS residual of the contact's fit, N.
+    pub rms_residual_n: f64,
+    /// Whether the characterization converged.
+    pub fit_converged: bool,
+    /// Load the law was characterized at, N.
+    pub characterized_load_n: f64,
+    /// Whether that load was raised to the floor.
+    pub load_floored: bool,
+    /// `characterized`, `cached` or `deduplicated`.
+    pub source: String,
+    /// Relative key distance of a reused law.
+    pub key_distance: f64,
+    /// Sum velocity, m/s.
+    pub sum_velocity_m_s: f64,
+    /// Rx, m.
+    pub rx_m: f64,
+    /// Ry, m.
+    pub ry_m: f64,
+    /// Law evaluated at the equilibrium approach, N.
+    pub law_load_at_approach_n: f64,
+    /// Fitted approach range, lower end, m.
+    pub fit_approach_min_m: f64,
+    /// Fitted approach range, upper end, m.
+    pub fit_approach_max_m: f64,
+    /// Whether the equilibrium approach is outside the fitted range.
+    pub outside_fit_range: bool,
+}
+
+fn finite_or_none(v: f64) -> Option<f64> {
+    if v.is_finite() {
+        Some(v)
+    } else {
+        None
+    }
+}
+
+impl ContactRow {
+    /// The row of a contact result.
+    pub fn from_result(c: &ContactResult) -> Self {
+        let cc = &c.characterized;
+        let [lo, hi] = cc.law.fit_range();
+        ContactRow {
+            ball: c.ball,
+            race: match c.race {
+                Race::Inner => "inner".into(),
+                Race::Outer => "outer".into(),
+            },
+            load_n: c.state.load,
+            approach_m: c.state.deflection,
+            contact_angle_rad: c.state.contact_angle,
+            k: cc.k,
+            d: cc.d,
+            delta_f_n: cc.delta_f,
+            moes_m: cc.moes_m,
+            moes_l: cc.moes_l,
+            ry_over_rx: cc.ry_over_rx,
+            r_squared: finite_or_none(cc.r_squared),
+            rms_residual_n: cc.rms_residual,
+            fit_converged: cc.converged,
+            characterized_load_n: cc.load,
+            load_floored: c.load_floored,
+            source: match c.source {
+                LawSource::Characterized => "characterized".into(),
+                LawSource::Cached => "cached".into(),
+                LawSource::Deduplicated => "deduplicated".into(),
+            },
+            key_distance: c.key_distance,
+            sum_velocity_m_s: c.state.sum_velocity,
+            rx_m: c.state.rx,
+            ry_m: c.state.ry,
+            law_load_at_approach_n: c.law_load_at_approach,
+            fit_approach_min_m: lo,
+            fit_approach_max_m: hi,
+            outside_fit_range: cc.law.outside_fit_range(c.state.deflection),
+        }
+    }
+}
+
+/// The characterization as JSON in SI units: `converged`, `iterations`, `max_load_change`,
+/// `max_key_distance`, `method`, `method_settings`, `settings`, `history` (per iteration:
+/// `iteration`, `max_load_change`, `characterized`, `reused`, `max_key_distance`,
+/// `equilibrium_iterations`, and `seconds` if `timing`), `displacement` and `dry_displacement`
+/// (x, y, z in m; θy, θz in rad), `reaction` (N, N·m), `stiffness_dry` and `stiffness_ehl`
+/// (5×5, N/m, N, N·m/rad), `contacts` ([`ContactRow`]s) and `seconds` if `timing`. Without
+/// timing the output is reproducible bit for bit.
+pub fn characterization_json(c: &BearingCharacterization, timing: bool) -> Value {
+    let history: Vec<Value> = c
+        .history
+        .iter()
+        .map(|h| {
+            let mut v = json!({
+                "iteration": h.iteration,
+                "max_load_change": h.max_load_change,
+                "characterized": h.characterized,
+                "reused": h.reused,
+                "max_key_distance": h.max_key_distance,
+                "equilibrium_iterations": h.equilibrium_iterations,
+            });
+            if timing {
+                v["seconds"] = json!(h.seconds);
+            }
+            v
+        })
+        .collect();
+    let dof =
+        |q: &[f64; 5]| json!({"x": q[0], "y": q[1], "z": q[2], "theta_y": q[3], "theta_z": q[4]});
+    let f = &c.equilibrium.reaction;
+    let mut v = json!({
+        "converged": c.converged,
+        "iterations": c.iterations,
+        "max_load_change": c.max_load_change,
+        "max_key_distance": c.max_key_distance,
+        "method": c.method,
+        "method_settings": c.method_settings,
+        "settings": c.settings,
+        "history": history,
+        "displacement": dof(&c.equilibrium.displacement),
+        "dry_displacement": dof(&c.dry.displacement),
+        "reaction": {"force_x": f[0], "force_y": f[1], "force_z": f[2], "moment_y": f[3], "moment_z": f[4]},
+        "stiffness_dry": c.dry.stiffness,
+        "stiffness_ehl": c.equilibrium.stiffness,
+        "contacts": c.contacts.iter().map(ContactRow::from_result).collect::<Vec<_>>(),
+    });
+    if timing {
+        v["seconds"] = json!(c.seconds);
+    }
+    v
 }

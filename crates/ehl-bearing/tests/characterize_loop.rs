@@ -18,7 +18,12 @@ fn seed() -> Case {
 #[test]
 fn hertz_characterizer_loop_converges_and_reproduces_the_dry_equilibrium() {
     let case = seed();
-    let r = characterize_bearing(&case, &HertzCharacterizer::default(), &CharacterizeSettings::default()).unwrap();
+    let r = characterize_bearing(
+        &case,
+        &HertzCharacterizer::default(),
+        &CharacterizeSettings::default(),
+    )
+    .unwrap();
     eprintln!("{:#?}", r.history);
     assert!(r.converged);
 }

@@ -1,0 +1,366 @@
+//! `ehl-bearing characterize CASE.toml [--method M] [--json] [-o DIR]`: the coupled loop
+//! (equilibrium ↔ per-contact characterization) on one case.
+
+use anyhow::{bail, Context};
+use ehl_bearing::characterize::{
+    characterization_json, characterize_bearing, BearingCharacterization, CharacterizeSettings,
+    ContactCharacterizer, ContactRow, HertzCharacterizer, SyntheticCharacterizer,
+};
+use ehl_bearing::io::{read_case, Case};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+/// Methods the command line knows (`--method`, study files).
+pub const METHODS: [&str; 4] = ["quasi-static", "harmonic", "hertz", "synthetic"];
+
+/// The characterization method `method` with options `options` (a JSON object; unknown keys are
+/// errors). The one place where methods are mapped to library types: add the EHL ones here.
+pub fn characterizer(
+    method: &str,
+    options: &Value,
+) -> anyhow::Result<Box<dyn ContactCharacterizer>> {
+    let empty = serde_json::Map::new();
+    let opts = match options {
+        Value::Object(m) => m,
+        Value::Null => &empty,
+        other => bail!("method options must be a table, got {other}"),
+    };
+    let get_f64 = |key: &str, default: f64| -> anyhow::Result<f64> {
+        match opts.get(key) {
+            None => Ok(default),
+            Some(v) => v
+                .as_f64()
+                .with_context(|| format!("method_options.{key} = {v}: expected a number")),
+        }
+    };
+    let check_keys = |known: &[&str]| -> anyhow::Result<()> {
+        for k in opts.keys() {
+            if !known.contains(&k.as_str()) {
+                bail!(
+                    "method_options.{k}: unknown option for method {method} (known: {})",
+                    if known.is_empty() {
+                        "none".to_string()
+                    } else {
+                        known.join(", ")
+                    }
+                );
+            }
+        }
+        Ok(())
+    };
+    let samples = |default: usize| -> anyhow::Result<usize> {
+        match opts.get("samples") {
+            None => Ok(default),
+            Some(v) => match v.as_u64() {
+                Some(n) if (4..=10_000).contains(&n) => Ok(n as usize),
+                _ => bail!("method_options.samples = {v}: expected an integer from 4 to 10000"),
+            },
+        }
+    };
+    let amplitude = |default: f64| -> anyhow::Result<f64> {
+        let a = get_f64("amplitude", default)?;
+        if !(a > 0.0 && a < 1.0) {
+            bail!("method_options.amplitude = {a}: expected a relative amplitude 0 < ε < 1");
+        }
+        Ok(a)
+    };
+    match method {
+        "hertz" => {
+            check_keys(&["samples", "amplitude"])?;
+            let d = HertzCharacterizer::default();
+            Ok(Box::new(HertzCharacterizer {
+                samples: samples(d.samples)?,
+                amplitude: amplitude(d.amplitude)?,
+            }))
+        }
+        "synthetic" => {
+            let known = [
+                "samples",
+                "amplitude",
+                "d_amplitude",
+                "d_exponent",
+                "load_ref",
+                "lift_ref",
+                "lift_load_exponent",
+                "lift_speed_exponent",
+                "speed_ref",
+            ];
+            check_keys(&known)?;
+            let d = SyntheticCharacterizer::default();
+            let s = SyntheticCharacterizer {
+                d_amplitude: get_f64("d_amplitude", d.d_amplitude)?,
+                d_exponent: get_f64("d_exponent", d.d_exponent)?,
+                load_ref: get_f64("load_ref", d.load_ref)?,
+                lift_ref: get_f64("lift_ref", d.lift_ref)?,
+                lift_load_exponent: get_f64("lift_load_exponent", d.lift_load_exponent)?,
+                lift_speed_exponent: get_f64("lift_speed_exponent", d.lift_speed_exponent)?,
+                speed_ref: get_f64("speed_ref", d.speed_ref)?,
+                samples: samples(d.samples)?,
+                amplitude: amplitude(d.amplitude)?,
+            };
+            for (k, v) in [("load_ref", s.load_ref), ("speed_ref", s.speed_ref)] {
+                if !(v.is_finite() && v > 0.0) {
+                    bail!("method_options.{k} = {v}: expected a positive number");
+                }
+            }
+            Ok(Box::new(s))
+        }
+        "quasi-static" | "harmonic" => bail!(
+            "method {method} is not available yet (the EHL characterization is not in this build); use --method hertz"
+        ),
+        other => bail!("unknown method {other:?}: expected one of {}", METHODS.join(", ")),
+    }
+}
+
+/// Run `f` on a rayon pool of `threads` threads (the global pool, sized by RAYON_NUM_THREADS or
+/// the number of cores, when None).
+pub fn with_threads<T: Send>(
+    threads: Option<usize>,
+    f: impl FnOnce() -> anyhow::Result<T> + Send,
+) -> anyhow::Result<T> {
+    match threads {
+        None => f(),
+        Some(0) => bail!("--threads 0: expected at least 1 thread"),
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .context("building the thread pool")?
+            .install(f),
+    }
+}
+
+/// Write `bytes` to `path` atomically: a temporary file in the same folder, synced, then renamed
+/// over `path`. A reader (or a resumed run) never sees a partial file.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    use std::io::Write;
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .and_then(|n| n.to_str())
+        .context("output file name")?;
+    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+    {
+        let mut f =
+            std::fs::File::create(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
+        f.write_all(bytes)
+            .with_context(|| format!("writing {}", tmp.display()))?;
+        f.sync_all().ok();
+    }
+    std::fs::rename(&tmp, path)
+        .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))?;
+    Ok(())
+}
+
+/// Arguments of `characterize`.
+#[derive(clap::Args)]
+pub struct CharacterizeArgs {
+    /// Case file (TOML), e.g. examples/7006.toml.
+    pub case: PathBuf,
+    /// Characterization method: quasi-static (EHL, default), harmonic (EHL), hertz (dry
+    /// reference), synthetic (test fixture).
+    #[arg(long, default_value = "quasi-static")]
+    pub method: String,
+    /// Print JSON in SI units instead of a table.
+    #[arg(long)]
+    pub json: bool,
+    /// Also write characterization.json and contacts.csv into this folder.
+    #[arg(short = 'o', long = "output")]
+    pub output: Option<PathBuf>,
+    /// Threads for the contacts (default: RAYON_NUM_THREADS or the number of cores). Results do
+    /// not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Relative load-change tolerance of the loop.
+    #[arg(long, default_value_t = CharacterizeSettings::default().tolerance)]
+    pub tolerance: f64,
+    /// Iteration limit of the loop.
+    #[arg(long, default_value_t = CharacterizeSettings::default().max_iterations)]
+    pub max_iterations: usize,
+    /// Relative key tolerance (M, L, Ry/Rx) for reusing a fitted law; 0 reuses exact matches only.
+    #[arg(long, default_value_t = CharacterizeSettings::default().cache_tolerance)]
+    pub cache_tolerance: f64,
+}
+
+/// Contacts as CSV (the columns of [`ContactRow`]).
+pub fn contacts_csv(c: &BearingCharacterization) -> String {
+    let rows: Vec<Value> = c
+        .contacts
+        .iter()
+        .map(|r| serde_json::to_value(ContactRow::from_result(r)).unwrap_or(Value::Null))
+        .collect();
+    let mut out = String::new();
+    if let Some(Value::Object(first)) = rows.first() {
+        out.push_str(&first.keys().cloned().collect::<Vec<_>>().join(","));
+        out.push('\n');
+    }
+    for r in &rows {
+        if let Value::Object(m) = r {
+            let cells: Vec<String> = m
+                .values()
+                .map(|v| match v {
+                    Value::Null => String::new(),
+                    Value::String(s) => s.clone(),
+                    o => o.to_string(),
+                })
+                .collect();
+            out.push_str(&cells.join(","));
+            out.push('\n');
+        }
+    }
+    out
+}
+
+/// Run `characterize`.
+pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
+    let case = read_case(&args.case)?;
+    let ch = characterizer(&args.method, &Value::Null)?;
+    let settings = CharacterizeSettings {
+        tolerance: args.tolerance,
+        max_iterations: args.max_iterations,
+        cache_tolerance: args.cache_tolerance,
+        ..CharacterizeSettings::default()
+    };
+    let c = with_threads(args.threads, || {
+        characterize_bearing(&case, ch.as_ref(), &settings)
+            .with_context(|| format!("characterizing {}", args.case.display()))
+    })?;
+    if let Some(dir) = &args.output {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+        let json = serde_json::to_string_pretty(&characterization_json(&c, false))? + "\n";
+        write_atomic(&dir.join("characterization.json"), json.as_bytes())?;
+        write_atomic(&dir.join("contacts.csv"), contacts_csv(&c).as_bytes())?;
+    }
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&characterization_json(&c, true))?
+        );
+    } else {
+        print!("{}", table(&case, &c));
+    }
+    if !c.converged {
+        eprintln!(
+            "warning: the loop did not converge in {} iterations (largest relative load change {:.3e}, tolerance {:.1e})",
+            c.iterations, c.max_load_change, settings.tolerance
+        );
+    }
+    Ok(())
+}
+
+/// Human-readable report in engineering units.
+pub fn table(case: &Case, c: &BearingCharacterization) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    let rpm = 30.0 / std::f64::consts::PI;
+    let op = &case.operating;
+    let _ = writeln!(
+        s,
+        "{}: inner {:.0} rpm, outer {:.0} rpm; method {} {}",
+        case.name.as_deref().unwrap_or("bearing"),
+        op.inner_speed * rpm,
+        op.outer_speed * rpm,
+        c.method,
+        c.method_settings
+    );
+    if !case.lubricant_given {
+        let _ = writeln!(
+            s,
+            "lubricant not given in the case: default mineral oil (η0 = {} Pa·s, α = {:e} 1/Pa)",
+            case.lubricant.viscosity, case.lubricant.pressure_viscosity
+        );
+    }
+    let _ = writeln!(
+        s,
+        "{} after {} iterations: largest relative load change {:.3e} (tolerance {:.1e}); largest cache key distance {:.2e}; {:.3} s",
+        if c.converged { "converged" } else { "NOT converged" },
+        c.iterations,
+        c.max_load_change,
+        c.settings.tolerance,
+        c.max_key_distance,
+        c.seconds
+    );
+    let _ = writeln!(
+        s,
+        "\n{:>4} {:>12} {:>12} {:>10} {:>11} {:>8}",
+        "iter", "max ΔQ/Q", "characterized", "reused", "key dist", "time s"
+    );
+    for h in &c.history {
+        let _ = writeln!(
+            s,
+            "{:>4} {:>12.3e} {:>12} {:>10} {:>11.2e} {:>8.3}",
+            h.iteration,
+            h.max_load_change,
+            h.characterized,
+            h.reused,
+            h.max_key_distance,
+            h.seconds
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\n{:>4} {:>5} {:>9} {:>8} {:>7} {:>11} {:>8} {:>9} {:>9} {:>6} {:>7} {:>13}",
+        "ball", "race", "Q N", "δ µm", "α °", "K N/m^d", "d", "ΔF N", "M", "L", "Ry/Rx", "source"
+    );
+    for r in &c.contacts {
+        let cc = &r.characterized;
+        let _ = writeln!(
+            s,
+            "{:>4} {:>5} {:>9.3} {:>8.4} {:>7.3} {:>11.4e} {:>8.5} {:>9.3e} {:>9.2} {:>6.2} {:>7.2} {:>13}{}",
+            r.ball,
+            format!("{:?}", r.race).to_lowercase(),
+            r.state.load,
+            r.state.deflection * 1e6,
+            r.state.contact_angle.to_degrees(),
+            cc.k,
+            cc.d,
+            cc.delta_f,
+            cc.moes_m,
+            cc.moes_l,
+            cc.ry_over_rx,
+            format!("{:?}", r.source).to_lowercase(),
+            if cc.law.outside_fit_range(r.state.deflection) { " (outside fit range)" } else { "" }
+        );
+    }
+    let names = ["x µm", "y µm", "z µm", "θy mdeg", "θz mdeg"];
+    let _ = writeln!(s, "\n{:<9} {:>14} {:>14}", "DOF", "EHL", "dry");
+    for k in 0..5 {
+        let f = if k < 3 {
+            1e6
+        } else {
+            1e3 * 180.0 / std::f64::consts::PI
+        };
+        let _ = writeln!(
+            s,
+            "{:<9} {:>14.5} {:>14.5}",
+            names[k],
+            c.equilibrium.displacement[k] * f,
+            c.dry.displacement[k] * f
+        );
+    }
+    let dnames = [
+        "k_xx N/µm",
+        "k_yy N/µm",
+        "k_zz N/µm",
+        "k_θyθy N·m/mrad",
+        "k_θzθz N·m/mrad",
+    ];
+    let _ = writeln!(
+        s,
+        "\n{:<16} {:>14} {:>14} {:>9}",
+        "stiffness", "EHL", "dry", "EHL/dry"
+    );
+    for k in 0..5 {
+        let f = if k < 3 { 1e-6 } else { 1e-3 };
+        let e = c.equilibrium.stiffness[k][k];
+        let d = c.dry.stiffness[k][k];
+        let _ = writeln!(
+            s,
+            "{:<16} {:>14.5} {:>14.5} {:>9.5}",
+            dnames[k],
+            e * f,
+            d * f,
+            e / d
+        );
+    }
+    s
+}
