@@ -469,6 +469,10 @@ pub struct RaceTrends {
     pub d: TrendCurve,
     /// ΔF(Q, n), N.
     pub delta_f: TrendCurve,
+    /// Equilibrium approach δ(Q, n), m: the law at load Q is anchored at (δ(Q, n), Q), which
+    /// fixes K = (Q − ΔF)/δ^d consistently with d(Q) and ΔF(Q, n) (K and d are strongly
+    /// correlated, so K(Q) fitted on its own is a poor predictor; see `docs/study.md`).
+    pub approach: TrendCurve,
     /// Range of contact loads fitted [Q_min, Q_max], N.
     pub load_range_n: [f64; 2],
     /// Range of speeds fitted [n_min, n_max], rad/s.
@@ -537,6 +541,7 @@ impl TrendModel {
             r.k.check(&format!("{name}.k"))?;
             r.d.check(&format!("{name}.d"))?;
             r.delta_f.check(&format!("{name}.delta_f"))?;
+            r.approach.check(&format!("{name}.approach"))?;
             for (what, [lo, hi]) in [
                 ("load_range_n", r.load_range_n),
                 ("speed_range_rad_s", r.speed_range_rad_s),
@@ -723,6 +728,41 @@ fn trend_err(race: &str, what: &str) -> CharacterizeError {
     ))
 }
 
+/// y(Q, n) = p0·Q^p1·n^p2 (log-space least squares) when all y > 0, else p0 + p1·Q + p2·n.
+fn power_or_linear(
+    race: &str,
+    what: &str,
+    unit: &str,
+    q: &[f64],
+    n: &[f64],
+    y: &[f64],
+) -> Result<TrendCurve, CharacterizeError> {
+    let lnq: Vec<f64> = q.iter().map(|v| v.ln()).collect();
+    let lnn: Vec<f64> = n.iter().map(|v| v.ln()).collect();
+    Ok(if y.iter().all(|v| *v > 0.0) {
+        let ly: Vec<f64> = y.iter().map(|v| v.ln()).collect();
+        let (c0, s) = fit_affine(&[&lnq, &lnn], &ly).ok_or_else(|| trend_err(race, what))?;
+        quality(
+            "power_speed",
+            &format!("{what} = p0·Q^p1·n^p2 ({what} in {unit}, Q in N, n in rad/s)"),
+            vec![c0.exp(), s[0], s[1]],
+            q,
+            n,
+            y,
+        )
+    } else {
+        let (c0, s) = fit_affine(&[q, n], y).ok_or_else(|| trend_err(race, what))?;
+        quality(
+            "linear_speed",
+            &format!("{what} = p0 + p1·Q + p2·n ({what} in {unit}, Q in N, n in rad/s)"),
+            vec![c0, s[0], s[1]],
+            q,
+            n,
+            y,
+        )
+    })
+}
+
 fn fit_race(
     race: &str,
     q: &[f64],
@@ -730,6 +770,7 @@ fn fit_race(
     k: &[f64],
     d: &[f64],
     df: &[f64],
+    delta: &[f64],
 ) -> Result<RaceTrends, CharacterizeError> {
     if q.len() < 3 || distinct(q) < 3 {
         return Err(CharacterizeError::Trend(format!(
@@ -739,7 +780,6 @@ fn fit_race(
         )));
     }
     let lnq: Vec<f64> = q.iter().map(|v| v.ln()).collect();
-    let lnn: Vec<f64> = n.iter().map(|v| v.ln()).collect();
     // K(Q) = a·Q^b by least squares on ln K (relative errors).
     if k.iter().any(|v| !(*v > 0.0)) {
         return Err(trend_err(race, "K (non-positive stiffness)"));
@@ -786,29 +826,9 @@ fn fit_race(
             d,
         )
     };
-    // ΔF(Q, n).
-    let df_curve = if df.iter().all(|v| *v > 0.0) {
-        let y: Vec<f64> = df.iter().map(|v| v.ln()).collect();
-        let (c0, s) = fit_affine(&[&lnq, &lnn], &y).ok_or_else(|| trend_err(race, "ΔF"))?;
-        quality(
-            "power_speed",
-            "ΔF = p0·Q^p1·n^p2 (ΔF in N, Q in N, n in rad/s)",
-            vec![c0.exp(), s[0], s[1]],
-            q,
-            n,
-            df,
-        )
-    } else {
-        let (c0, s) = fit_affine(&[q, n], df).ok_or_else(|| trend_err(race, "ΔF"))?;
-        quality(
-            "linear_speed",
-            "ΔF = p0 + p1·Q + p2·n (ΔF in N, Q in N, n in rad/s)",
-            vec![c0, s[0], s[1]],
-            q,
-            n,
-            df,
-        )
-    };
+    // ΔF(Q, n) and δ(Q, n).
+    let df_curve = power_or_linear(race, "ΔF", "N", q, n, df)?;
+    let approach = power_or_linear(race, "δ", "m", q, n, delta)?;
     let range = |v: &[f64]| {
         [
             v.iter().copied().fold(f64::INFINITY, f64::min),
@@ -819,6 +839,7 @@ fn fit_race(
         k: k_curve,
         d: d_curve,
         delta_f: df_curve,
+        approach,
         load_range_n: range(q),
         speed_range_rad_s: range(n),
     })
@@ -835,6 +856,7 @@ pub fn fit_trends(study: &Study, rows: &[ResultRow]) -> Result<TrendModel, Chara
         let mut k = Vec::new();
         let mut d = Vec::new();
         let mut df = Vec::new();
+        let mut delta = Vec::new();
         for r in rows {
             let c = &r.contact;
             if c.race == race && !c.load_floored && c.fit_converged && c.load_n > 0.0 {
@@ -843,12 +865,13 @@ pub fn fit_trends(study: &Study, rows: &[ResultRow]) -> Result<TrendModel, Chara
                 k.push(c.k);
                 d.push(c.d);
                 df.push(c.delta_f_n);
+                delta.push(c.approach_m);
             }
         }
-        (q, n, k, d, df)
+        (q, n, k, d, df, delta)
     };
-    let (qi, ni, ki, di, dfi) = pick("inner");
-    let (qo, no, ko, d_o, dfo) = pick("outer");
+    let (qi, ni, ki, di, dfi, ai) = pick("inner");
+    let (qo, no, ko, d_o, dfo, ao) = pick("outer");
     let g = &study.case.bearing.geometry;
     Ok(TrendModel {
         version: 1,
@@ -866,8 +889,8 @@ pub fn fit_trends(study: &Study, rows: &[ResultRow]) -> Result<TrendModel, Chara
         },
         lubricant: study.case.lubricant,
         race_control: study.case.operating.race_control,
-        inner: fit_race("inner", &qi, &ni, &ki, &di, &dfi)?,
-        outer: fit_race("outer", &qo, &no, &ko, &d_o, &dfo)?,
+        inner: fit_race("inner", &qi, &ni, &ki, &di, &dfi, &ai)?,
+        outer: fit_race("outer", &qo, &no, &ko, &d_o, &dfo, &ao)?,
     })
 }
 
@@ -956,9 +979,11 @@ impl TrendForceElement {
         &self.model
     }
 
-    /// The law of a contact on `race` at load `load` (N) and speed `n` (rad/s): parameters from
-    /// the trends at the load and speed clamped into the validity range, fitted range δ at
-    /// 0.8·Q and 1.2·Q (or just above ΔF). Returns the law and whether the load was clamped.
+    /// The law of a contact on `race` at load `load` (N) and speed `n` (rad/s): d and ΔF from
+    /// their trends at the load and speed clamped into the validity range, K = (Q − ΔF)/δ(Q, n)^d
+    /// so that the law passes through the approach trend (K(Q) from its own trend only if that
+    /// anchor is not positive), fitted range δ at 0.8·Q and 1.2·Q (or just above ΔF). Returns the
+    /// law and whether the load was clamped.
     pub fn law_at(
         &self,
         race: Race,
@@ -975,9 +1000,14 @@ impl TrendForceElement {
         let clamped = !(load >= lo && load <= hi);
         let [nlo, nhi] = t.speed_range_rad_s;
         let nc = n.clamp(nlo, nhi);
-        let k = t.k.eval(qc, nc);
         let d = t.d.eval(qc, nc);
         let df = t.delta_f.eval(qc, nc);
+        let anchor = t.approach.eval(qc, nc);
+        let k = if anchor > 0.0 && qc > df && d > 0.0 {
+            (qc - df) / anchor.powf(d)
+        } else {
+            t.k.eval(qc, nc)
+        };
         let q_lo = (0.8 * qc).max(df + 0.05 * qc);
         let q_hi = (1.2 * qc).max(1.5 * q_lo);
         let delta = |q: f64| ((q - df) / k).powf(1.0 / d);
