@@ -337,11 +337,13 @@ impl ContactCharacterizer for HertzCharacterizer {
 /// ```text
 /// d(w)      = 1.5 − d_amplitude·(w/load_ref)^(−d_exponent)
 /// ΔF(w,u_s) = lift_ref·(w/load_ref)^lift_load_exponent·(u_s/speed_ref)^lift_speed_exponent
-/// K(w)      = (w − ΔF)/δ_H(w)^d,   δ_H(w) = (w/K_H)^(2/3)  (the Hertz approach at w)
+/// K(w)      = (w − ΔF)/δ_H(w − ΔF)^d,   δ_H(x) = (x/K_H)^(2/3)  (Hertz approach)
 /// ```
 ///
-/// sampled at w·(1 ± ε) from the law with the parameters frozen at w and fitted like the other
-/// methods (so the fit returns these K, d, ΔF to fit precision). Not physics: a test fixture.
+/// so that the law reaches w at the Hertz approach of w − ΔF (the lift carries ΔF: a smaller
+/// approach than dry, as in EHL), sampled at w·(1 ± ε) from the law with the parameters frozen at
+/// w and fitted like the other methods (so the fit returns these K, d, ΔF to fit precision). Not
+/// physics: a test fixture.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct SyntheticCharacterizer {
     /// Amplitude of the deviation of d from 1.5 at `load_ref` (dimensionless).
@@ -388,7 +390,7 @@ impl SyntheticCharacterizer {
         let lift = self.lift_ref
             * (w / self.load_ref).powf(self.lift_load_exponent)
             * (us / self.speed_ref).powf(self.lift_speed_exponent);
-        let dh = (w / k_hertz).powf(2.0 / 3.0);
+        let dh = ((w - lift).max(0.0) / k_hertz).powf(2.0 / 3.0);
         ((w - lift) / dh.powf(d), d, lift)
     }
 }

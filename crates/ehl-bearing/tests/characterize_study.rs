@@ -5,8 +5,7 @@
 use ehl_bearing::characterize::SyntheticCharacterizer;
 use ehl_bearing::io::InputError;
 use ehl_bearing::study::{
-    fit_trends, parse_study, point_rows, run_point, ResultRow, Study, TrendForceElement,
-    TrendModel,
+    fit_trends, parse_study, point_rows, run_point, ResultRow, Study, TrendForceElement, TrendModel,
 };
 use proptest::prelude::*;
 use serde_json::Value;
@@ -22,8 +21,8 @@ fn study(extra: &str) -> Result<Study, InputError> {
 }
 
 fn synthetic_study() -> (Study, SyntheticCharacterizer, Vec<Value>, Vec<ResultRow>) {
-    let s = study("inner_speeds_rpm = [3000, 4000, 5000]\nload_scales = [0.5, 1.0, 2.0]\n")
-        .unwrap();
+    let s =
+        study("inner_speeds_rpm = [3000, 4000, 5000]\nload_scales = [0.5, 1.0, 2.0]\n").unwrap();
     let ch = SyntheticCharacterizer::default();
     let points: Vec<Value> = s
         .points()
@@ -64,9 +63,18 @@ fn invalid_values_name_the_key_and_the_range() {
         ("load_scales = [1.0, 1.0]", "load_scales[1]"),
         ("load_scales = [0.0]", "load_scales[0]"),
         ("[characterize]\ntolerance = 2.0", "characterize.tolerance"),
-        ("[characterize]\nmax_iterations = 0", "characterize.max_iterations"),
-        ("[characterize]\ncache_tolerance = -1e-3", "characterize.cache_tolerance"),
-        ("[characterize]\nmin_load_fraction = 1.5", "characterize.min_load_fraction"),
+        (
+            "[characterize]\nmax_iterations = 0",
+            "characterize.max_iterations",
+        ),
+        (
+            "[characterize]\ncache_tolerance = -1e-3",
+            "characterize.cache_tolerance",
+        ),
+        (
+            "[characterize]\nmin_load_fraction = 1.5",
+            "characterize.min_load_fraction",
+        ),
     ];
     for (extra, key) in cases {
         let e = study(extra).unwrap_err();
@@ -74,7 +82,12 @@ fn invalid_values_name_the_key_and_the_range() {
         assert!(msg.contains(key), "{extra}: {msg}");
         assert!(msg.contains("expected"), "{extra}: {msg}");
     }
-    let e = parse_study("case = \"7006.toml\"\nmethod = \"magic\"\n", "t", examples()).unwrap_err();
+    let e = parse_study(
+        "case = \"7006.toml\"\nmethod = \"magic\"\n",
+        "t",
+        examples(),
+    )
+    .unwrap_err();
     assert!(e.to_string().contains("method"), "{e}");
     let e = parse_study("case = \"7006.toml\"\nspeeds = [1]\n", "t", examples()).unwrap_err();
     assert!(e.to_string().contains("speeds"), "unknown key: {e}");
@@ -156,8 +169,16 @@ fn trend_curves_recover_the_synthetic_laws() {
         // ΔF = p0·Q^0.3·n^p2: the synthetic lift uses the sum velocity, proportional to the
         // inner speed up to the small change of the contact angle with speed and load.
         assert_eq!(t.delta_f.form, "power_speed");
-        assert!((t.delta_f.params[1] - ch.lift_load_exponent).abs() < 5e-3, "{:?}", t.delta_f);
-        assert!((t.delta_f.params[2] - ch.lift_speed_exponent).abs() < 1e-2, "{:?}", t.delta_f);
+        assert!(
+            (t.delta_f.params[1] - ch.lift_load_exponent).abs() < 5e-3,
+            "{:?}",
+            t.delta_f
+        );
+        assert!(
+            (t.delta_f.params[2] - ch.lift_speed_exponent).abs() < 1e-2,
+            "{:?}",
+            t.delta_f
+        );
         assert!(t.load_range_n[0] > 0.0 && t.load_range_n[1] > t.load_range_n[0]);
         let n = 3000.0 * std::f64::consts::PI / 30.0;
         assert!((t.speed_range_rad_s[0] - n).abs() < 1e-9);
@@ -188,8 +209,8 @@ fn trend_force_element_reproduces_the_characterized_equilibria() {
     let fe = TrendForceElement::from_json(&m.to_json()).unwrap();
     let mut worst = 0.0_f64;
     for p in &points {
-        let q = ["x", "y", "z", "theta_y", "theta_z"]
-            .map(|k| p["displacement"][k].as_f64().unwrap());
+        let q =
+            ["x", "y", "z", "theta_y", "theta_z"].map(|k| p["displacement"][k].as_f64().unwrap());
         let rpm = p["spec"]["inner_speed_rpm"].as_f64().unwrap();
         let r = fe
             .evaluate(&q, rpm * std::f64::consts::PI / 30.0, 0.0)
@@ -212,13 +233,19 @@ fn trend_force_element_flags_states_outside_the_validity_range() {
     let fe = TrendForceElement::new(fit_trends(&s, &rows).unwrap()).unwrap();
     let p = &points[0];
     let q = ["x", "y", "z", "theta_y", "theta_z"].map(|k| p["displacement"][k].as_f64().unwrap());
-    let inside = fe.evaluate(&q, 4000.0 * std::f64::consts::PI / 30.0, 0.0).unwrap();
+    let inside = fe
+        .evaluate(&q, 4000.0 * std::f64::consts::PI / 30.0, 0.0)
+        .unwrap();
     assert!(!inside.speed_outside);
-    let fast = fe.evaluate(&q, 20000.0 * std::f64::consts::PI / 30.0, 0.0).unwrap();
+    let fast = fe
+        .evaluate(&q, 20000.0 * std::f64::consts::PI / 30.0, 0.0)
+        .unwrap();
     assert!(fast.speed_outside && fast.outside_validity);
     // Three times the axial displacement loads the balls beyond the largest fitted load.
     let mut q3 = q;
     q3[0] *= 3.0;
-    let heavy = fe.evaluate(&q3, 4000.0 * std::f64::consts::PI / 30.0, 0.0).unwrap();
+    let heavy = fe
+        .evaluate(&q3, 4000.0 * std::f64::consts::PI / 30.0, 0.0)
+        .unwrap();
     assert!(heavy.outside_validity && !heavy.contacts_outside.is_empty());
 }
