@@ -1,0 +1,139 @@
+//! A study killed with SIGKILL midway and started again with the same output folder redoes only
+//! the points in flight, and its final files are identical, byte for byte, to an uninterrupted
+//! run's.
+
+mod study_common;
+
+use assert_cmd::cargo::CommandCargoExt;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+use study_common::{assert_same_tree, study_file, tree};
+
+fn bin() -> Command {
+    Command::cargo_bin("ehl-bearing").unwrap()
+}
+
+#[test]
+fn killed_study_resumes_to_identical_files() {
+    let tmp = tempfile::tempdir().unwrap();
+    let study = study_file(tmp.path(), "hertz", "[3000, 5000]", "[0.5, 1.0, 2.0]", "");
+    let full = tmp.path().join("full");
+    let out = bin()
+        .args([
+            "study",
+            study.to_str().unwrap(),
+            "-o",
+            full.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).contains("6 computed, 0 loaded"));
+    // Piped: no progress bar on stderr.
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+
+    // Interrupted run: each point waits 400 ms before it is computed, so the kill lands while a
+    // later point is in flight.
+    let resumed = tmp.path().join("resumed");
+    let points = resumed.join("points");
+    let mut child = bin()
+        .args([
+            "study",
+            study.to_str().unwrap(),
+            "-o",
+            resumed.to_str().unwrap(),
+            "--delay-ms",
+            "400",
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    let finished_points = || {
+        std::fs::read_dir(&points)
+            .map(|d| {
+                d.filter_map(|e| e.ok())
+                    .filter(|e| {
+                        let n = e.file_name().to_string_lossy().to_string();
+                        n.ends_with(".json") && !n.starts_with('.')
+                    })
+                    .count()
+            })
+            .unwrap_or(0)
+    };
+    while finished_points() == 0 {
+        assert!(
+            start.elapsed() < Duration::from_secs(30),
+            "no point file appeared"
+        );
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    child.kill().unwrap(); // SIGKILL
+    child.wait().unwrap();
+    let done = finished_points();
+    assert!((1..6).contains(&done), "killed after {done} of 6 points");
+    assert!(!resumed.join("results.csv").exists());
+
+    let out = bin()
+        .args([
+            "study",
+            study.to_str().unwrap(),
+            "-o",
+            resumed.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains(&format!("{} computed, {} loaded", 6 - done, done)),
+        "{stdout}"
+    );
+    assert_same_tree(&full, &resumed);
+    assert!(tree(&full).contains_key("results.csv"));
+    assert!(tree(&full).contains_key("trends.json"));
+}
+
+#[test]
+fn point_files_with_another_spec_are_recomputed() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let a = study_file(
+        tmp.path(),
+        "hertz",
+        "[3000]",
+        "[0.5, 1.0, 2.0]",
+        "[method_options]\nsamples = 9\n",
+    );
+    let run = |s: &std::path::Path| {
+        let o = bin()
+            .args(["study", s.to_str().unwrap(), "-o", out.to_str().unwrap()])
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stdout).to_string()
+    };
+    assert!(run(&a).contains("3 computed, 0 loaded"));
+    assert!(run(&a).contains("0 computed, 3 loaded"));
+    let b = study_file(
+        tmp.path(),
+        "hertz",
+        "[3000]",
+        "[0.5, 1.0, 2.0]",
+        "[method_options]\nsamples = 11\n",
+    );
+    assert!(run(&b).contains("3 computed, 0 loaded"));
+}

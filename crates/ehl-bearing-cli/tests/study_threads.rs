@@ -1,0 +1,71 @@
+//! Study output does not depend on the number of threads (bitwise), with --threads and with
+//! RAYON_NUM_THREADS.
+
+mod study_common;
+
+use assert_cmd::cargo::CommandCargoExt;
+use std::process::Command;
+use study_common::{assert_same_tree, study_file};
+
+#[test]
+fn one_and_two_threads_give_identical_files() {
+    let tmp = tempfile::tempdir().unwrap();
+    // The synthetic method with a generous cache tolerance exercises deduplication and reuse.
+    let study = study_file(
+        tmp.path(),
+        "synthetic",
+        "[3000, 5000]",
+        "[0.5, 1.5]",
+        "[characterize]\ncache_tolerance = 0.02\ntolerance = 1e-5\n",
+    );
+    let run = |name: &str, threads: Option<&str>, env: Option<&str>| {
+        let out = tmp.path().join(name);
+        let mut c = Command::cargo_bin("ehl-bearing").unwrap();
+        c.args([
+            "study",
+            study.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        if let Some(t) = threads {
+            c.args(["--threads", t]);
+        }
+        if let Some(e) = env {
+            c.env("RAYON_NUM_THREADS", e);
+        }
+        let o = c.output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        out
+    };
+    let one = run("t1", Some("1"), None);
+    let two = run("t2", Some("2"), None);
+    let env2 = run("e2", None, Some("2"));
+    assert_same_tree(&one, &two);
+    assert_same_tree(&one, &env2);
+    let csv = std::fs::read_to_string(one.join("results.csv")).unwrap();
+    assert!(
+        csv.contains("deduplicated") || csv.contains("cached"),
+        "no reuse exercised"
+    );
+    assert_eq!(csv.lines().count(), 1 + 4 * 22);
+}
+
+#[test]
+fn invalid_thread_count_is_an_error() {
+    let tmp = tempfile::tempdir().unwrap();
+    let study = study_file(tmp.path(), "hertz", "[3000]", "[1.0]", "");
+    let o = Command::cargo_bin("ehl-bearing")
+        .unwrap()
+        .args([
+            "study",
+            study.to_str().unwrap(),
+            "-o",
+            tmp.path().join("o").to_str().unwrap(),
+            "--threads",
+            "0",
+        ])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--threads 0"));
+}
