@@ -323,7 +323,7 @@ pub fn table(case: &Case, c: &BearingCharacterization) -> String {
     }
     let names = ["x µm", "y µm", "z µm", "θy mdeg", "θz mdeg"];
     let _ = writeln!(s, "\n{:<9} {:>14} {:>14}", "DOF", "EHL", "dry");
-    for k in 0..5 {
+    for (k, name) in names.iter().enumerate() {
         let f = if k < 3 {
             1e6
         } else {
@@ -332,7 +332,7 @@ pub fn table(case: &Case, c: &BearingCharacterization) -> String {
         let _ = writeln!(
             s,
             "{:<9} {:>14.5} {:>14.5}",
-            names[k],
+            name,
             c.equilibrium.displacement[k] * f,
             c.dry.displacement[k] * f
         );
@@ -349,14 +349,14 @@ pub fn table(case: &Case, c: &BearingCharacterization) -> String {
         "\n{:<16} {:>14} {:>14} {:>9}",
         "stiffness", "EHL", "dry", "EHL/dry"
     );
-    for k in 0..5 {
+    for (k, name) in dnames.iter().enumerate() {
         let f = if k < 3 { 1e-6 } else { 1e-3 };
         let e = c.equilibrium.stiffness[k][k];
         let d = c.dry.stiffness[k][k];
         let _ = writeln!(
             s,
             "{:<16} {:>14.5} {:>14.5} {:>9.5}",
-            dnames[k],
+            name,
             e * f,
             d * f,
             e / d

@@ -691,7 +691,7 @@ fn conditions_of(
     let mut out = Vec::with_capacity(2 * eq.balls.len());
     for b in &eq.balls {
         for (race, s) in [(Race::Inner, &b.inner), (Race::Outer, &b.outer)] {
-            let floored = !(s.load >= floor);
+            let floored = s.load.is_nan() || s.load < floor;
             out.push((
                 ContactConditions {
                     race,

@@ -611,8 +611,9 @@ fn linear_lsq(cols: &[Vec<f64>], y: &[f64]) -> Option<Vec<f64>> {
         for r in 0..p {
             if r != c {
                 let f = a[r][c] / scale;
-                for k in c..=p {
-                    a[r][k] -= f * a[c][k];
+                let pivot_row = a[c].clone();
+                for (x, pv) in a[r].iter_mut().zip(&pivot_row).skip(c) {
+                    *x -= f * pv;
                 }
             }
         }
@@ -709,8 +710,8 @@ impl LeastSquaresProblem for HertzLimit<'_> {
         self.y.len()
     }
     fn residuals(&self, x: &[f64], r: &mut [f64]) {
-        for i in 0..self.y.len() {
-            r[i] = 1.5 - (x[0] - x[1] * self.lnq[i]).exp() - self.y[i];
+        for ((ri, lq), y) in r.iter_mut().zip(self.lnq).zip(self.y) {
+            *ri = 1.5 - (x[0] - x[1] * lq).exp() - y;
         }
     }
     fn jacobian(&self, x: &[f64], jac: &mut [f64]) {
@@ -781,7 +782,7 @@ fn fit_race(
     }
     let lnq: Vec<f64> = q.iter().map(|v| v.ln()).collect();
     // K(Q) = a·Q^b by least squares on ln K (relative errors).
-    if k.iter().any(|v| !(*v > 0.0)) {
+    if k.iter().any(|v| v.is_nan() || *v <= 0.0) {
         return Err(trend_err(race, "K (non-positive stiffness)"));
     }
     let lnk: Vec<f64> = k.iter().map(|v| v.ln()).collect();
