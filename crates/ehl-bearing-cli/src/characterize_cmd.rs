@@ -3,11 +3,14 @@
 
 use anyhow::{bail, Context};
 use ehl_bearing::characterize::{
-    characterization_json, characterize_bearing, BearingCharacterization, CharacterizeSettings,
-    ContactCharacterizer, ContactRow, HertzCharacterizer, SyntheticCharacterizer,
+    characterization_json, characterize_bearing_with_progress, BearingCharacterization,
+    CharacterizeSettings, ContactCharacterizer, ContactRow, HertzCharacterizer, Progress,
+    SyntheticCharacterizer,
 };
 use ehl_bearing::io::{read_case, Case};
+use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::Value;
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 /// Methods the command line knows (`--method`, study files).
@@ -151,6 +154,43 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// A progress container drawing on stderr when it is a terminal, hidden otherwise (piped or
+/// redirected output stays clean).
+pub fn progress_container() -> MultiProgress {
+    if std::io::stderr().is_terminal() {
+        MultiProgress::with_draw_target(ProgressDrawTarget::stderr())
+    } else {
+        MultiProgress::with_draw_target(ProgressDrawTarget::hidden())
+    }
+}
+
+/// A bar of the contacts characterized in the current iteration of the loop, and the callback
+/// that drives it.
+pub fn contact_progress(multi: &MultiProgress) -> (ProgressBar, impl Fn(Progress) + Sync) {
+    let bar = multi.add(ProgressBar::new(0));
+    if let Ok(style) =
+        ProgressStyle::with_template("  iteration {prefix:>2} {bar:30} {pos}/{len} contacts {msg}")
+    {
+        bar.set_style(style);
+    }
+    let b = bar.clone();
+    let callback = move |p: Progress| match p {
+        Progress::IterationStarted {
+            iteration,
+            contacts,
+        } => {
+            b.set_prefix(iteration.to_string());
+            b.set_length(contacts as u64);
+            b.set_position(0);
+        }
+        Progress::ContactDone { .. } => b.inc(1),
+        Progress::IterationDone(h) => {
+            b.set_message(format!("max ΔQ/Q {:.2e}", h.max_load_change));
+        }
+    };
+    (bar, callback)
+}
+
 /// Arguments of `characterize`.
 #[derive(clap::Args)]
 pub struct CharacterizeArgs {
@@ -220,10 +260,14 @@ pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
         cache_tolerance: args.cache_tolerance,
         ..CharacterizeSettings::default()
     };
+    let multi = progress_container();
+    let (bar, callback) = contact_progress(&multi);
     let c = with_threads(args.threads, || {
-        characterize_bearing(&case, ch.as_ref(), &settings)
+        characterize_bearing_with_progress(&case, ch.as_ref(), &settings, &callback)
             .with_context(|| format!("characterizing {}", args.case.display()))
-    })?;
+    });
+    bar.finish_and_clear();
+    let c = c?;
     if let Some(dir) = &args.output {
         std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
         let json = serde_json::to_string_pretty(&characterization_json(&c, false))? + "\n";

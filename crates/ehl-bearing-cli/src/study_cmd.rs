@@ -13,12 +13,15 @@
 //! Every final file is built from the point files alone, so it is identical whether the study ran
 //! in one go or was resumed, and whatever the number of threads.
 
-use crate::characterize_cmd::{characterizer, with_threads, write_atomic};
+use crate::characterize_cmd::{
+    characterizer, contact_progress, progress_container, with_threads, write_atomic,
+};
 use anyhow::Context;
-use ehl_bearing::study::{fit_trends, point_rows, read_study, results_csv, run_point, ResultRow};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use ehl_bearing::study::{
+    fit_trends, point_rows, read_study, results_csv, run_point_with_progress, ResultRow,
+};
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use serde_json::Value;
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -43,13 +46,8 @@ pub struct StudyArgs {
     pub delay_ms: u64,
 }
 
-fn progress(len: u64) -> ProgressBar {
-    let target = if std::io::stderr().is_terminal() {
-        ProgressDrawTarget::stderr()
-    } else {
-        ProgressDrawTarget::hidden()
-    };
-    let bar = ProgressBar::with_draw_target(Some(len), target);
+fn progress(multi: &MultiProgress, len: u64) -> ProgressBar {
+    let bar = multi.add(ProgressBar::new(len));
     if let Ok(style) = ProgressStyle::with_template(
         "{spinner} [{elapsed_precise}] {bar:30} {pos}/{len} points (eta {eta}) {msg}",
     ) {
@@ -92,7 +90,9 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     remove_stale_temporaries(&points_dir)?;
     remove_stale_temporaries(&args.output)?;
     let points = study.points();
-    let bar = progress(points.len() as u64);
+    let multi = progress_container();
+    let bar = progress(&multi, points.len() as u64);
+    let (contacts_bar, callback) = contact_progress(&multi);
     let t0 = Instant::now();
     let (mut loaded, mut computed, mut not_converged) = (0usize, 0usize, 0usize);
     let mut files = Vec::with_capacity(points.len());
@@ -107,7 +107,7 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
                 std::thread::sleep(std::time::Duration::from_millis(args.delay_ms));
             }
             let v = with_threads(args.threads, || {
-                run_point(&study, p, ch.as_ref()).with_context(|| {
+                run_point_with_progress(&study, p, ch.as_ref(), &callback).with_context(|| {
                     format!(
                         "point {} rpm, load scale {}",
                         p.inner_speed_rpm, p.load_scale
@@ -124,6 +124,7 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
         files.push(path);
         bar.inc(1);
     }
+    contacts_bar.finish_and_clear();
     bar.finish_and_clear();
     // Everything below is built from the point files only.
     let mut rows: Vec<ResultRow> = Vec::new();

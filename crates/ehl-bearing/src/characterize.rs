@@ -745,6 +745,35 @@ pub fn characterize_bearing(
     ch: &dyn ContactCharacterizer,
     settings: &CharacterizeSettings,
 ) -> Result<BearingCharacterization, CharacterizeError> {
+    characterize_bearing_with_progress(case, ch, settings, &|_| {})
+}
+
+/// Progress of [`characterize_bearing_with_progress`] (for progress bars; no effect on results).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Progress {
+    /// An iteration starts and will characterize `contacts` contacts (the others are reused).
+    IterationStarted {
+        /// Iteration number (1-based).
+        iteration: usize,
+        /// Contacts to characterize.
+        contacts: usize,
+    },
+    /// One contact was characterized (called from the worker threads, in any order).
+    ContactDone {
+        /// Iteration number.
+        iteration: usize,
+    },
+    /// An iteration finished.
+    IterationDone(IterationRecord),
+}
+
+/// As [`characterize_bearing`], calling `progress` as contacts and iterations finish.
+pub fn characterize_bearing_with_progress(
+    case: &Case,
+    ch: &dyn ContactCharacterizer,
+    settings: &CharacterizeSettings,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> Result<BearingCharacterization, CharacterizeError> {
     settings.validate()?;
     let t0 = Instant::now();
     let dry_laws = ContactLaws::hertz(&case.bearing).map_err(CharacterizeError::DryEquilibrium)?;
@@ -798,9 +827,17 @@ pub fn characterize_bearing(
                 }
             }
         }
+        progress(Progress::IterationStarted {
+            iteration,
+            contacts: runs.len(),
+        });
         let results: Vec<Result<CharacterizedContact, crate::Error>> = runs
             .par_iter()
-            .map(|&i| ch.characterize(&conds[i].0))
+            .map(|&i| {
+                let r = ch.characterize(&conds[i].0);
+                progress(Progress::ContactDone { iteration });
+                r
+            })
             .collect();
         let mut fresh: Vec<Option<CharacterizedContact>> = vec![None; conds.len()];
         for (&i, r) in runs.iter().zip(results) {
@@ -878,6 +915,9 @@ pub fn characterize_bearing(
             equilibrium_iterations: next.iterations,
             seconds: ti.elapsed().as_secs_f64(),
         });
+        if let Some(h) = history.last() {
+            progress(Progress::IterationDone(*h));
+        }
         eq = next;
         contacts = new_contacts;
         if change < settings.tolerance {

@@ -18,8 +18,8 @@ use crate::bearing::{
     ForceResult, OperatingPoint, Race, RaceControl,
 };
 use crate::characterize::{
-    characterization_json, characterize_bearing, max_relative_load_change, CharacterizeError,
-    CharacterizeSettings, ContactCharacterizer, ContactRow,
+    characterization_json, characterize_bearing_with_progress, max_relative_load_change,
+    CharacterizeError, CharacterizeSettings, ContactCharacterizer, ContactRow, Progress,
 };
 use crate::contact_law::ContactLaw;
 use crate::fit::{levenberg_marquardt, FittedLaw, LeastSquaresProblem, LmConvergence};
@@ -309,7 +309,18 @@ pub fn run_point(
     p: &StudyPoint,
     ch: &dyn ContactCharacterizer,
 ) -> Result<Value, CharacterizeError> {
-    let c = characterize_bearing(&study.point_case(p), ch, &study.settings)?;
+    run_point_with_progress(study, p, ch, &|_| {})
+}
+
+/// As [`run_point`], reporting the loop's [`Progress`].
+pub fn run_point_with_progress(
+    study: &Study,
+    p: &StudyPoint,
+    ch: &dyn ContactCharacterizer,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> Result<Value, CharacterizeError> {
+    let c =
+        characterize_bearing_with_progress(&study.point_case(p), ch, &study.settings, progress)?;
     let mut v = json!({"spec": study.point_spec(p, ch)});
     if let (Value::Object(dst), Value::Object(src)) = (&mut v, characterization_json(&c, false)) {
         dst.extend(src);
