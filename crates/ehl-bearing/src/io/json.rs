@@ -37,6 +37,7 @@ pub fn equilibrium_json(e: &Equilibrium) -> Value {
             "orbital_speed": b.orbital_speed,
             "spin_speed": b.spin_speed,
             "pitch_angle": b.pitch_angle,
+            "kinematic_angle": b.kinematic_angle,
             "centrifugal_force": b.centrifugal_force,
             "gyroscopic_moment": b.gyroscopic_moment,
             "inner": contact(&b.inner),
