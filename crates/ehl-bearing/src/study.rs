@@ -417,7 +417,10 @@ pub fn results_csv(rows: &[ResultRow]) -> String {
 /// - `hertz_limit`: y = 1.5 − p0·Q^(−p1) (d(Q), tends to the Hertz 1.5 as the load grows);
 /// - `log_linear`: y = p0 + p1·ln Q (d(Q) when some d ≥ 1.5);
 /// - `power_speed`: y = p0·Q^p1·n^p2 (ΔF(Q, n));
-/// - `linear_speed`: y = p0 + p1·Q + p2·n (ΔF when some ΔF ≤ 0).
+/// - `linear_speed`: y = p0 + p1·Q + p2·n (ΔF when some ΔF ≤ 0);
+/// - `power_elastic`: y = p0·(Q − ΔF(Q, n))^p1·n^p2 (the approach δ, driven by the load the
+///   solids carry beyond the lift; evaluated through [`RaceTrends::approach_at`], while
+///   [`TrendCurve::eval`] takes the elastic load Q − ΔF as its first argument).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct TrendCurve {
     /// The form (see above).
@@ -445,7 +448,7 @@ impl TrendCurve {
             "power" => at(0) * q.powf(at(1)),
             "hertz_limit" => 1.5 - at(0) * q.powf(-at(1)),
             "log_linear" => at(0) + at(1) * q.ln(),
-            "power_speed" => at(0) * q.powf(at(1)) * n.powf(at(2)),
+            "power_speed" | "power_elastic" => at(0) * q.powf(at(1)) * n.powf(at(2)),
             "linear_speed" => at(0) + at(1) * q + at(2) * n,
             _ => f64::NAN,
         }
@@ -454,7 +457,7 @@ impl TrendCurve {
     fn check(&self, what: &str) -> Result<(), CharacterizeError> {
         let need = match self.form.as_str() {
             "power" | "hertz_limit" | "log_linear" => 2,
-            "power_speed" | "linear_speed" => 3,
+            "power_speed" | "linear_speed" | "power_elastic" => 3,
             f => {
                 return Err(CharacterizeError::Trend(format!(
                     "{what}: unknown form {f:?}"
@@ -488,6 +491,17 @@ pub struct RaceTrends {
     pub load_range_n: [f64; 2],
     /// Range of speeds fitted [n_min, n_max], rad/s.
     pub speed_range_rad_s: [f64; 2],
+}
+
+impl RaceTrends {
+    /// The approach trend δ(Q, n), m, at load `q` (N) and speed `n` (rad/s).
+    pub fn approach_at(&self, q: f64, n: f64) -> f64 {
+        if self.approach.form == "power_elastic" {
+            self.approach.eval(q - self.delta_f.eval(q, n), n)
+        } else {
+            self.approach.eval(q, n)
+        }
+    }
 }
 
 /// The bearing a trend model belongs to (SI).
@@ -838,9 +852,25 @@ fn fit_race(
             d,
         )
     };
-    // ΔF(Q, n) and δ(Q, n).
+    // ΔF(Q, n) and δ(Q, n): δ as a power law of the elastic load Q − ΔF when that is positive
+    // everywhere and fits better than a power law of Q.
     let df_curve = power_or_linear(race, "ΔF", "N", q, n, df)?;
-    let approach = power_or_linear(race, "δ", "m", q, n, delta)?;
+    let mut approach = power_or_linear(race, "δ", "m", q, n, delta)?;
+    let qe: Vec<f64> = q
+        .iter()
+        .zip(n)
+        .map(|(&qi, &ni)| qi - df_curve.eval(qi, ni))
+        .collect();
+    if approach.form == "power_speed" && qe.iter().all(|v| *v > 0.0) {
+        let alt = power_or_linear(race, "δ", "m", &qe, n, delta)?;
+        if alt.rms_residual < approach.rms_residual {
+            approach = TrendCurve {
+                form: "power_elastic".into(),
+                formula: "δ = p0·(Q − ΔF(Q, n))^p1·n^p2 (δ in m, Q and ΔF in N, n in rad/s)".into(),
+                ..alt
+            };
+        }
+    }
     let range = |v: &[f64]| {
         [
             v.iter().copied().fold(f64::INFINITY, f64::min),
@@ -918,6 +948,26 @@ pub struct TrendEvalOptions {
     pub tolerance: f64,
     /// Iteration limit of the fixed point.
     pub max_iterations: usize,
+    /// How the Jacobian is computed.
+    pub jacobian: JacobianMode,
+}
+
+/// Jacobian of [`TrendForceElement::evaluate`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum JacobianMode {
+    /// Exact derivative of the final laws with their parameters frozen (free; omits
+    /// ∂(K, d, ΔF)/∂Q: measured 5 % off the total derivative on a strongly load-dependent
+    /// synthetic d(Q), see `docs/study.md`). Enough for the Newton iterations of an implicit
+    /// integrator.
+    Frozen,
+    /// Central differences of the full evaluation (10 more evaluations) with steps `step_m` (m)
+    /// for x, y, z and `step_rad` (rad) for θy, θz: the total derivative.
+    CentralDifference {
+        /// Step of the translations, m.
+        step_m: f64,
+        /// Step of the tilts, rad.
+        step_rad: f64,
+    },
 }
 
 impl Default for TrendEvalOptions {
@@ -925,6 +975,7 @@ impl Default for TrendEvalOptions {
         TrendEvalOptions {
             tolerance: 1e-9,
             max_iterations: 50,
+            jacobian: JacobianMode::Frozen,
         }
     }
 }
@@ -959,9 +1010,9 @@ pub struct TrendForce {
 /// fixed point on the contact loads: start from the dry Hertz loads at the given displacement,
 /// build each contact's law from the trends at its current load (clamped into the validity
 /// range), solve every ball's equilibrium at the imposed ring displacement, and repeat until the
-/// loads change by less than `options.tolerance`. The Jacobian returned is that of the final laws
-/// with their parameters frozen (it omits ∂(K, d, ΔF)/∂Q, a small term when the trends vary
-/// slowly with load).
+/// loads change by less than `options.tolerance`. The Jacobian is that of the final laws with
+/// their parameters frozen by default, or the total derivative by central differences
+/// ([`JacobianMode`]).
 #[derive(Debug, Clone)]
 pub struct TrendForceElement {
     model: TrendModel,
@@ -1014,7 +1065,7 @@ impl TrendForceElement {
         let nc = n.clamp(nlo, nhi);
         let d = t.d.eval(qc, nc);
         let df = t.delta_f.eval(qc, nc);
-        let anchor = t.approach.eval(qc, nc);
+        let anchor = t.approach_at(qc, nc);
         let k = if anchor > 0.0 && qc > df && d > 0.0 {
             (qc - df) / anchor.powf(d)
         } else {
@@ -1094,10 +1145,38 @@ impl TrendForceElement {
             let [lo, hi] = t.speed_range_rad_s;
             !(n >= lo * (1.0 - 1e-12) && n <= hi * (1.0 + 1e-12))
         });
+        let mut jacobian = eq.stiffness;
+        if let JacobianMode::CentralDifference { step_m, step_rad } = self.options.jacobian {
+            let frozen = TrendForceElement {
+                options: TrendEvalOptions {
+                    jacobian: JacobianMode::Frozen,
+                    ..self.options
+                },
+                ..self.clone()
+            };
+            for k in 0..5 {
+                let h = if k < 3 { step_m } else { step_rad };
+                let mut qp = *displacement;
+                let mut qm = *displacement;
+                qp[k] += h;
+                qm[k] -= h;
+                let fp = frozen
+                    .evaluate(&qp, inner_speed, outer_speed)?
+                    .force
+                    .reaction;
+                let fm = frozen
+                    .evaluate(&qm, inner_speed, outer_speed)?
+                    .force
+                    .reaction;
+                for r in 0..5 {
+                    jacobian[r][k] = (fp[r] - fm[r]) / (2.0 * h);
+                }
+            }
+        }
         Ok(TrendForce {
             force: ForceResult {
                 reaction: eq.reaction,
-                jacobian: eq.stiffness,
+                jacobian,
             },
             contact_loads: loads.chunks(2).map(|c| [c[0], c[1]]).collect(),
             iterations,
