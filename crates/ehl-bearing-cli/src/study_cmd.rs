@@ -19,6 +19,7 @@ use crate::characterize_cmd::{
 use anyhow::Context;
 use ehl_bearing::study::{
     fit_trends, point_rows, read_study, results_csv, run_point_with_progress, ResultRow,
+    TrendForceElement, TrendModel,
 };
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use serde_json::Value;
@@ -127,18 +128,91 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     contacts_bar.finish_and_clear();
     bar.finish_and_clear();
     // Everything below is built from the point files only.
+    let mut values: Vec<Value> = Vec::with_capacity(files.len());
     let mut rows: Vec<ResultRow> = Vec::new();
-    let mut summary = String::from(
-        "speed_rpm,load_scale,converged,iterations,max_load_change,max_key_distance,x_m,y_m,z_m,theta_y_rad,theta_z_rad,dry_x_m,dry_y_m,dry_z_m,k_xx_n_m,k_yy_n_m,k_zz_n_m,dry_k_xx_n_m,dry_k_yy_n_m,dry_k_zz_n_m\n",
-    );
     for path in &files {
         let text =
             std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
         let v: Value =
             serde_json::from_str(&text).with_context(|| format!("parsing {}", path.display()))?;
         rows.extend(point_rows(&v).with_context(|| path.display().to_string())?);
+        values.push(v);
+    }
+    write_atomic(
+        &args.output.join("results.csv"),
+        results_csv(&rows).as_bytes(),
+    )?;
+    println!(
+        "study {}: {} points ({} computed, {} loaded from {}), method {}, {:.2} s",
+        args.study.display(),
+        points.len(),
+        computed,
+        loaded,
+        points_dir.display(),
+        ch.name(),
+        t0.elapsed().as_secs_f64()
+    );
+    if !study.case.lubricant_given {
+        println!(
+            "  lubricant not given in the case: default mineral oil (η0 = {} Pa·s, α = {:e} 1/Pa)",
+            study.case.lubricant.viscosity, study.case.lubricant.pressure_viscosity
+        );
+    }
+    if not_converged > 0 {
+        eprintln!("warning: {not_converged} points did not converge (see points.csv)");
+    }
+    let trends = match fit_trends(&study, &rows) {
+        Ok(model) => {
+            write_atomic(
+                &args.output.join("trends.json"),
+                (model.to_json() + "\n").as_bytes(),
+            )?;
+            for (race, t) in [("inner", &model.inner), ("outer", &model.outer)] {
+                for (name, c) in [
+                    ("K", &t.k),
+                    ("d", &t.d),
+                    ("ΔF", &t.delta_f),
+                    ("δ", &t.approach),
+                ] {
+                    println!(
+                        "  {race:<5} {name:<2} {:<62} R² {:<10} rms {:.3e}  (Q {:.1}–{:.1} N)",
+                        c.formula,
+                        c.r_squared.map_or("n/a".to_string(), |r| format!("{r:.6}")),
+                        c.rms_residual,
+                        t.load_range_n[0],
+                        t.load_range_n[1]
+                    );
+                }
+            }
+            Some(model)
+        }
+        Err(e) => {
+            eprintln!("warning: trend curves not fitted: {e}");
+            None
+        }
+    };
+    // How well the trend force element reproduces each point's reactions.
+    let element = trends.clone().map(TrendForceElement::new).transpose()?;
+    let mut summary = String::from(
+        "speed_rpm,load_scale,converged,iterations,max_load_change,max_key_distance,x_m,y_m,z_m,theta_y_rad,theta_z_rad,dry_x_m,dry_y_m,dry_z_m,k_xx_n_m,k_yy_n_m,k_zz_n_m,dry_k_xx_n_m,dry_k_yy_n_m,dry_k_zz_n_m,trend_reaction_error\n",
+    );
+    let mut worst = 0.0_f64;
+    for v in &values {
         let d = |key: &str, k: &str| v[key][k].to_string();
         let kk = |key: &str, i: usize| v[key][i][i].to_string();
+        let err = match &element {
+            Some(e) => match e.reaction_error(v) {
+                Ok(x) => {
+                    worst = worst.max(x);
+                    x.to_string()
+                }
+                Err(e) => {
+                    eprintln!("warning: trend force element: {e}");
+                    String::new()
+                }
+            },
+            None => String::new(),
+        };
         summary.push_str(
             &[
                 v["spec"]["inner_speed_rpm"].to_string(),
@@ -161,57 +235,25 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
                 kk("stiffness_dry", 0),
                 kk("stiffness_dry", 1),
                 kk("stiffness_dry", 2),
+                err,
             ]
             .join(","),
         );
         summary.push('\n');
     }
-    write_atomic(
-        &args.output.join("results.csv"),
-        results_csv(&rows).as_bytes(),
-    )?;
     write_atomic(&args.output.join("points.csv"), summary.as_bytes())?;
-    println!(
-        "study {}: {} points ({} computed, {} loaded from {}), method {}, {:.2} s",
-        args.study.display(),
-        points.len(),
-        computed,
-        loaded,
-        points_dir.display(),
-        ch.name(),
-        t0.elapsed().as_secs_f64()
-    );
-    if not_converged > 0 {
-        eprintln!("warning: {not_converged} points did not converge (see points.csv)");
+    if element.is_some() {
+        println!(
+            "  trend force element vs the characterized points: largest relative reaction error {worst:.3e}"
+        );
     }
-    match fit_trends(&study, &rows) {
-        Ok(model) => {
-            write_atomic(
-                &args.output.join("trends.json"),
-                (model.to_json() + "\n").as_bytes(),
-            )?;
-            for (race, t) in [("inner", &model.inner), ("outer", &model.outer)] {
-                for (name, c) in [("K", &t.k), ("d", &t.d), ("ΔF", &t.delta_f)] {
-                    println!(
-                        "  {race:<5} {name:<2} {:<52} R² {:<10} rms {:.3e}  (Q {:.1}–{:.1} N)",
-                        c.formula,
-                        c.r_squared.map_or("n/a".to_string(), |r| format!("{r:.6}")),
-                        c.rms_residual,
-                        t.load_range_n[0],
-                        t.load_range_n[1]
-                    );
-                }
-            }
-        }
-        Err(e) => eprintln!("warning: trend curves not fitted: {e}"),
-    }
-    plots(&args.output, &rows)?;
+    plots(&args.output, &rows, trends.as_ref())?;
     println!("results in {}", args.output.display());
     Ok(())
 }
 
 /// Plots of K, d and ΔF against the contact load, inner and outer raceways apart, one series per
 /// speed (the paper's Fig. 2). Waiting for the plot module.
-fn plots(_dir: &Path, _rows: &[ResultRow]) -> anyhow::Result<()> {
+fn plots(_dir: &Path, _rows: &[ResultRow], _trends: Option<&TrendModel>) -> anyhow::Result<()> {
     Ok(())
 }

@@ -1037,6 +1037,33 @@ impl TrendForceElement {
         Self::new(TrendModel::from_json(text)?)
     }
 
+    /// Largest relative difference between the reactions F_x, F_y, F_z this element gives at a
+    /// characterized point's displacement and speed and the point's own equilibrium reactions
+    /// (each relative to max(|F|, 1 N)): how well the trends reproduce the characterization.
+    /// `point` is a point JSON as written by [`run_point`].
+    pub fn reaction_error(&self, point: &Value) -> Result<f64, crate::Error> {
+        let num = |v: &Value, what: &str| {
+            v.as_f64()
+                .ok_or_else(|| CharacterizeError::Trend(format!("point JSON: {what} missing")))
+        };
+        let mut q = [0.0; 5];
+        for (k, key) in ["x", "y", "z", "theta_y", "theta_z"].iter().enumerate() {
+            q[k] = num(&point["displacement"][key], key)?;
+        }
+        let rpm = num(&point["spec"]["inner_speed_rpm"], "spec.inner_speed_rpm")?;
+        let outer = num(
+            &point["spec"]["operating"]["outer_speed"],
+            "spec.operating.outer_speed",
+        )?;
+        let r = self.evaluate(&q, rpm * PI / 30.0, outer)?;
+        let mut worst = 0.0_f64;
+        for (k, key) in ["force_x", "force_y", "force_z"].iter().enumerate() {
+            let want = num(&point["reaction"][key], key)?;
+            worst = worst.max((r.force.reaction[k] - want).abs() / want.abs().max(1.0));
+        }
+        Ok(worst)
+    }
+
     /// The trend model.
     pub fn model(&self) -> &TrendModel {
         &self.model
