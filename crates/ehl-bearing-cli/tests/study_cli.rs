@@ -169,13 +169,20 @@ fn study_writes_long_csv_and_loadable_trends() {
         assert!(header.contains(&col), "{col}");
     }
     assert_eq!(csv.lines().count(), 1 + 9 * 22);
-    assert_eq!(
-        std::fs::read_to_string(out.join("points.csv"))
-            .unwrap()
-            .lines()
-            .count(),
-        10
-    );
+    let points = std::fs::read_to_string(out.join("points.csv")).unwrap();
+    assert_eq!(points.lines().count(), 10);
+    // The trend force element reproduces every point's reactions (measured 2.3e-5, docs/study.md).
+    let col = points
+        .lines()
+        .next()
+        .unwrap()
+        .split(',')
+        .position(|c| c == "trend_reaction_error")
+        .unwrap();
+    for line in points.lines().skip(1) {
+        let e: f64 = line.split(',').nth(col).unwrap().parse().unwrap();
+        assert!(e < 1e-3, "{line}");
+    }
     let trends = std::fs::read_to_string(out.join("trends.json")).unwrap();
     let model = ehl_bearing::study::TrendModel::from_json(&trends).unwrap();
     assert_eq!(model.inner.d.form, "hertz_limit");
