@@ -85,6 +85,9 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     }
     let ch = characterizer(&study.method, &study.method_options)
         .with_context(|| format!("method of {}", args.study.display()))?;
+    if args.threads == Some(0) {
+        anyhow::bail!("--threads 0: expected at least 1 thread");
+    }
     let points_dir = args.output.join("points");
     std::fs::create_dir_all(&points_dir)
         .with_context(|| format!("creating {}", points_dir.display()))?;
@@ -107,14 +110,13 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
             if args.delay_ms > 0 {
                 std::thread::sleep(std::time::Duration::from_millis(args.delay_ms));
             }
+            // A point that fails (e.g. a load the bearing cannot carry) is recorded with its error
+            // and the study goes on; the command fails at the end, after writing everything.
             let v = with_threads(args.threads, || {
-                run_point_with_progress(&study, p, ch.as_ref(), &callback).with_context(|| {
-                    format!(
-                        "point {} rpm, load scale {}",
-                        p.inner_speed_rpm, p.load_scale
-                    )
-                })
-            })?;
+                run_point_with_progress(&study, p, ch.as_ref(), &callback)
+                    .map_err(anyhow::Error::from)
+            })
+            .unwrap_or_else(|e| serde_json::json!({"spec": spec, "error": format!("{e:#}")}));
             if v["converged"] != Value::Bool(true) {
                 not_converged += 1;
             }
@@ -130,12 +132,22 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     // Everything below is built from the point files only.
     let mut values: Vec<Value> = Vec::with_capacity(files.len());
     let mut rows: Vec<ResultRow> = Vec::new();
+    let mut failed: Vec<String> = Vec::new();
     for path in &files {
         let text =
             std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
         let v: Value =
             serde_json::from_str(&text).with_context(|| format!("parsing {}", path.display()))?;
-        rows.extend(point_rows(&v).with_context(|| path.display().to_string())?);
+        if let Some(e) = v.get("error") {
+            failed.push(format!(
+                "{} rpm × {}: {}",
+                v["spec"]["inner_speed_rpm"],
+                v["spec"]["load_scale"],
+                e.as_str().unwrap_or_default()
+            ));
+        } else {
+            rows.extend(point_rows(&v).with_context(|| path.display().to_string())?);
+        }
         values.push(v);
     }
     write_atomic(
@@ -158,8 +170,11 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
             study.case.lubricant.viscosity, study.case.lubricant.pressure_viscosity
         );
     }
-    if not_converged > 0 {
-        eprintln!("warning: {not_converged} points did not converge (see points.csv)");
+    if not_converged > failed.len() {
+        eprintln!(
+            "warning: {} points did not converge (see points.csv)",
+            not_converged - failed.len()
+        );
     }
     let trends = match fit_trends(&study, &rows) {
         Ok(model) => {
@@ -200,6 +215,17 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     for v in &values {
         let d = |key: &str, k: &str| v[key][k].to_string();
         let kk = |key: &str, i: usize| v[key][i][i].to_string();
+        if v.get("error").is_some() {
+            let mut cells = vec![
+                v["spec"]["inner_speed_rpm"].to_string(),
+                v["spec"]["load_scale"].to_string(),
+                "error".to_string(),
+            ];
+            cells.resize(21, String::new());
+            summary.push_str(&cells.join(","));
+            summary.push('\n');
+            continue;
+        }
         let err = match &element {
             Some(e) => match e.reaction_error(v) {
                 Ok(x) => {
@@ -247,8 +273,19 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
             "  trend force element vs the characterized points: largest relative reaction error {worst:.3e}"
         );
     }
-    plots(&args.output, &rows, trends.as_ref())?;
+    if !rows.is_empty() {
+        plots(&args.output, &rows, trends.as_ref())?;
+    }
     println!("results in {}", args.output.display());
+    if !failed.is_empty() {
+        anyhow::bail!(
+            "{} of {} points failed (recorded in {}; delete their files to retry):\n  {}",
+            failed.len(),
+            points.len(),
+            points_dir.display(),
+            failed.join("\n  ")
+        );
+    }
     Ok(())
 }
 

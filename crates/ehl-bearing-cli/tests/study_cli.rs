@@ -188,3 +188,35 @@ fn study_writes_long_csv_and_loadable_trends() {
     assert_eq!(model.inner.d.form, "hertz_limit");
     assert_eq!(std::fs::read_dir(out.join("points")).unwrap().count(), 9);
 }
+
+#[test]
+fn a_failing_point_is_recorded_and_the_others_finish() {
+    let tmp = tempfile::tempdir().unwrap();
+    // 100 × the seed loads needs deflections beyond 2 % of the ball diameter: an error.
+    let study = study_file(tmp.path(), "hertz", "[3000]", "[1.0, 0.5, 100.0]", "");
+    let out = tmp.path().join("out");
+    let run = || {
+        bin()
+            .args([
+                "study",
+                study.to_str().unwrap(),
+                "-o",
+                out.to_str().unwrap(),
+            ])
+            .output()
+            .unwrap()
+    };
+    let o = run();
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("1 of 3 points failed"), "{err}");
+    assert!(err.contains("cannot carry"), "{err}");
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 2 * 22);
+    let points = std::fs::read_to_string(out.join("points.csv")).unwrap();
+    assert!(points.contains("3000.0,100.0,error"), "{points}");
+    // The failure is remembered: a rerun recomputes nothing and fails the same way.
+    let o = run();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stdout).contains("0 computed, 3 loaded"));
+}
