@@ -20,6 +20,9 @@ use anyhow::{anyhow, ensure, Context, Result};
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::coord::Shift;
 use plotters::element::ComposedElement;
+use plotters_backend::text_anchor::{HPos, Pos, VPos};
+use plotters_backend::FontTransform;
+use plotters_backend::{BackendColor, BackendCoord, BackendTextStyle, DrawingErrorKind};
 
 type Px = (i32, i32);
 /// A line sample and a marker, positioned in pixels around an anchor point.
@@ -65,9 +68,9 @@ const PALETTE: [RGBColor; 10] = [
 
 /// Colours of curves drawn over a heatmap (readable on viridis).
 const OVERLAY_PALETTE: [RGBColor; 4] = [
+    RGBColor(255, 127, 14),
     RGBColor(255, 255, 255),
     RGBColor(214, 39, 40),
-    RGBColor(255, 127, 14),
     RGBColor(0, 0, 0),
 ];
 
@@ -188,7 +191,10 @@ pub fn line_chart_with(
     series: &[Series],
     options: &ChartOptions,
 ) -> Result<()> {
-    ensure!(!series.is_empty(), "line chart '{title}': no series to plot");
+    ensure!(
+        !series.is_empty(),
+        "line chart '{title}': no series to plot"
+    );
     check_series(series)?;
     let x = Axis::fit(
         series.iter().flat_map(|s| s.x.iter().copied()),
@@ -215,7 +221,11 @@ pub fn line_chart_with(
         y_area,
         margin_bottom: MARGIN,
     };
-    save_both(stem, (FIGURE_WIDTH, FIGURE_HEIGHT), &LineFig { title, panel })
+    save_both(
+        stem,
+        (FIGURE_WIDTH, FIGURE_HEIGHT),
+        &LineFig { title, panel },
+    )
 }
 
 struct LineFig<'a> {
@@ -413,7 +423,11 @@ pub fn heatmap_with(
         overlays: &options.overlays,
         equal_aspect: options.equal_aspect,
     };
-    save_both(stem, (FIGURE_WIDTH, FIGURE_HEIGHT), &HeatFig { title, spec })
+    save_both(
+        stem,
+        (FIGURE_WIDTH, FIGURE_HEIGHT),
+        &HeatFig { title, spec },
+    )
 }
 
 struct HeatFig<'a> {
@@ -483,12 +497,181 @@ fn save_both<F: Figure>(stem: &Path, size: (u32, u32), fig: &F) -> Result<()> {
     std::fs::write(&svg_path, svg).with_context(|| format!("writing {}", svg_path.display()))?;
 
     let png_path = with_ext(stem, "png");
-    let root = BitMapBackend::new(&png_path, size).into_drawing_area();
+    let root = Png {
+        inner: BitMapBackend::new(&png_path, size),
+    }
+    .into_drawing_area();
     root.fill(&WHITE).map_err(drawing)?;
     fig.draw(&root)?;
     root.present()
         .map_err(|e| anyhow!("writing {}: {e}", png_path.display()))?;
     Ok(())
+}
+
+/// The bitmap backend with its own text rendering: plotters' `ab_glyph` text
+/// drops each glyph's side bearing, which makes labels look unevenly spaced
+/// ("0. 8"). Everything else is forwarded unchanged.
+struct Png<'a> {
+    inner: BitMapBackend<'a>,
+}
+
+fn font_ref() -> &'static ab_glyph::FontRef<'static> {
+    static FONT_REF: OnceLock<ab_glyph::FontRef<'static>> = OnceLock::new();
+    FONT_REF.get_or_init(|| {
+        // ensure_font() has already parsed the same bytes successfully.
+        ab_glyph::FontRef::try_from_slice(FONT_BYTES).expect("embedded font parses")
+    })
+}
+
+/// Width, height and ascent in pixels of `text` at plotters' font `size`.
+fn text_box(text: &str, size: f64) -> (f32, f32, f32) {
+    use ab_glyph::{Font, ScaleFont};
+    let font = font_ref().as_scaled(size as f32);
+    let mut width = 0.0f32;
+    let mut prev = None;
+    for c in text.chars() {
+        let id = font.glyph_id(c);
+        if let Some(p) = prev {
+            width += font.kern(p, id);
+        }
+        width += font.h_advance(id);
+        prev = Some(id);
+    }
+    (width, font.ascent() - font.descent(), font.ascent())
+}
+
+impl<'a> DrawingBackend for Png<'a> {
+    type ErrorType = <BitMapBackend<'a> as DrawingBackend>::ErrorType;
+
+    fn get_size(&self) -> (u32, u32) {
+        self.inner.get_size()
+    }
+    fn ensure_prepared(&mut self) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.ensure_prepared()
+    }
+    fn present(&mut self) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.present()
+    }
+    fn draw_pixel(
+        &mut self,
+        point: BackendCoord,
+        color: BackendColor,
+    ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.draw_pixel(point, color)
+    }
+    fn draw_line<S: plotters_backend::BackendStyle>(
+        &mut self,
+        from: BackendCoord,
+        to: BackendCoord,
+        style: &S,
+    ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.draw_line(from, to, style)
+    }
+    fn draw_rect<S: plotters_backend::BackendStyle>(
+        &mut self,
+        upper_left: BackendCoord,
+        bottom_right: BackendCoord,
+        style: &S,
+        fill: bool,
+    ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.draw_rect(upper_left, bottom_right, style, fill)
+    }
+    fn draw_path<S: plotters_backend::BackendStyle, I: IntoIterator<Item = BackendCoord>>(
+        &mut self,
+        path: I,
+        style: &S,
+    ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.draw_path(path, style)
+    }
+    fn draw_circle<S: plotters_backend::BackendStyle>(
+        &mut self,
+        center: BackendCoord,
+        radius: u32,
+        style: &S,
+        fill: bool,
+    ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.draw_circle(center, radius, style, fill)
+    }
+    fn fill_polygon<S: plotters_backend::BackendStyle, I: IntoIterator<Item = BackendCoord>>(
+        &mut self,
+        vert: I,
+        style: &S,
+    ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.fill_polygon(vert, style)
+    }
+    fn blit_bitmap(
+        &mut self,
+        pos: BackendCoord,
+        size: (u32, u32),
+        src: &[u8],
+    ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.blit_bitmap(pos, size, src)
+    }
+
+    fn estimate_text_size<T: BackendTextStyle>(
+        &self,
+        text: &str,
+        style: &T,
+    ) -> Result<(u32, u32), DrawingErrorKind<Self::ErrorType>> {
+        let (w, h, _) = text_box(text, style.size());
+        Ok((w.ceil() as u32, h.ceil() as u32))
+    }
+
+    fn draw_text<T: BackendTextStyle>(
+        &mut self,
+        text: &str,
+        style: &T,
+        pos: BackendCoord,
+    ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        use ab_glyph::{Font, ScaleFont};
+        let colour = style.color();
+        if colour.alpha == 0.0 || text.is_empty() {
+            return Ok(());
+        }
+        let size = style.size() as f32;
+        let (w, h, ascent) = text_box(text, style.size());
+        let dx = match style.anchor().h_pos {
+            HPos::Left => 0.0,
+            HPos::Center => -w / 2.0,
+            HPos::Right => -w,
+        };
+        let dy = match style.anchor().v_pos {
+            VPos::Top => 0.0,
+            VPos::Center => -h / 2.0,
+            VPos::Bottom => -h,
+        };
+        let transform = style.transform();
+        let font = font_ref().as_scaled(size);
+        let mut caret = dx;
+        let mut prev = None;
+        let mut result = Ok(());
+        for c in text.chars() {
+            let id = font.glyph_id(c);
+            if let Some(p) = prev {
+                caret += font.kern(p, id);
+            }
+            let glyph = id.with_scale_and_position(size, ab_glyph::point(caret, dy + ascent));
+            if let Some(outline) = font_ref().outline_glyph(glyph) {
+                let b = outline.px_bounds();
+                outline.draw(|gx, gy, coverage| {
+                    if result.is_err() || coverage <= 0.0 {
+                        return;
+                    }
+                    let lx = b.min.x as i32 + gx as i32;
+                    let ly = b.min.y as i32 + gy as i32;
+                    let (tx, ty) = transform.transform(lx, ly);
+                    let c = BackendColor {
+                        alpha: colour.alpha * f64::from(coverage.min(1.0)),
+                        rgb: colour.rgb,
+                    };
+                    result = self.inner.draw_pixel((pos.0 + tx, pos.1 + ty), c);
+                });
+            }
+            caret += font.h_advance(id);
+            prev = Some(id);
+        }
+        result
+    }
 }
 
 // ---------------------------------------------------------------------------
@@ -608,58 +791,101 @@ impl Axis {
     }
 }
 
-/// Tick label: plain decimals for moderate magnitudes, else scientific.
-/// Values below `tiny` in magnitude (rounding noise around zero) print as 0.
-fn fmt_tick(v: f64, tiny: f64) -> String {
-    if !v.is_finite() {
-        return String::new();
-    }
-    let a = v.abs();
-    if a <= tiny || a == 0.0 {
-        return "0".to_string();
-    }
-    if (1e-3..1e5).contains(&a) {
-        let s = format!("{v:.6}");
-        let s = s.trim_end_matches('0').trim_end_matches('.');
-        if s == "-0" {
-            "0".to_string()
-        } else {
-            s.to_string()
-        }
+/// `v` in plain decimals, at most 6 of them, trailing zeros dropped.
+fn fmt_decimal(v: f64) -> String {
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".to_string()
     } else {
-        let s = format!("{v:.3e}");
-        match s.split_once('e') {
-            Some((m, e)) => {
-                let m = if m.contains('.') {
-                    m.trim_end_matches('0').trim_end_matches('.')
-                } else {
-                    m
-                };
-                format!("{m}e{e}")
+        s.to_string()
+    }
+}
+
+/// `v` in scientific notation with at most 4 significant digits: `1.5e-7`.
+fn fmt_scientific(v: f64) -> String {
+    let s = format!("{v:.3e}");
+    match s.split_once('e') {
+        Some((m, e)) if m.contains('.') => {
+            format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.'))
+        }
+        _ => s,
+    }
+}
+
+/// Whether magnitudes like `a` read better in scientific notation.
+fn wants_scientific(a: f64) -> bool {
+    a != 0.0 && !(1e-3..1e5).contains(&a)
+}
+
+impl Axis {
+    /// Tick label of `v`: one notation for the whole of a linear axis (chosen
+    /// from its largest magnitude); on a log axis only 1, 2 and 5 times a power
+    /// of ten are labelled, so the labels never run into each other.
+    fn tick_label(&self, v: f64) -> String {
+        if !v.is_finite() {
+            return String::new();
+        }
+        if self.log {
+            let mantissa = v / 10f64.powf(v.log10().floor());
+            let m = mantissa.round();
+            if (mantissa - m).abs() > 1e-6 || ![1.0, 2.0, 5.0].contains(&m) {
+                return String::new();
             }
-            None => s,
+            return if wants_scientific(v) {
+                fmt_scientific(v)
+            } else {
+                fmt_decimal(v)
+            };
+        }
+        if v.abs() <= 1e-9 * (self.hi - self.lo) {
+            return "0".to_string();
+        }
+        if wants_scientific(self.lo.abs().max(self.hi.abs())) {
+            fmt_scientific(v)
+        } else {
+            fmt_decimal(v)
         }
     }
 }
 
+/// Likely tick values of an axis (plotters picks "nice" steps of 1, 2 or 5
+/// times a power of ten; log axes tick at powers of ten and their multiples).
+fn likely_ticks(a: &Axis, n: usize) -> Vec<f64> {
+    if a.log {
+        let (lo, hi) = (a.lo.log10().floor() as i32, a.hi.log10().ceil() as i32);
+        return (lo..=hi)
+            .flat_map(|e| [1.0, 2.0, 5.0].map(|m| m * 10f64.powi(e)))
+            .filter(|v| *v >= a.lo && *v <= a.hi)
+            .collect();
+    }
+    let raw = (a.hi - a.lo) / n as f64;
+    let mag = 10f64.powf(raw.log10().floor());
+    let step = [1.0, 2.0, 5.0, 10.0]
+        .iter()
+        .map(|m| m * mag)
+        .find(|s| *s >= raw)
+        .unwrap_or(10.0 * mag);
+    let first = (a.lo / step).ceil() as i64;
+    let last = (a.hi / step).floor() as i64;
+    (first..=last).map(|k| k as f64 * step).collect()
+}
+
+/// Width in pixels of the widest likely tick label of an axis.
+fn widest_tick(a: &Axis) -> u32 {
+    let text = |v: f64| text_box(&a.tick_label(v), TICK_SIZE as f64).0;
+    likely_ticks(a, 8)
+        .into_iter()
+        .chain(likely_ticks(a, 4))
+        .map(text)
+        .fold(text(1.0), f32::max)
+        .ceil() as u32
+}
+
 /// Width for the y tick labels and the rotated y description.
 fn y_label_area(y: &Axis, desc: &str) -> u32 {
-    let tiny = if y.log { 0.0 } else { 1e-9 * (y.hi - y.lo) };
-    let samples = [
-        y.lo,
-        y.hi,
-        0.5 * (y.lo + y.hi),
-        y.lo + 0.1 * (y.hi - y.lo),
-        y.hi - 0.1 * (y.hi - y.lo),
-    ];
-    let chars = samples
-        .iter()
-        .map(|v| fmt_tick(*v, tiny).chars().count())
-        .max()
-        .unwrap_or(4)
-        .max(3);
-    let desc_w = if desc.is_empty() { 0 } else { DESC_SIZE + 14 };
-    (chars as f64 * 0.62 * TICK_SIZE as f64) as u32 + desc_w + 22
+    let desc_w = if desc.is_empty() { 0 } else { DESC_SIZE + 12 };
+    widest_tick(y) + desc_w + 18
 }
 
 // ---------------------------------------------------------------------------
@@ -705,10 +931,8 @@ where
         .build_cartesian_2d(xs, ys)
         .map_err(drawing)?;
 
-    let x_tiny = if p.x.log { 0.0 } else { 1e-9 * (p.x.hi - p.x.lo) };
-    let y_tiny = if p.y.log { 0.0 } else { 1e-9 * (p.y.hi - p.y.lo) };
-    let x_fmt = move |v: &f64| fmt_tick(*v, x_tiny);
-    let y_fmt = move |v: &f64| fmt_tick(*v, y_tiny);
+    let x_fmt = |v: &f64| p.x.tick_label(*v);
+    let y_fmt = |v: &f64| p.y.tick_label(*v);
     let mut mesh = chart.configure_mesh();
     mesh.x_label_formatter(&x_fmt)
         .y_label_formatter(&y_fmt)
@@ -716,6 +940,7 @@ where
         .axis_desc_style((FONT, DESC_SIZE))
         .x_labels(10)
         .y_labels(8)
+        .set_all_tick_mark_size(5)
         .bold_line_style(RGBColor(215, 215, 215))
         .light_line_style(RGBColor(242, 242, 242))
         .y_desc(p.y_label);
@@ -770,7 +995,10 @@ fn marker_shape(kind: usize) -> Vec<(i32, i32)> {
         0 => (0..16)
             .map(|k| {
                 let a = k as f64 * std::f64::consts::TAU / 16.0;
-                ((4.5 * a.cos()).round() as i32, (4.5 * a.sin()).round() as i32)
+                (
+                    (4.5 * a.cos()).round() as i32,
+                    (4.5 * a.sin()).round() as i32,
+                )
             })
             .collect(),
         1 => vec![(0, -6), (5, 3), (-5, 3)],
@@ -1019,28 +1247,34 @@ fn draw_heatmap<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, s: &HeatSpec)
     let y_axis = Axis::new(y0, y1, false);
 
     let z_axis = Axis::new(s.z_range.0, s.z_range.1, false);
-    let cbar_labels = y_label_area(&z_axis, s.z_label);
-    let cbar_w = 28;
-    let cbar_total = cbar_w + cbar_labels + 2 * MARGIN;
+    // Layout, left to right: y labels, map, gap, colour bar, its tick labels
+    // and its rotated description; the whole group is centred.
     let (aw, ah) = area.dim_in_pixel();
-    let (main, bar) = area.split_horizontally(aw.saturating_sub(cbar_total) as i32);
-
     let y_area = y_label_area(&y_axis, s.y_label);
-    let (mw, _) = main.dim_in_pixel();
-    let (mut left, mut right, mut top, mut bottom) = (MARGIN, MARGIN + 10, 8u32, MARGIN);
-    let avail_w = mw.saturating_sub(y_area + left + right) as f64;
+    let z_ticks = widest_tick(&z_axis) + 12;
+    let z_desc = if s.z_label.is_empty() {
+        0
+    } else {
+        text_box(s.z_label, DESC_SIZE as f64).1.ceil() as u32 + 10
+    };
+    let (cbar_w, gap) = (24u32, 36u32);
+    let fixed_w = 2 * MARGIN + y_area + gap + cbar_w + z_ticks + z_desc;
+    let (mut top, mut bottom) = (8u32, MARGIN);
+    let avail_w = aw.saturating_sub(fixed_w) as f64;
     let avail_h = ah.saturating_sub(X_AREA + top + bottom) as f64;
     let ratio = (x1 - x0) / (y1 - y0);
+    let mut plot_w = avail_w;
     if s.equal_aspect && (0.2..=5.0).contains(&ratio) && avail_w > 0.0 && avail_h > 0.0 {
-        let pw = avail_w.min(avail_h * ratio);
-        let ph = pw / ratio;
-        let ex = (avail_w - pw).max(0.0) as u32;
-        let ey = (avail_h - ph).max(0.0) as u32;
-        left += ex / 2;
-        right += ex - ex / 2;
+        plot_w = avail_w.min(avail_h * ratio);
+        let ey = (avail_h - plot_w / ratio).max(0.0) as u32;
         top += ey / 2;
         bottom += ey - ey / 2;
     }
+    let plot_w = plot_w.max(1.0) as u32;
+    let pad = aw.saturating_sub(fixed_w + plot_w) / 2;
+    let split = pad + MARGIN + y_area + plot_w + gap;
+    let (main, bar) = area.split_horizontally(split as i32);
+    let (left, right) = (pad + MARGIN, gap);
 
     let mut chart = ChartBuilder::on(&main)
         .margin_left(left)
@@ -1071,11 +1305,12 @@ fn draw_heatmap<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, s: &HeatSpec)
         chart.draw_series(std::iter::once(image)).map_err(drawing)?;
     }
 
-    let x_fmt = move |v: &f64| fmt_tick(*v, 1e-9 * (x1 - x0));
-    let y_fmt = move |v: &f64| fmt_tick(*v, 1e-9 * (y1 - y0));
+    let x_fmt = |v: &f64| x_axis.tick_label(*v);
+    let y_fmt = |v: &f64| y_axis.tick_label(*v);
     chart
         .configure_mesh()
         .disable_mesh()
+        .set_all_tick_mark_size(5)
         .x_label_formatter(&x_fmt)
         .y_label_formatter(&y_fmt)
         .label_style((FONT, TICK_SIZE))
@@ -1116,11 +1351,15 @@ fn draw_heatmap<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, s: &HeatSpec)
     // Colour bar, aligned with the plot area.
     let (z0, z1) = s.z_range;
     let mut cbar = ChartBuilder::on(&bar)
-        .margin_left(MARGIN)
-        .margin_right(MARGIN)
+        .margin_left(0)
         .margin_top(top)
         .margin_bottom(bottom + X_AREA)
-        .right_y_label_area_size(cbar_labels)
+        .right_y_label_area_size(z_ticks + z_desc)
+        .margin_right(
+            bar.dim_in_pixel()
+                .0
+                .saturating_sub(cbar_w + z_ticks + z_desc),
+        )
         .build_cartesian_2d(0.0..1.0, z0..z1)
         .map_err(drawing)?;
     const STEPS: usize = 128;
@@ -1131,17 +1370,25 @@ fn draw_heatmap<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, s: &HeatSpec)
         Rectangle::new([(0.0, a), (1.0, b)], c.filled())
     }))
     .map_err(drawing)?;
-    let z_fmt = move |v: &f64| fmt_tick(*v, 1e-9 * (z1 - z0));
+    let z_fmt = |v: &f64| z_axis.tick_label(*v);
     cbar.configure_mesh()
         .disable_mesh()
         .disable_x_axis()
+        .set_all_tick_mark_size(5)
         .y_label_formatter(&z_fmt)
         .label_style((FONT, TICK_SIZE))
-        .axis_desc_style((FONT, DESC_SIZE))
         .y_labels(8)
-        .y_desc(s.z_label)
         .draw()
         .map_err(drawing)?;
+    if !s.z_label.is_empty() {
+        // Reads bottom to top, like the y description of the map.
+        let style = TextStyle::from((FONT, DESC_SIZE).into_font())
+            .transform(FontTransform::Rotate270)
+            .pos(Pos::new(HPos::Center, VPos::Top));
+        let map_h = ah.saturating_sub(top + bottom + X_AREA);
+        let at = ((cbar_w + z_ticks) as i32, (top + map_h / 2) as i32);
+        bar.draw_text(s.z_label, &style, at).map_err(drawing)?;
+    }
     Ok(())
 }
 
@@ -1150,10 +1397,7 @@ mod tests {
     use super::*;
 
     fn test_dir(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!(
-            "ehl-plot-test-{}-{name}",
-            std::process::id()
-        ));
+        let dir = std::env::temp_dir().join(format!("ehl-plot-test-{}-{name}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
         dir
@@ -1196,9 +1440,8 @@ mod tests {
                     .map(|&xx| {
                         let r2 = xx * xx + yy * yy;
                         let dome = (1.0 - r2).max(0.0).sqrt();
-                        let spike = 0.6
-                            * (-((xx - 0.85) / 0.04).powi(2)).exp()
-                            * (1.0 - yy * yy).max(0.0);
+                        let spike =
+                            0.6 * (-((xx - 0.85) / 0.04).powi(2)).exp() * (1.0 - yy * yy).max(0.0);
                         dome + spike
                     })
                     .collect()
@@ -1217,7 +1460,11 @@ mod tests {
             Series::line("fit Q = K δ^1.5", x, y),
         ];
         line_chart(&stem, "Load against approach", "δ (µm)", "Q (N)", &series).unwrap();
-        check_outputs(&stem, "Load against approach", (FIGURE_WIDTH, FIGURE_HEIGHT));
+        check_outputs(
+            &stem,
+            "Load against approach",
+            (FIGURE_WIDTH, FIGURE_HEIGHT),
+        );
     }
 
     #[test]
@@ -1228,7 +1475,12 @@ mod tests {
             .iter()
             .map(|u| {
                 let k = w.iter().map(|w| 1e8 * u * w.powf(1.0 / 3.0)).collect();
-                Series::new(format!("u = {u} m/s"), w.clone(), k, SeriesStyle::LineAndMarkers)
+                Series::new(
+                    format!("u = {u} m/s"),
+                    w.clone(),
+                    k,
+                    SeriesStyle::LineAndMarkers,
+                )
             })
             .collect();
         let opts = ChartOptions {
@@ -1248,7 +1500,11 @@ mod tests {
         check_outputs(&stem, "Ranged", (FIGURE_WIDTH, FIGURE_HEIGHT));
 
         // Non-positive data on a log axis is skipped, not an error.
-        let s = [Series::line("a", vec![-1.0, 0.0, 1.0, 10.0], vec![1.0, 2.0, 3.0, 4.0])];
+        let s = [Series::line(
+            "a",
+            vec![-1.0, 0.0, 1.0, 10.0],
+            vec![1.0, 2.0, 3.0, 4.0],
+        )];
         let opts = ChartOptions {
             x_log: true,
             ..Default::default()
@@ -1267,14 +1523,28 @@ mod tests {
             ("Q (N)".to_string(), vec![Series::line("Q", t, q)]),
         ];
         stacked_charts(&stem, "Approach and load", "t (s)", &panels).unwrap();
-        check_outputs(&stem, "Approach and load", (FIGURE_WIDTH, stacked_height(2)));
+        check_outputs(
+            &stem,
+            "Approach and load",
+            (FIGURE_WIDTH, stacked_height(2)),
+        );
     }
 
     #[test]
     fn heatmap_writes_svg_and_png() {
         let stem = test_dir("heat").join("p");
         let (x, y, z) = pressure_map(65);
-        heatmap(&stem, "Pressure", "X = x/a", "Y = y/b", &x, &y, &z, "P = p/p_H").unwrap();
+        heatmap(
+            &stem,
+            "Pressure",
+            "X = x/a",
+            "Y = y/b",
+            &x,
+            &y,
+            &z,
+            "P = p/p_H",
+        )
+        .unwrap();
         let svg = check_outputs(&stem, "Pressure", (FIGURE_WIDTH, FIGURE_HEIGHT));
         assert!(svg.contains("data:image/png;base64,"), "map not embedded");
     }
@@ -1311,7 +1581,10 @@ mod tests {
         line_chart(&dir.join("line"), "NaN line", "x", "y", &s).unwrap();
         let panels = vec![
             ("a".to_string(), s.to_vec()),
-            ("all NaN".to_string(), vec![Series::line("n", vec![f64::NAN], vec![1.0])]),
+            (
+                "all NaN".to_string(),
+                vec![Series::line("n", vec![f64::NAN], vec![1.0])],
+            ),
         ];
         stacked_charts(&dir.join("stacked"), "NaN stacked", "x", &panels).unwrap();
 
@@ -1365,12 +1638,25 @@ mod tests {
 
     #[test]
     fn tick_labels_are_short() {
-        assert_eq!(fmt_tick(0.30000000000000004, 1e-9), "0.3");
-        assert_eq!(fmt_tick(5.551115123125783e-17, 1e-9), "0");
-        assert_eq!(fmt_tick(-2.0, 0.0), "-2");
-        assert_eq!(fmt_tick(1500.0, 0.0), "1500");
-        assert_eq!(fmt_tick(1.5e-7, 0.0), "1.5e-7");
-        assert_eq!(fmt_tick(2e9, 0.0), "2e9");
+        let lin = Axis::new(-1.0, 2.0, false);
+        assert_eq!(lin.tick_label(0.30000000000000004), "0.3");
+        assert_eq!(lin.tick_label(5.551115123125783e-17), "0");
+        assert_eq!(lin.tick_label(-2.0), "-2");
+        assert_eq!(lin.tick_label(f64::NAN), "");
+        let time = Axis::new(0.0, 2e-3, false);
+        assert_eq!(time.tick_label(5e-4), "0.0005");
+        assert_eq!(time.tick_label(1.5e-3), "0.0015");
+        let film = Axis::new(0.0, 1e-6, false);
+        assert_eq!(film.tick_label(1.5e-7), "1.5e-7");
+        assert_eq!(film.tick_label(0.0), "0");
+        let stiff = Axis::new(5e8, 3e9, false);
+        assert_eq!(stiff.tick_label(2e9), "2e9");
+        assert_eq!(stiff.tick_label(2.5e9), "2.5e9");
+        let log = Axis::new(50.0, 3000.0, true);
+        assert_eq!(log.tick_label(200.0), "200");
+        assert_eq!(log.tick_label(1000.0), "1000");
+        assert_eq!(log.tick_label(700.0), "");
+        assert_eq!(Axis::new(1e-8, 1e-5, true).tick_label(2e-7), "2e-7");
     }
 
     #[test]
@@ -1431,15 +1717,32 @@ mod tests {
                     .iter()
                     .map(|q| 2.1e8 * q.powf(1.0 / 3.0) * (1.0 - 0.02 * u))
                     .collect();
-                Series::new(format!("u = {u} m/s"), load.clone(), v, SeriesStyle::LineAndMarkers)
+                Series::new(
+                    format!("u = {u} m/s"),
+                    load.clone(),
+                    v,
+                    SeriesStyle::LineAndMarkers,
+                )
             })
             .collect();
-        line_chart(&dir.join("stiffness"), "Contact stiffness", "Q (N)", "K (N/m)", &k).unwrap();
+        line_chart(
+            &dir.join("stiffness"),
+            "Contact stiffness",
+            "Q (N)",
+            "K (N/m)",
+            &k,
+        )
+        .unwrap();
         let lift: Vec<Series> = speeds
             .iter()
             .map(|u| {
                 let v = load.iter().map(|q| 0.05 * u * q.powf(0.6)).collect();
-                Series::new(format!("u = {u} m/s"), load.clone(), v, SeriesStyle::LineAndMarkers)
+                Series::new(
+                    format!("u = {u} m/s"),
+                    load.clone(),
+                    v,
+                    SeriesStyle::LineAndMarkers,
+                )
             })
             .collect();
         line_chart_with(
@@ -1465,10 +1768,16 @@ mod tests {
             "Approach and load in time",
             "t (s)",
             &[
-                ("δ (µm)".to_string(), vec![Series::line("δ", t.clone(), delta)]),
+                (
+                    "δ (µm)".to_string(),
+                    vec![Series::line("δ", t.clone(), delta)],
+                ),
                 (
                     "Q (N)".to_string(),
-                    vec![Series::line("EHL", t.clone(), qq), Series::line("Hertz", t, qs)],
+                    vec![
+                        Series::line("EHL", t.clone(), qq),
+                        Series::line("Hertz", t, qs),
+                    ],
                 ),
             ],
         )
@@ -1503,8 +1812,7 @@ mod tests {
                     .map(|&a| {
                         let r2 = a * a + b * b;
                         if r2 < 1.0 {
-                            0.35e-6 - 0.1e-6 * (-((a - 0.8) / 0.1).powi(2)).exp()
-                                + 0.05e-6 * b * b
+                            0.35e-6 - 0.1e-6 * (-((a - 0.8) / 0.1).powi(2)).exp() + 0.05e-6 * b * b
                         } else {
                             0.35e-6 + 0.5e-6 * (r2 - 1.0)
                         }
@@ -1533,10 +1841,17 @@ mod tests {
             "Centre-line profiles",
             "X = x/a",
             &[
-                ("P = p/p_H".to_string(), vec![Series::line("P", x.clone(), z[mid].clone())]),
+                (
+                    "P = p/p_H".to_string(),
+                    vec![Series::line("P", x.clone(), z[mid].clone())],
+                ),
                 (
                     "h (µm)".to_string(),
-                    vec![Series::line("h", x.clone(), film[mid].iter().map(|h| h * 1e6).collect())],
+                    vec![Series::line(
+                        "h",
+                        x.clone(),
+                        film[mid].iter().map(|h| h * 1e6).collect(),
+                    )],
                 ),
             ],
         )
