@@ -1613,13 +1613,17 @@ mod tests {
             y_range: Some((1.0, 0.0)),
             ..Default::default()
         };
-        assert!(line_chart_with(&stem, "t", "x", "y", &[ok.clone()], &bad_range).is_err());
+        assert!(
+            line_chart_with(&stem, "t", "x", "y", std::slice::from_ref(&ok), &bad_range).is_err()
+        );
         let bad_log = ChartOptions {
             x_log: true,
             x_range: Some((-1.0, 10.0)),
             ..Default::default()
         };
-        assert!(line_chart_with(&stem, "t", "x", "y", &[ok.clone()], &bad_log).is_err());
+        assert!(
+            line_chart_with(&stem, "t", "x", "y", std::slice::from_ref(&ok), &bad_log).is_err()
+        );
         assert!(stacked_charts(&stem, "t", "x", &[]).is_err());
         assert!(stacked_charts(&stem, "t", "x", &[("y".into(), vec![uneven])]).is_err());
 
