@@ -496,23 +496,87 @@ fn save_both<F: Figure>(stem: &Path, size: (u32, u32), fig: &F) -> Result<()> {
     );
     std::fs::write(&svg_path, svg).with_context(|| format!("writing {}", svg_path.display()))?;
 
+    // PNG: drawn at SUPERSAMPLE times the size, then averaged down, which
+    // anti-aliases lines and markers.
     let png_path = with_ext(stem, "png");
-    let root = Png {
-        inner: BitMapBackend::new(&png_path, size),
+    let (bw, bh) = (size.0 * SUPERSAMPLE, size.1 * SUPERSAMPLE);
+    let mut big = vec![255u8; bw as usize * bh as usize * 3];
+    {
+        let root = Png {
+            inner: BitMapBackend::with_buffer(&mut big, (bw, bh)),
+            size,
+        }
+        .into_drawing_area();
+        fig.draw(&root)?;
+        root.present().map_err(drawing)?;
     }
-    .into_drawing_area();
-    root.fill(&WHITE).map_err(drawing)?;
-    fig.draw(&root)?;
-    root.present()
+    let small = downsample(&big, size);
+    let mut out = BitMapBackend::new(&png_path, size);
+    out.blit_bitmap((0, 0), size, &small).map_err(drawing)?;
+    out.present()
         .map_err(|e| anyhow!("writing {}: {e}", png_path.display()))?;
     Ok(())
 }
 
-/// The bitmap backend with its own text rendering: plotters' `ab_glyph` text
-/// drops each glyph's side bearing, which makes labels look unevenly spaced
-/// ("0. 8"). Everything else is forwarded unchanged.
+/// Linear scale of the PNG drawing buffer over the figure size.
+const SUPERSAMPLE: u32 = 2;
+
+/// Averages SUPERSAMPLE × SUPERSAMPLE blocks of an RGB buffer.
+fn downsample(big: &[u8], (w, h): (u32, u32)) -> Vec<u8> {
+    let k = SUPERSAMPLE as usize;
+    let (w, h) = (w as usize, h as usize);
+    let bw = w * k;
+    let mut out = vec![0u8; w * h * 3];
+    for y in 0..h {
+        for x in 0..w {
+            for c in 0..3 {
+                let mut sum = 0u32;
+                for dy in 0..k {
+                    for dx in 0..k {
+                        sum += u32::from(big[((y * k + dy) * bw + x * k + dx) * 3 + c]);
+                    }
+                }
+                out[(y * w + x) * 3 + c] = ((sum + (k * k / 2) as u32) / (k * k) as u32) as u8;
+            }
+        }
+    }
+    out
+}
+
+/// A stroke style scaled for the supersampled buffer.
+struct Scaled {
+    color: BackendColor,
+    width: u32,
+}
+
+impl plotters_backend::BackendStyle for Scaled {
+    fn color(&self) -> BackendColor {
+        self.color
+    }
+    fn stroke_width(&self) -> u32 {
+        self.width
+    }
+}
+
+fn scaled<S: plotters_backend::BackendStyle>(style: &S) -> Scaled {
+    Scaled {
+        color: style.color(),
+        width: style.stroke_width() * SUPERSAMPLE,
+    }
+}
+
+fn up((x, y): BackendCoord) -> BackendCoord {
+    let k = SUPERSAMPLE as i32;
+    (x * k, y * k)
+}
+
+/// The PNG backend: plotters' bitmap backend drawn at [`SUPERSAMPLE`] times the
+/// figure size (plotters sees the figure size), with its own text rendering:
+/// plotters' `ab_glyph` text drops each glyph's side bearing, which makes
+/// labels look unevenly spaced ("0. 8").
 struct Png<'a> {
     inner: BitMapBackend<'a>,
+    size: (u32, u32),
 }
 
 fn font_ref() -> &'static ab_glyph::FontRef<'static> {
@@ -544,7 +608,7 @@ impl<'a> DrawingBackend for Png<'a> {
     type ErrorType = <BitMapBackend<'a> as DrawingBackend>::ErrorType;
 
     fn get_size(&self) -> (u32, u32) {
-        self.inner.get_size()
+        self.size
     }
     fn ensure_prepared(&mut self) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
         self.inner.ensure_prepared()
@@ -557,7 +621,10 @@ impl<'a> DrawingBackend for Png<'a> {
         point: BackendCoord,
         color: BackendColor,
     ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
-        self.inner.draw_pixel(point, color)
+        let k = SUPERSAMPLE as i32 - 1;
+        let (x, y) = up(point);
+        let fill = Scaled { color, width: 1 };
+        self.inner.draw_rect((x, y), (x + k, y + k), &fill, true)
     }
     fn draw_line<S: plotters_backend::BackendStyle>(
         &mut self,
@@ -565,7 +632,7 @@ impl<'a> DrawingBackend for Png<'a> {
         to: BackendCoord,
         style: &S,
     ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
-        self.inner.draw_line(from, to, style)
+        self.inner.draw_line(up(from), up(to), &scaled(style))
     }
     fn draw_rect<S: plotters_backend::BackendStyle>(
         &mut self,
@@ -574,14 +641,18 @@ impl<'a> DrawingBackend for Png<'a> {
         style: &S,
         fill: bool,
     ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
-        self.inner.draw_rect(upper_left, bottom_right, style, fill)
+        let k = if fill { SUPERSAMPLE as i32 - 1 } else { 0 };
+        let (x1, y1) = up(bottom_right);
+        self.inner
+            .draw_rect(up(upper_left), (x1 + k, y1 + k), &scaled(style), fill)
     }
     fn draw_path<S: plotters_backend::BackendStyle, I: IntoIterator<Item = BackendCoord>>(
         &mut self,
         path: I,
         style: &S,
     ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
-        self.inner.draw_path(path, style)
+        self.inner
+            .draw_path(path.into_iter().map(up), &scaled(style))
     }
     fn draw_circle<S: plotters_backend::BackendStyle>(
         &mut self,
@@ -590,22 +661,39 @@ impl<'a> DrawingBackend for Png<'a> {
         style: &S,
         fill: bool,
     ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
-        self.inner.draw_circle(center, radius, style, fill)
+        self.inner
+            .draw_circle(up(center), radius * SUPERSAMPLE, &scaled(style), fill)
     }
     fn fill_polygon<S: plotters_backend::BackendStyle, I: IntoIterator<Item = BackendCoord>>(
         &mut self,
         vert: I,
         style: &S,
     ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
-        self.inner.fill_polygon(vert, style)
+        self.inner
+            .fill_polygon(vert.into_iter().map(up), &scaled(style))
     }
     fn blit_bitmap(
         &mut self,
         pos: BackendCoord,
-        size: (u32, u32),
+        (w, h): (u32, u32),
         src: &[u8],
     ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
-        self.inner.blit_bitmap(pos, size, src)
+        let k = SUPERSAMPLE as usize;
+        let (w, h) = (w as usize, h as usize);
+        let mut big = Vec::with_capacity(w * h * k * k * 3);
+        for row in src.chunks_exact(w * 3).take(h) {
+            let start = big.len();
+            for px in row.chunks_exact(3) {
+                for _ in 0..k {
+                    big.extend_from_slice(px);
+                }
+            }
+            for _ in 1..k {
+                big.extend_from_within(start..start + w * k * 3);
+            }
+        }
+        let size = ((w * k) as u32, (h * k) as u32);
+        self.inner.blit_bitmap(up(pos), size, &big)
     }
 
     fn estimate_text_size<T: BackendTextStyle>(
@@ -628,8 +716,10 @@ impl<'a> DrawingBackend for Png<'a> {
         if colour.alpha == 0.0 || text.is_empty() {
             return Ok(());
         }
-        let size = style.size() as f32;
-        let (w, h, ascent) = text_box(text, style.size());
+        let k = SUPERSAMPLE as f64;
+        let size = (style.size() * k) as f32;
+        let (w, h, ascent) = text_box(text, style.size() * k);
+        let pos = up(pos);
         let dx = match style.anchor().h_pos {
             HPos::Left => 0.0,
             HPos::Center => -w / 2.0,
@@ -942,7 +1032,8 @@ where
         .y_labels(8)
         .set_all_tick_mark_size(5)
         .bold_line_style(RGBColor(215, 215, 215))
-        .light_line_style(RGBColor(242, 242, 242))
+        .light_line_style(RGBColor(243, 243, 243))
+        .max_light_lines(4)
         .y_desc(p.y_label);
     if p.show_x {
         mesh.x_desc(p.x_label);
