@@ -17,6 +17,7 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use anyhow::{anyhow, ensure, Context, Result};
+use plotters::chart::DualCoordChartContext;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::coord::Shift;
 use plotters::element::ComposedElement;
@@ -220,6 +221,7 @@ pub fn line_chart_with(
         series,
         y_area,
         margin_bottom: MARGIN,
+        y_fixed: options.y_range.is_some(),
     };
     save_both(
         stem,
@@ -320,8 +322,192 @@ impl Figure for StackedFig<'_> {
                 series,
                 y_area: self.y_area,
                 margin_bottom: if last { MARGIN } else { 8 },
+                y_fixed: false,
             };
             draw_panel(sub, &panel)?;
+        }
+        Ok(())
+    }
+}
+
+/// A chart with two y axes sharing x, e.g. the centre-line pressure (left
+/// axis) and film thickness (right axis) profiles, written as `<stem>.svg` and
+/// `<stem>.png` ([`FIGURE_WIDTH`] × [`FIGURE_HEIGHT`] px). Series colours run
+/// on from the left ones to the right ones; the legend (always shown for
+/// labelled series) marks which axis each series belongs to. Either side may be
+/// empty, but not both.
+pub fn dual_axis_chart(
+    stem: &Path,
+    title: &str,
+    x_label: &str,
+    (left_label, left): (&str, &[Series]),
+    (right_label, right): (&str, &[Series]),
+) -> Result<()> {
+    ensure!(
+        !left.is_empty() || !right.is_empty(),
+        "dual-axis chart '{title}': no series to plot"
+    );
+    check_series(left)?;
+    check_series(right)?;
+    let x = Axis::fit(
+        left.iter().chain(right).flat_map(|s| s.x.iter().copied()),
+        false,
+        None,
+    )?
+    .ok_or_else(|| anyhow!("dual-axis chart '{title}': no finite data to plot"))?;
+    let fit_y = |series: &[Series]| {
+        Axis::fit(series.iter().flat_map(|s| points_in_x(s, &x)), false, None)
+            .map(|a| a.unwrap_or(Axis::new(0.0, 1.0, false)))
+    };
+    let (y_left, y_right) = (fit_y(left)?, fit_y(right)?);
+    let tag = |series: &[Series], side: &str| -> Vec<Series> {
+        series
+            .iter()
+            .map(|s| Series {
+                label: if s.label.is_empty() {
+                    String::new()
+                } else {
+                    format!("{} ({side} axis)", s.label)
+                },
+                ..s.clone()
+            })
+            .collect()
+    };
+    let fig = DualFig {
+        title,
+        x_label,
+        left_label,
+        right_label,
+        left: tag(left, "left"),
+        right: tag(right, "right"),
+        x,
+        y_left,
+        y_right,
+    };
+    save_both(stem, (FIGURE_WIDTH, FIGURE_HEIGHT), &fig)
+}
+
+struct DualFig<'a> {
+    title: &'a str,
+    x_label: &'a str,
+    left_label: &'a str,
+    right_label: &'a str,
+    left: Vec<Series>,
+    right: Vec<Series>,
+    x: Axis,
+    y_left: Axis,
+    y_right: Axis,
+}
+
+impl Figure for DualFig<'_> {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
+        let area = root
+            .titled(self.title, (FONT, TITLE_SIZE))
+            .map_err(drawing)?;
+        let (x, mut yl, mut yr) = (self.x, self.y_left, self.y_right);
+        let left_area = y_label_area(&yl, self.left_label);
+        let right_ticks = widest_tick(&yr);
+        let right_area = right_ticks
+            + 18
+            + if self.right_label.is_empty() {
+                0
+            } else {
+                DESC_SIZE + 12
+            };
+        let (aw, ah) = area.dim_in_pixel();
+        let plot = (
+            aw.saturating_sub(left_area + right_area + 2 * MARGIN),
+            ah.saturating_sub(X_AREA + 8 + MARGIN),
+        );
+        let items = |yl: &'_ Axis, yr: &'_ Axis| -> Vec<(Series, Axis)> {
+            self.left
+                .iter()
+                .map(|s| (s.clone(), *yl))
+                .chain(self.right.iter().map(|s| (s.clone(), *yr)))
+                .filter(|(s, _)| !s.label.is_empty())
+                .collect()
+        };
+        let owned = items(&yl, &yr);
+        let refs: Vec<(&Series, &Axis)> = owned.iter().map(|(s, a)| (s, a)).collect();
+        let (_, hits, fh) = plan_legend(&refs, &x, plot);
+        if !refs.is_empty() && hits > 0 {
+            // Every corner has data: make room above the data on both axes.
+            yl = yl.with_top_room(fh + 0.03);
+            yr = yr.with_top_room(fh + 0.03);
+        }
+        let mut chart = ChartBuilder::on(&area)
+            .margin_top(8)
+            .margin_left(MARGIN)
+            .margin_right(MARGIN)
+            .margin_bottom(MARGIN)
+            .x_label_area_size(X_AREA)
+            .y_label_area_size(left_area)
+            .right_y_label_area_size(right_area)
+            .build_cartesian_2d(x.lo..x.hi, yl.lo..yl.hi)
+            .map_err(drawing)?
+            .set_secondary_coord(x.lo..x.hi, yr.lo..yr.hi);
+
+        let x_fmt = |v: &f64| x.tick_label(*v);
+        let yl_fmt = |v: &f64| yl.tick_label(*v);
+        let yr_fmt = |v: &f64| yr.tick_label(*v);
+        chart
+            .configure_mesh()
+            .x_label_formatter(&x_fmt)
+            .y_label_formatter(&yl_fmt)
+            .label_style((FONT, TICK_SIZE))
+            .axis_desc_style((FONT, DESC_SIZE))
+            .x_labels(10)
+            .y_labels(8)
+            .set_all_tick_mark_size(5)
+            .bold_line_style(RGBColor(215, 215, 215))
+            .light_line_style(RGBColor(243, 243, 243))
+            .max_light_lines(4)
+            .x_desc(self.x_label)
+            .y_desc(self.left_label)
+            .draw()
+            .map_err(drawing)?;
+        chart
+            .configure_secondary_axes()
+            .y_label_formatter(&yr_fmt)
+            .label_style((FONT, TICK_SIZE))
+            .axis_desc_style((FONT, DESC_SIZE))
+            .y_labels(8)
+            .set_all_tick_mark_size(5)
+            .draw()
+            .map_err(drawing)?;
+        if !self.right_label.is_empty() {
+            // Reads bottom to top, like the left description.
+            let (xs, ys) = chart.plotting_area().get_pixel_range();
+            let style = TextStyle::from((FONT, DESC_SIZE).into_font())
+                .transform(FontTransform::Rotate270)
+                .pos(Pos::new(HPos::Center, VPos::Top));
+            let at = (xs.end + right_ticks as i32 + 16, (ys.start + ys.end) / 2);
+            root.draw_text(self.right_label, &style, at)
+                .map_err(drawing)?;
+        }
+
+        for (k, s) in self.left.iter().enumerate() {
+            draw_series(&mut chart, s, k, PALETTE[k % PALETTE.len()], &x, &yl)?;
+        }
+        for (j, s) in self.right.iter().enumerate() {
+            let k = self.left.len() + j;
+            draw_secondary_series(&mut chart, s, k, PALETTE[k % PALETTE.len()], &x, &yr)?;
+        }
+
+        let owned = items(&yl, &yr);
+        let refs: Vec<(&Series, &Axis)> = owned.iter().map(|(s, a)| (s, a)).collect();
+        if !refs.is_empty() {
+            let (w, h) = chart.plotting_area().dim_in_pixel();
+            let pos = legend_position_of(&refs, &x, (w, h));
+            chart
+                .configure_series_labels()
+                .position(pos)
+                .margin(10)
+                .label_font((FONT, LEGEND_SIZE))
+                .background_style(WHITE.mix(0.85))
+                .border_style(RGBColor(160, 160, 160))
+                .draw()
+                .map_err(drawing)?;
         }
         Ok(())
     }
@@ -841,6 +1027,18 @@ impl Axis {
         }
     }
 
+    /// The same axis extended upwards so that its current range fills only the
+    /// lower `1 - frac` of it (room for a legend above the data).
+    fn with_top_room(&self, frac: f64) -> Self {
+        let keep = (1.0 - frac).clamp(0.3, 1.0);
+        if self.log {
+            let (a, b) = (self.lo.log10(), self.hi.log10());
+            Self::new(self.lo, 10f64.powf(a + (b - a) / keep), true)
+        } else {
+            Self::new(self.lo, self.lo + (self.hi - self.lo) / keep, false)
+        }
+    }
+
     /// The explicit range if given, else the range of the drawable values with
     /// 5 % padding; `None` when there is no drawable value.
     fn fit(
@@ -981,6 +1179,7 @@ fn y_label_area(y: &Axis, desc: &str) -> u32 {
 // ---------------------------------------------------------------------------
 // Line charts
 
+#[derive(Clone, Copy)]
 struct Panel<'a> {
     x_label: &'a str,
     y_label: &'a str,
@@ -990,9 +1189,31 @@ struct Panel<'a> {
     series: &'a [Series],
     y_area: u32,
     margin_bottom: u32,
+    /// The y range was given explicitly: never extend it for the legend.
+    y_fixed: bool,
+}
+
+/// Whether a legend is drawn for these series.
+fn wants_legend(series: &[Series]) -> bool {
+    series.len() > 1 && series.iter().any(|s| !s.label.is_empty())
 }
 
 fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, p: &Panel) -> Result<()> {
+    let mut p = *p;
+    if wants_legend(p.series) && !p.y_fixed {
+        // If every corner of the plot has data, make room above the data.
+        let (aw, ah) = area.dim_in_pixel();
+        let plot = (
+            aw.saturating_sub(p.y_area + 2 * MARGIN + 10),
+            ah.saturating_sub(8 + p.margin_bottom + if p.show_x { X_AREA } else { 0 }),
+        );
+        let items: Vec<(&Series, &Axis)> = p.series.iter().map(|s| (s, &p.y)).collect();
+        let (_, hits, fh) = plan_legend(&items, &p.x, plot);
+        if hits > 0 {
+            p.y = p.y.with_top_room(fh + 0.03);
+        }
+    }
+    let p = &p;
     let xr = p.x.lo..p.x.hi;
     let yr = p.y.lo..p.y.hi;
     match (p.x.log, p.y.log) {
@@ -1045,8 +1266,7 @@ where
         draw_series(&mut chart, s, k, colour, &p.x, &p.y)?;
     }
 
-    let labelled = p.series.iter().any(|s| !s.label.is_empty());
-    if p.series.len() > 1 && labelled {
+    if wants_legend(p.series) {
         let (w, h) = chart.plotting_area().dim_in_pixel();
         let pos = legend_position(p.series, &p.x, &p.y, (w, h));
         chart
@@ -1161,41 +1381,107 @@ where
             .map_err(drawing)?;
     }
     // One empty drawing carries the legend entry, however the data was split.
-    let none: Vec<PathElement<(f64, f64)>> = Vec::new();
-    chart
-        .draw_series(none)
-        .map_err(drawing)?
-        .label(s.label.clone())
-        .legend(move |c| legend_glyph::<DB>(style, k, c, colour));
+    if !s.label.is_empty() {
+        let none: Vec<PathElement<(f64, f64)>> = Vec::new();
+        chart
+            .draw_series(none)
+            .map_err(drawing)?
+            .label(s.label.clone())
+            .legend(move |c| legend_glyph::<DB>(style, k, c, colour));
+    }
+    Ok(())
+}
+
+/// [`draw_series`] on the secondary (right-hand) axis of a dual-axis chart.
+fn draw_secondary_series<'a, DB, X, Y, SX, SY>(
+    chart: &mut DualCoordChartContext<'a, DB, Cartesian2d<X, Y>, Cartesian2d<SX, SY>>,
+    s: &Series,
+    k: usize,
+    colour: RGBColor,
+    x: &Axis,
+    y: &Axis,
+) -> Result<()>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+    SX: Ranged<ValueType = f64>,
+    SY: Ranged<ValueType = f64>,
+{
+    let segs = segments(s, x, y);
+    let style = s.style;
+    let line_style = colour.stroke_width(2);
+    if matches!(style, SeriesStyle::Line | SeriesStyle::LineAndMarkers) {
+        for seg in segs.iter().filter(|seg| seg.len() > 1) {
+            chart
+                .draw_secondary_series(std::iter::once(PathElement::new(seg.clone(), line_style)))
+                .map_err(drawing)?;
+        }
+    }
+    if matches!(style, SeriesStyle::Markers | SeriesStyle::LineAndMarkers) {
+        let pts = segs.iter().flatten().copied();
+        chart
+            .draw_secondary_series(pts.map(|p| marker::<DB>(k, p, colour)))
+            .map_err(drawing)?;
+    }
+    if !s.label.is_empty() {
+        let none: Vec<PathElement<(f64, f64)>> = Vec::new();
+        chart
+            .draw_secondary_series(none)
+            .map_err(drawing)?
+            .label(s.label.clone())
+            .legend(move |c| legend_glyph::<DB>(style, k, c, colour));
+    }
     Ok(())
 }
 
 /// The plot corner where a legend of these series covers the fewest data.
 fn legend_position(series: &[Series], x: &Axis, y: &Axis, plot: (u32, u32)) -> SeriesLabelPosition {
-    let chars = series
-        .iter()
-        .map(|s| s.label.chars().count())
-        .max()
-        .unwrap_or(0) as f64;
-    let w = 60.0 + chars * 0.62 * LEGEND_SIZE as f64;
-    let h = 16.0 + series.len() as f64 * (LEGEND_SIZE as f64 + 8.0);
-    let fw = ((w + 14.0) / plot.0.max(1) as f64).min(1.0);
-    let fh = ((h + 14.0) / plot.1.max(1) as f64).min(1.0);
+    let items: Vec<(&Series, &Axis)> = series.iter().map(|s| (s, y)).collect();
+    legend_position_of(&items, x, plot)
+}
 
-    // Sample the series as drawn: points, and points along line segments.
+/// [`legend_position`] for series on different y axes.
+fn legend_position_of(
+    items: &[(&Series, &Axis)],
+    x: &Axis,
+    plot: (u32, u32),
+) -> SeriesLabelPosition {
+    plan_legend(items, x, plot).0
+}
+
+/// The best legend corner, how many samples of the drawn data it covers, and
+/// the legend's height as a fraction of the plot height.
+fn plan_legend(
+    items: &[(&Series, &Axis)],
+    x: &Axis,
+    plot: (u32, u32),
+) -> (SeriesLabelPosition, usize, f64) {
+    let labelled = items.iter().filter(|(s, _)| !s.label.is_empty());
+    let widest = labelled
+        .clone()
+        .map(|(s, _)| text_box(&s.label, LEGEND_SIZE as f64).0)
+        .fold(0.0f32, f32::max) as f64;
+    let rows = labelled.count() as f64;
+    let (pw, ph) = (plot.0.max(1) as f64, plot.1.max(1) as f64);
+    let w = widest + 60.0;
+    let h = 14.0 + rows * (LEGEND_SIZE as f64 + 9.0);
+    let fw = ((w + 12.0) / pw).min(1.0);
+    let fh = ((h + 12.0) / ph).min(1.0);
+
+    // Sample the data as drawn: the points, and along lines every few pixels.
     let mut pts: Vec<(f64, f64)> = Vec::new();
-    for s in series {
+    for (s, y) in items {
         for seg in segments(s, x, y) {
             let n: Vec<(f64, f64)> = seg.iter().map(|&(a, b)| (x.norm(a), y.norm(b))).collect();
             pts.extend(n.iter().copied());
             if s.style != SeriesStyle::Markers {
                 for w in n.windows(2) {
-                    for t in 1..8 {
-                        let t = t as f64 / 8.0;
-                        pts.push((
-                            w[0].0 + t * (w[1].0 - w[0].0),
-                            w[0].1 + t * (w[1].1 - w[0].1),
-                        ));
+                    let (du, dv) = (w[1].0 - w[0].0, w[1].1 - w[0].1);
+                    let px = ((du * pw).hypot(dv * ph) / 3.0).ceil().min(2000.0) as usize;
+                    for t in 1..px {
+                        let t = t as f64 / px as f64;
+                        pts.push((w[0].0 + t * du, w[0].1 + t * dv));
                     }
                 }
             }
@@ -1216,11 +1502,11 @@ fn legend_position(series: &[Series], x: &Axis, y: &Axis, plot: (u32, u32)) -> S
         (SeriesLabelPosition::LowerRight, count(true, false)),
         (SeriesLabelPosition::LowerLeft, count(false, false)),
     ];
-    candidates
+    let (pos, hits) = candidates
         .into_iter()
         .min_by_key(|(_, n)| *n)
-        .map(|(p, _)| p)
-        .unwrap_or(SeriesLabelPosition::UpperRight)
+        .unwrap_or((SeriesLabelPosition::UpperRight, 0));
+    (pos, hits, fh)
 }
 
 // ---------------------------------------------------------------------------
@@ -1622,6 +1908,24 @@ mod tests {
     }
 
     #[test]
+    fn dual_axis_chart_writes_svg_and_png() {
+        let stem = test_dir("dual").join("profile");
+        let x = linspace(-4.5, 1.5, 200);
+        let p: Vec<f64> = x.iter().map(|x| (1.0 - x * x).max(0.0).sqrt()).collect();
+        let h: Vec<f64> = x.iter().map(|x| 0.3 + 0.2 * x * x).collect();
+        let left = [Series::line("P", x.clone(), p)];
+        let right = [Series::line("h", x, h)];
+        dual_axis_chart(&stem, "Profiles", "X", ("P", &left), ("h (µm)", &right)).unwrap();
+        check_outputs(&stem, "Profiles", (FIGURE_WIDTH, FIGURE_HEIGHT));
+        // One side empty is fine; both empty or uneven is an error.
+        dual_axis_chart(&stem, "Left only", "X", ("P", &left), ("h", &[])).unwrap();
+        assert!(dual_axis_chart(&stem, "t", "X", ("P", &[]), ("h", &[])).is_err());
+        let uneven = [Series::line("u", vec![1.0, 2.0], vec![1.0])];
+        assert!(dual_axis_chart(&stem, "t", "X", ("P", &left), ("h", &uneven)).is_err());
+        let _ = std::fs::remove_dir_all(stem.parent().unwrap());
+    }
+
+    #[test]
     fn heatmap_writes_svg_and_png() {
         let stem = test_dir("heat").join("p");
         let (x, y, z) = pressure_map(65);
@@ -1931,6 +2235,24 @@ mod tests {
         )
         .unwrap();
         let mid = y.len() / 2;
+        dual_axis_chart(
+            &dir.join("centre_line_dual"),
+            "Centre-line pressure and film",
+            "X = x/a",
+            (
+                "P = p/p_H",
+                &[Series::line("pressure", x.clone(), z[mid].clone())],
+            ),
+            (
+                "h (µm)",
+                &[Series::line(
+                    "film",
+                    x.clone(),
+                    film[mid].iter().map(|h| h * 1e6).collect(),
+                )],
+            ),
+        )
+        .unwrap();
         stacked_charts(
             &dir.join("centre_line"),
             "Centre-line profiles",
