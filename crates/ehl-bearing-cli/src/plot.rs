@@ -130,7 +130,9 @@ impl Series {
 pub struct ChartOptions {
     /// Logarithmic x axis (non-positive x values are skipped).
     pub x_log: bool,
-    /// Logarithmic y axis (non-positive y values are skipped).
+    /// Logarithmic y axis (non-positive y values are skipped). A log axis spans
+    /// at most 60 decades: an automatic range keeps the top ones, an explicit
+    /// wider one is an error.
     pub y_log: bool,
     /// Explicit x range `(min, max)`; automatic (with padding) when `None`.
     pub x_range: Option<(f64, f64)>,
@@ -1000,6 +1002,9 @@ fn points_in_x<'a>(s: &'a Series, x: &'a Axis) -> impl Iterator<Item = f64> + 'a
         .map(|(_, b)| *b)
 }
 
+/// Most decades a log axis spans (automatic ranges keep the top ones).
+const MAX_DECADES: f64 = 60.0;
+
 /// One axis: its range and scale.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Axis {
@@ -1055,6 +1060,10 @@ impl Axis {
                 !log || lo > 0.0,
                 "range ({lo}, {hi}) must be positive on a log axis"
             );
+            ensure!(
+                !log || hi.log10() - lo.log10() <= MAX_DECADES,
+                "log range ({lo:e}, {hi:e}) spans more than {MAX_DECADES} decades"
+            );
             return Ok(Some(Self::new(lo, hi, log)));
         }
         let probe = Self::new(1.0, 2.0, log);
@@ -1062,7 +1071,9 @@ impl Axis {
             return Ok(None);
         };
         let axis = if log {
-            let (a, b) = (lo.log10(), hi.log10());
+            // plotters slows to a crawl over hundreds of decades: keep the top ones.
+            let b = hi.log10();
+            let a = lo.log10().max(b - MAX_DECADES);
             let pad = if b > a { 0.05 * (b - a) } else { 0.3 };
             Self::new(10f64.powf(a - pad), 10f64.powf(b + pad), true)
         } else {
@@ -1075,6 +1086,10 @@ impl Axis {
             };
             Self::new(lo - pad, hi + pad, false)
         };
+        ensure!(
+            axis.lo.is_finite() && axis.hi.is_finite() && axis.lo < axis.hi,
+            "data range [{lo:e}, {hi:e}] is too wide or too narrow to draw"
+        );
         Ok(Some(axis))
     }
 }
@@ -1143,6 +1158,7 @@ fn likely_ticks(a: &Axis, n: usize) -> Vec<f64> {
     if a.log {
         let (lo, hi) = (a.lo.log10().floor() as i32, a.hi.log10().ceil() as i32);
         return (lo..=hi)
+            .take(700)
             .flat_map(|e| [1.0, 2.0, 5.0].map(|m| m * 10f64.powi(e)))
             .filter(|v| *v >= a.lo && *v <= a.hi)
             .collect();
@@ -1156,7 +1172,7 @@ fn likely_ticks(a: &Axis, n: usize) -> Vec<f64> {
         .unwrap_or(10.0 * mag);
     let first = (a.lo / step).ceil() as i64;
     let last = (a.hi / step).floor() as i64;
-    (first..=last).map(|k| k as f64 * step).collect()
+    (first..=last).take(100).map(|k| k as f64 * step).collect()
 }
 
 /// Width in pixels of the widest likely tick label of an axis.
@@ -2033,6 +2049,41 @@ mod tests {
         assert!(heatmap(&stem, "t", "x", "y", &[0.0], &[0.0], &[vec![1.0]], "z").is_err());
         let all_nan = vec![vec![f64::NAN; 3]; 2];
         assert!(heatmap(&stem, "t", "x", "y", &x, &y, &all_nan, "z").is_err());
+    }
+
+    #[test]
+    fn extreme_ranges_do_not_hang_or_panic() {
+        let dir = test_dir("extreme");
+        let cases = [
+            (vec![0.0, 1.0], vec![1e300, 1e300 * (1.0 + 1e-15)]),
+            (vec![0.0, 1.0], vec![1e-300, 2e-300]),
+            (vec![0.0, 1.0], vec![5.0, 5.0]),
+            (vec![0.0, 1.0], vec![0.0, 0.0]),
+            (vec![1e-9, 2e-9], vec![-1e-12, 1e-12]),
+        ];
+        for (k, (x, y)) in cases.into_iter().enumerate() {
+            let s = [Series::line("s", x, y)];
+            line_chart(&dir.join(format!("c{k}")), "extreme", "x", "y", &s).unwrap();
+        }
+        let s = [Series::line("s", vec![0.0, 1.0], vec![-1e308, 1e308])];
+        assert!(line_chart(&dir.join("overflow"), "extreme", "x", "y", &s).is_err());
+        let log = ChartOptions {
+            y_log: true,
+            ..Default::default()
+        };
+        let s = [Series::line(
+            "s",
+            vec![0.0, 1.0, 2.0],
+            vec![1e-300, 1.0, 1e300],
+        )];
+        line_chart_with(&dir.join("log"), "extreme", "x", "y", &s, &log).unwrap();
+        let wide = ChartOptions {
+            y_log: true,
+            y_range: Some((1e-100, 1e100)),
+            ..Default::default()
+        };
+        assert!(line_chart_with(&dir.join("log"), "extreme", "x", "y", &s, &wide).is_err());
+        let _ = std::fs::remove_dir_all(dir);
     }
 
     #[test]
