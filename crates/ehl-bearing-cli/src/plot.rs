@@ -5,6 +5,11 @@
 //! with the DejaVu Sans font embedded in the binary (`assets/DejaVuSans.ttf`,
 //! licence in `assets/DejaVuSans-LICENSE.txt`).
 //!
+//! Charts: [`line_chart`] / [`line_chart_with`] (lines and/or markers, log
+//! axes, explicit ranges), [`stacked_charts`] (panels sharing x),
+//! [`dual_axis_chart`] (two y axes sharing x) and [`heatmap`] /
+//! [`heatmap_with`] (viridis map with colour bar, contours, overlaid curves).
+//!
 //! Every function writes `<stem>.svg` and `<stem>.png` (the parent directory is
 //! created when missing). Non-finite values (and non-positive ones on a log
 //! axis) are skipped: lines are broken there. Bad input (no series, mismatched
@@ -1858,6 +1863,7 @@ mod tests {
             "Load against approach",
             (FIGURE_WIDTH, FIGURE_HEIGHT),
         );
+        let _ = std::fs::remove_dir_all(stem.parent().unwrap());
     }
 
     #[test]
@@ -1903,6 +1909,7 @@ mod tests {
             ..Default::default()
         };
         line_chart_with(&stem, "Skip", "x", "y", &s, &opts).unwrap();
+        let _ = std::fs::remove_dir_all(stem.parent().unwrap());
     }
 
     #[test]
@@ -1921,6 +1928,7 @@ mod tests {
             "Approach and load",
             (FIGURE_WIDTH, stacked_height(2)),
         );
+        let _ = std::fs::remove_dir_all(stem.parent().unwrap());
     }
 
     #[test]
@@ -1958,6 +1966,7 @@ mod tests {
         .unwrap();
         let svg = check_outputs(&stem, "Pressure", (FIGURE_WIDTH, FIGURE_HEIGHT));
         assert!(svg.contains("data:image/png;base64,"), "map not embedded");
+        let _ = std::fs::remove_dir_all(stem.parent().unwrap());
     }
 
     #[test]
@@ -1977,6 +1986,7 @@ mod tests {
         heatmap_with(&stem, "Pressure 513", "X", "Y", &x, &y, &z, "P", &opts).unwrap();
         let svg = check_outputs(&stem, "Pressure 513", (FIGURE_WIDTH, FIGURE_HEIGHT));
         assert!(svg.len() < 4_000_000, "SVG is {} bytes", svg.len());
+        let _ = std::fs::remove_dir_all(stem.parent().unwrap());
     }
 
     #[test]
@@ -2007,6 +2017,7 @@ mod tests {
         // A constant field still gets a usable colour scale.
         let flat = vec![vec![2.0; gx.len()]; gy.len()];
         heatmap(&dir.join("flat"), "Flat", "x", "y", &gx, &gy, &flat, "z").unwrap();
+        let _ = std::fs::remove_dir_all(dir);
     }
 
     #[test]
@@ -2049,6 +2060,7 @@ mod tests {
         assert!(heatmap(&stem, "t", "x", "y", &[0.0], &[0.0], &[vec![1.0]], "z").is_err());
         let all_nan = vec![vec![f64::NAN; 3]; 2];
         assert!(heatmap(&stem, "t", "x", "y", &x, &y, &all_nan, "z").is_err());
+        let _ = std::fs::remove_dir_all(stem.parent().unwrap());
     }
 
     #[test]
