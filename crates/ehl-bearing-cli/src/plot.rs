@@ -30,11 +30,13 @@ use plotters_backend::text_anchor::{HPos, Pos, VPos};
 use plotters_backend::FontTransform;
 use plotters_backend::{BackendColor, BackendCoord, BackendTextStyle, DrawingErrorKind};
 
+use plotters::prelude::*;
+use plotters::style::colors::colormaps::ViridisRGB;
+
+/// A pixel offset.
 type Px = (i32, i32);
 /// A line sample and a marker, positioned in pixels around an anchor point.
 type Glyph<C, DB> = ComposedElement<C, DB, PathElement<Px>, Polygon<Px>>;
-use plotters::prelude::*;
-use plotters::style::colors::colormaps::ViridisRGB;
 
 /// Kept for `main.rs`, which references it until the commands use this module.
 pub const PLACEHOLDER: () = ();
