@@ -29,6 +29,25 @@ fn explore() {
     if let Ok(v) = std::env::var("EHL_CYCLE") {
         s.cycle = if v == "V" { CycleType::V } else { CycleType::W };
     }
+    if let Ok(v) = std::env::var("EHL_SET") {
+        for kv in v.split(',') {
+            let (k, val) = kv.split_once('=').unwrap();
+            let x: f64 = val.parse().unwrap();
+            match k {
+                "omega_jd" => s.omega_jd = x,
+                "omega_gs" => s.omega_gs = x,
+                "coarsest" => s.coarsest = x as usize,
+                "h0_gain" => s.h0_gain = x,
+                "jd" => s.jd_threshold = x,
+                "coarse_sweeps" => s.coarse_sweeps = x as usize,
+                "pre" => s.pre_sweeps = x as usize,
+                "post" => s.post_sweeps = x as usize,
+                "max_cycles" => s.max_cycles = x as usize,
+                "outlet" => s.outlet = x,
+                _ => panic!("unknown {k}"),
+            }
+        }
+    }
     let mut c = case(args[0], args[1], args[2]);
     if std::env::var("EHL_BARUS").is_ok() {
         c.viscosity = ViscosityModel::Barus;

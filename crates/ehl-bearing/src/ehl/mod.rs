@@ -15,6 +15,7 @@
 
 pub mod deformation;
 pub mod formulas;
+pub mod input;
 mod multigrid;
 mod steady;
 
@@ -37,6 +38,9 @@ pub enum EhlError {
         /// The valid range, in words.
         range: &'static str,
     },
+    /// A contact file could not be read or has an invalid entry.
+    #[error("{0}")]
+    File(String),
     /// The iteration produced non-finite numbers or blew up, also after load continuation.
     #[error(
         "EHL solver diverged after {cycles} cycles (M = {m:.4}, L = {l:.4}, Ry/Rx = {ratio:.4}, \
@@ -72,7 +76,7 @@ pub enum CycleType {
 pub struct EhlSettings {
     /// Grid points per side on the finest level, 2^k + 1, from 17 to 1025 (default 129).
     pub grid: usize,
-    /// Points per side on the coarsest level, 2^k + 1 ≥ 9 (default 17).
+    /// Points per side on the coarsest level, 2^k + 1 ≥ 9 (default 33).
     pub coarsest: usize,
     /// Inlet length upstream of the contact centre, in a_x (default: see [`EhlSettings::default`]).
     pub inlet: f64,
@@ -96,7 +100,7 @@ pub struct EhlSettings {
     pub post_sweeps: usize,
     /// Relaxation sweeps on the coarsest grid per visit, each followed by an h0 update (default 10).
     pub coarse_sweeps: usize,
-    /// Under-relaxation of Gauss–Seidel line changes (default 0.6).
+    /// Under-relaxation of Gauss–Seidel line changes (default 0.4).
     pub omega_gs: f64,
     /// Under-relaxation of Jacobi-distributive changes (default 0.3).
     pub omega_jd: f64,
@@ -115,7 +119,7 @@ impl Default for EhlSettings {
     fn default() -> Self {
         EhlSettings {
             grid: 129,
-            coarsest: 17,
+            coarsest: 33,
             inlet: 4.5,
             outlet: 1.5,
             half_width: 2.0,
@@ -127,7 +131,7 @@ impl Default for EhlSettings {
             pre_sweeps: 2,
             post_sweeps: 1,
             coarse_sweeps: 10,
-            omega_gs: 0.6,
+            omega_gs: 0.4,
             omega_jd: 0.3,
             h0_gain: 0.05,
             jd_threshold: 0.3,

@@ -329,12 +329,14 @@ fn iterate(
         residual = rel;
         history.push(rel);
         let scale = hc.abs().max(1e-12);
-        let dh = ((hc - hc_old).abs().max((hier.h0 - h0_old).abs())) / scale;
+        let dh = ((hc - hc_old).abs() / scale)
+            .max((hier.h0 - h0_old).abs() / hier.h0.abs().max(scale));
         if rel < s.tol_residual && fb < s.tol_force && dh < s.tol_film {
             converged = true;
             break;
         }
-        if history.len() > 3 && rel > 1e3 * history[0].max(1e-3) {
+        let best = history.iter().cloned().fold(f64::INFINITY, f64::min);
+        if history.len() > 3 && rel > 100.0 * best.max(1e-6) {
             return Err((cycles, residual));
         }
     }
