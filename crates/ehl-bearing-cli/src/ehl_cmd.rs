@@ -48,10 +48,10 @@ pub struct EhlArgs {
     /// Print the result as JSON (SI units) instead of a table.
     #[arg(long)]
     pub json: bool,
-    /// Grid points per side on the finest level (2^k + 1, 17 to 1025; default 129).
+    /// Grid points per side on the finest level (2^k + 1, 17 to 1025; default 257).
     #[arg(long)]
     pub grid: Option<usize>,
-    /// Inlet length in Hertz semi-axes a_x (default from the solver settings).
+    /// Inlet length in Hertz semi-axes a_x (default automatic: 4.5 circular to 10.5 elongated).
     #[arg(long)]
     pub inlet: Option<f64>,
     /// Transverse half-width of the domain in semi-axes a_y (default from the solver settings).
@@ -83,10 +83,10 @@ fn settings(args: &EhlArgs) -> EhlSettings {
         s.grid = g;
     }
     if let Some(v) = args.inlet {
-        s.inlet = v;
+        s.inlet = Some(v);
     }
     if let Some(v) = args.half_width {
-        s.half_width = v;
+        s.half_width = Some(v);
     }
     s
 }
@@ -122,15 +122,38 @@ pub fn table(r: &EhlSolution) -> String {
     let _ = writeln!(s, "  converged            {}", r.converged);
     let _ = writeln!(s, "  Moes M, L            {:.4}, {:.4}", r.moes_m, r.moes_l);
     let _ = writeln!(s, "  Ry/Rx                {:.4}", r.ry_over_rx);
-    let _ = writeln!(s, "  central film h_c     {:.4} µm   (H_c Moes {:.4})", r.h_central * 1e6, r.h_central_moes);
-    let _ = writeln!(s, "  minimum film h_min   {:.4} µm   (H_min Moes {:.4})", r.h_min * 1e6, r.h_min_moes);
+    let _ = writeln!(
+        s,
+        "  central film h_c     {:.4} µm   (H_c Moes {:.4})",
+        r.h_central * 1e6,
+        r.h_central_moes
+    );
+    let _ = writeln!(
+        s,
+        "  minimum film h_min   {:.4} µm   (H_min Moes {:.4})",
+        r.h_min * 1e6,
+        r.h_min_moes
+    );
     let _ = writeln!(s, "  max pressure         {:.4} GPa", r.p_max * 1e-9);
     let _ = writeln!(s, "  Hertz pressure p_h   {:.4} GPa", r.p_hertz * 1e-9);
-    let _ = writeln!(s, "  approach δ = −h0     {:.4} µm   (Hertz {:.4} µm)", r.approach * 1e6, r.approach_hertz * 1e6);
-    let _ = writeln!(s, "  force balance        {:.2e} (relative)", r.force_balance_residual);
+    let _ = writeln!(
+        s,
+        "  approach δ = −h0     {:.4} µm   (Hertz {:.4} µm)",
+        r.approach * 1e6,
+        r.approach_hertz * 1e6
+    );
+    let _ = writeln!(
+        s,
+        "  force balance        {:.2e} (relative)",
+        r.force_balance_residual
+    );
     let _ = writeln!(s, "  Reynolds residual    {:.2e} (relative)", r.residual);
     let _ = writeln!(s, "  grid                 {} × {}", r.grid[0], r.grid[1]);
-    let _ = writeln!(s, "  cycles               {} ({} continuation steps)", r.cycles, r.continuation_steps);
+    let _ = writeln!(
+        s,
+        "  cycles               {} ({} continuation steps)",
+        r.cycles, r.continuation_steps
+    );
     let _ = writeln!(s, "  wall time            {:.3} s", r.seconds);
     s
 }

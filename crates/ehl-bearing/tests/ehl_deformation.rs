@@ -12,7 +12,9 @@ fn fft_matches_direct_summation() {
     let mut seed = 12345u64;
     let p: Vec<f64> = (0..nx * ny)
         .map(|_| {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (seed >> 11) as f64 / (1u64 << 53) as f64
         })
         .collect();

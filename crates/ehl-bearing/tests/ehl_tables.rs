@@ -5,7 +5,13 @@ use ehl_bearing::ehl::formulas::nijenbanning_central;
 use ehl_bearing::ehl::*;
 
 fn case(m: f64, l: f64, r: f64) -> MoesCase {
-    MoesCase::new(m, l, r, ViscosityModel::Roelands, DensityModel::DowsonHigginson)
+    MoesCase::new(
+        m,
+        l,
+        r,
+        ViscosityModel::Roelands,
+        DensityModel::DowsonHigginson,
+    )
 }
 
 #[test]
@@ -21,10 +27,10 @@ fn explore() {
         ..Default::default()
     };
     if let Ok(v) = std::env::var("EHL_INLET") {
-        s.inlet = v.parse().unwrap();
+        s.inlet = Some(v.parse().unwrap());
     }
     if let Ok(v) = std::env::var("EHL_HALF") {
-        s.half_width = v.parse().unwrap();
+        s.half_width = Some(v.parse().unwrap());
     }
     if let Ok(v) = std::env::var("EHL_CYCLE") {
         s.cycle = if v == "V" { CycleType::V } else { CycleType::W };
@@ -56,12 +62,19 @@ fn explore() {
     match solve_moes(&c, &s) {
         Ok(r) => {
             println!(
-                "M {} L {} R {} conv {} cyc {} t {:.3}s Hc {:.5} Hmin {:.5} NVM {:.5} pmax/ph {:.4} delta/dH {:.4} fb {:.2e} steps {}",
+                "M {} L {} R {} conv {} cyc {} t {:.3}s Hc {:.5} Hmin {:.5} NVM {:.5} pmax/ph {:.4} delta/dH {:.4} fb {:.2e} steps {} inlet {:.2} hw {:.2}",
                 r.moes_m, r.moes_l, r.ry_over_rx, r.converged, r.cycles, r.seconds, r.h_central_moes,
                 r.h_min_moes, nijenbanning_central(r.moes_m, r.moes_l, 1.0 / r.ry_over_rx),
-                r.p_max / r.p_hertz, r.approach / r.approach_hertz, r.force_balance_residual, r.continuation_steps
+                r.p_max / r.p_hertz, r.approach / r.approach_hertz, r.force_balance_residual, r.continuation_steps,
+                -r.fields.x[0] / r.fields.a_x, r.fields.y[r.fields.y.len() - 1] / r.fields.a_y
             );
-            println!("hist {:?}", r.residual_history.iter().map(|v| format!("{v:.2e}")).collect::<Vec<_>>());
+            println!(
+                "hist {:?}",
+                r.residual_history
+                    .iter()
+                    .map(|v| format!("{v:.2e}"))
+                    .collect::<Vec<_>>()
+            );
         }
         Err(e) => println!("error {e}"),
     }

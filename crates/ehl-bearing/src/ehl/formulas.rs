@@ -49,8 +49,8 @@ pub fn nijenbanning_asymptotes(m: f64, l: f64, rx_over_ry: f64) -> [f64; 6] {
 /// + (H_RP^(−8) + H_EP^(−8))^(−s/8)}^(1/s). A fit to numerical solutions: expect a few percent.
 pub fn nijenbanning_central(m: f64, l: f64, rx_over_ry: f64) -> f64 {
     let [h_ri, h_ei, h_rp, h_ep, s, h00] = nijenbanning_asymptotes(m, l, rx_over_ry);
-    let iso = (h_ri.powf(1.5) + (h_ei.powf(-4.0) + h00.powf(-4.0)).powf(-3.0 / 8.0))
-        .powf(2.0 * s / 3.0);
+    let iso =
+        (h_ri.powf(1.5) + (h_ei.powf(-4.0) + h00.powf(-4.0)).powf(-3.0 / 8.0)).powf(2.0 * s / 3.0);
     let piezo = (h_rp.powf(-8.0) + h_ep.powf(-8.0)).powf(-s / 8.0);
     (iso + piezo).powf(1.0 / s)
 }

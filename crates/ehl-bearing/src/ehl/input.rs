@@ -133,9 +133,9 @@ pub fn parse_contact_toml(text: &str) -> Result<EhlContact, EhlError> {
     }
     let us = positive("sum_velocity_m_s", t.sum_velocity_m_s)?;
     let e_reduced = match (t.reduced_modulus_gpa, &t.ball_material, &t.ring_material) {
-        (Some(_), Some(_), _) | (Some(_), _, Some(_)) => fail!(
-            "give either reduced_modulus_gpa or [ball_material]/[ring_material], not both"
-        ),
+        (Some(_), Some(_), _) | (Some(_), _, Some(_)) => {
+            fail!("give either reduced_modulus_gpa or [ball_material]/[ring_material], not both")
+        }
         (Some(e), None, None) => positive("reduced_modulus_gpa", e)? * 1e9,
         (None, b, r) => reduced_modulus(&solid("ball_material", b)?, &solid("ring_material", r)?),
     };
@@ -148,4 +148,3 @@ pub fn parse_contact_toml(text: &str) -> Result<EhlContact, EhlError> {
         lubricant: lubricant(&t.lubricant)?,
     })
 }
-

@@ -74,16 +74,21 @@ pub enum CycleType {
 /// semi-axis of the respective direction (a_x along x, a_y along y).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct EhlSettings {
-    /// Grid points per side on the finest level, 2^k + 1, from 17 to 1025 (default 129).
+    /// Grid points per side on the finest level, 2^k + 1, from 17 to 1025 (default 257).
     pub grid: usize,
     /// Points per side on the coarsest level, 2^k + 1 ≥ 9 (default 33).
     pub coarsest: usize,
-    /// Inlet length upstream of the contact centre, in a_x (default: see [`EhlSettings::default`]).
-    pub inlet: f64,
+    /// Inlet length upstream of the contact centre, in a_x. `None` (default): automatic,
+    /// max(min(10.5, 3 + 1.5·a_y/a_x), min(30, 1 + 3.5·√(2·H_est))) with H_est = the NVM
+    /// central film in units a_x²/Rx: 4.5 for a circular contact at moderate load, 10.5 from
+    /// Ry/Rx ≈ 12 on, longer at light load where the inlet zone is long (domain-convergence study
+    /// in docs/ehl.md). The x-line relaxation wants (inlet + outlet)/(2·half_width) ≲ a_y/a_x.
+    pub inlet: Option<f64>,
     /// Outlet length downstream of the centre, in a_x (default 1.5).
     pub outlet: f64,
-    /// Transverse half-width of the domain, in a_y (default 2.0).
-    pub half_width: f64,
+    /// Transverse half-width of the domain, in a_y. `None` (default): automatic,
+    /// clamp(3.5 − 0.5·a_y/a_x, 2, 3), i.e. 3 for a circular contact, 2 from Ry/Rx ≈ 4 on.
+    pub half_width: Option<f64>,
     /// Largest number of multigrid cycles on the finest grid (default 40).
     pub max_cycles: usize,
     /// Convergence: relative residual Σ|r|/Σ|∂(ρ̄H)/∂X| below this (dimensionless, default 1e-4).
@@ -114,15 +119,16 @@ pub struct EhlSettings {
 }
 
 impl Default for EhlSettings {
-    /// Defaults: 129 × 129 points, domain X ∈ [−4.5, 1.5]·a_x, Y ∈ [−2, 2]·a_y (see docs/ehl.md
-    /// for the domain- and grid-convergence study behind them).
+    /// Defaults: 257 × 257 points, automatic inlet (4.5 a_x circular to 10.5 a_x elongated),
+    /// outlet 1.5 a_x, automatic half-width (3 a_y circular to 2 a_y elongated) (see docs/ehl.md for the domain- and grid-convergence
+    /// study behind them).
     fn default() -> Self {
         EhlSettings {
-            grid: 129,
+            grid: 257,
             coarsest: 33,
-            inlet: 4.5,
+            inlet: None,
             outlet: 1.5,
-            half_width: 2.0,
+            half_width: None,
             max_cycles: 40,
             tol_residual: 1e-4,
             tol_force: 1e-5,

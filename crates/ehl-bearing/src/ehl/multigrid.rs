@@ -196,8 +196,7 @@ impl Level {
         let en = 0.5 * (e[idx] + e[idx + nx]);
         let pc = p[idx];
         let poi = (ew * (p[idx - 1] - pc) + ee * (p[idx + 1] - pc)) / (self.hx * self.hx)
-            + pr.kappa2 * (es * (p[idx - nx] - pc) + en * (p[idx + nx] - pc))
-                / (self.hy * self.hy);
+            + pr.kappa2 * (es * (p[idx - nx] - pc) + en * (p[idx + nx] - pc)) / (self.hy * self.hy);
         let w = Self::wedge_w(i);
         let mut wedge = 0.0;
         for (t, wt) in w.iter().enumerate() {

@@ -60,7 +60,11 @@ fn validate_contact(c: &EhlContact) -> Result<(), EhlError> {
 fn validate_settings(s: &EhlSettings) -> Result<(), EhlError> {
     let pow2 = |n: usize| n >= 2 && (n - 1).is_power_of_two();
     if !(pow2(s.grid) && (17..=1025).contains(&s.grid)) {
-        return Err(invalid("settings.grid", s.grid as f64, "2^k + 1, 17 to 1025"));
+        return Err(invalid(
+            "settings.grid",
+            s.grid as f64,
+            "2^k + 1, 17 to 1025",
+        ));
     }
     if !(pow2(s.coarsest) && s.coarsest >= 9 && s.coarsest <= s.grid) {
         return Err(invalid(
@@ -70,9 +74,9 @@ fn validate_settings(s: &EhlSettings) -> Result<(), EhlError> {
         ));
     }
     for (f, v) in [
-        ("settings.inlet", s.inlet),
+        ("settings.inlet", s.inlet.unwrap_or(4.5)),
         ("settings.outlet", s.outlet),
-        ("settings.half_width", s.half_width),
+        ("settings.half_width", s.half_width.unwrap_or(2.0)),
     ] {
         if !(v.is_finite() && v >= 1.05 && v <= 100.0) {
             return Err(invalid(f, v, "1.05 to 100 semi-axes"));
@@ -98,7 +102,11 @@ fn validate_settings(s: &EhlSettings) -> Result<(), EhlError> {
         }
     }
     if s.max_cycles == 0 || s.max_cycles > 10_000 {
-        return Err(invalid("settings.max_cycles", s.max_cycles as f64, "1 to 10000"));
+        return Err(invalid(
+            "settings.max_cycles",
+            s.max_cycles as f64,
+            "1 to 10000",
+        ));
     }
     if s.coarse_sweeps == 0 || s.pre_sweeps + s.post_sweeps == 0 {
         return Err(invalid(
@@ -159,27 +167,37 @@ fn setup(c: &EhlContact, s: &EhlSettings) -> Result<(Problem, Scales), EhlError>
         aspect: ay / ax,
         lub: c.lubricant,
         ph,
-        x_min: -s.inlet,
+        x_min: 0.0,
         x_max: s.outlet,
-        y_half: s.half_width,
+        y_half: s
+            .half_width
+            .unwrap_or((3.5 - 0.5 * ay / ax).clamp(2.0, 3.0)),
     };
     if !(pr.lambda.is_finite() && pr.lambda > 0.0 && m.is_finite() && l.is_finite()) {
-        return Err(invalid("load/speed combination (M)", m, "finite Moes parameters"));
-    }
-    Ok((
-        pr,
-        Scales {
-            ax,
-            ay,
-            ph,
-            rx: c.rx,
-            delta_hertz: hz.deflection,
+        return Err(invalid(
+            "load/speed combination (M)",
             m,
-            l,
-            ratio: c.ry / c.rx,
-            u,
-        },
-    ))
+            "finite Moes parameters",
+        ));
+    }
+    let mut pr = pr;
+    let sc = Scales {
+        ax,
+        ay,
+        ph,
+        rx: c.rx,
+        delta_hertz: hz.deflection,
+        m,
+        l,
+        ratio: c.ry / c.rx,
+        u,
+    };
+    let h_est = h_estimate(&sc);
+    let auto = (3.0 + 1.5 * ay / ax)
+        .min(10.5)
+        .max((1.0 + 3.5 * (2.0 * h_est).sqrt()).min(30.0));
+    pr.x_min = -s.inlet.unwrap_or(auto);
+    Ok((pr, sc))
 }
 
 /// Result of the dimensionless iteration.
@@ -329,8 +347,8 @@ fn iterate(
         residual = rel;
         history.push(rel);
         let scale = hc.abs().max(1e-12);
-        let dh = ((hc - hc_old).abs() / scale)
-            .max((hier.h0 - h0_old).abs() / hier.h0.abs().max(scale));
+        let dh =
+            ((hc - hc_old).abs() / scale).max((hier.h0 - h0_old).abs() / hier.h0.abs().max(scale));
         if rel < s.tol_residual && fb < s.tol_force && dh < s.tol_film {
             converged = true;
             break;
@@ -454,7 +472,11 @@ fn continuation(
             None => Start::Hertz,
             Some(p) => Start::Given { p, h0: None },
         };
-        let maxc = if last { s.max_cycles } else { 6.min(s.max_cycles) };
+        let maxc = if last {
+            s.max_cycles
+        } else {
+            6.min(s.max_cycles)
+        };
         match iterate(&pr, s, start, h_est, maxc) {
             Ok(core) => {
                 cycles_total += core.cycles;
