@@ -1,5 +1,6 @@
 //! `ehl-bearing` command line: thin layer over the `ehl-bearing` library.
 
+mod contact_cmd;
 mod ehl_cmd;
 mod equilibrium_cmd;
 mod plot;
@@ -19,13 +20,19 @@ struct Cli {
 enum Command {
     /// Quasi-static 5-DOF equilibrium of a bearing case with dry Hertz contacts.
     Equilibrium(equilibrium_cmd::EquilibriumArgs),
+    /// One steady EHL point contact (contact file or Moes parameters).
+    Ehl(ehl_cmd::EhlArgs),
+    /// Characterize one lubricated contact: fit Q = K·δ^d + ΔF to EHL solutions.
+    Contact(contact_cmd::ContactArgs),
 }
 
 fn main() -> ExitCode {
-    let _ = (ehl_cmd::PLACEHOLDER, plot::PLACEHOLDER);
+    let _ = plot::PLACEHOLDER;
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Equilibrium(a) => equilibrium_cmd::run(a),
+        Command::Ehl(a) => ehl_cmd::run(a),
+        Command::Contact(a) => contact_cmd::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

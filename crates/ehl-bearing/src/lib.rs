@@ -10,6 +10,7 @@
 #![warn(missing_docs)]
 
 pub mod bearing;
+pub mod contact;
 pub mod contact_law;
 pub mod ehl;
 pub mod error;
