@@ -37,7 +37,7 @@ pub struct ContactArgs {
     /// Print JSON (SI units) instead of a table.
     #[arg(long)]
     pub json: bool,
-    /// Write samples.csv and fit.json into this directory.
+    /// Write samples.csv, fit.json and the plot force_approach.{png,svg} into this directory.
     #[arg(short = 'o', long = "output", value_name = "DIR")]
     pub output: Option<PathBuf>,
 }
@@ -119,6 +119,46 @@ fn table(f: &ContactFit) -> String {
     s
 }
 
+/// Q against δ: the EHL samples, the fitted law over and below the fitted range (with its
+/// extension), and the dry Hertz law of the same contact for comparison.
+fn plot_fit(f: &ContactFit, c: &ehl::EhlContact, dir: &std::path::Path) -> Result<()> {
+    use crate::plot::{line_chart, Series};
+    use ehl_bearing::ContactLaw;
+    let um = 1e6;
+    let [lo, hi] = f.delta_range;
+    let span = hi - lo;
+    let (a, b) = ((lo - 0.6 * span).max(0.3 * lo), hi + 0.3 * span);
+    let xs: Vec<f64> = (0..=200).map(|i| a + (b - a) * i as f64 / 200.0).collect();
+    let hertz = ehl_bearing::hertz::HertzGeometry::new(c.rx, c.ry, c.e_reduced)?;
+    let series = vec![
+        Series::markers(
+            "EHL steady solutions",
+            f.samples.iter().map(|s| s.approach * um).collect(),
+            f.samples.iter().map(|s| s.load).collect(),
+        ),
+        Series::line(
+            format!("fit K·δ^d + ΔF, d = {:.4}, ΔF = {:.2} N", f.d, f.delta_f),
+            xs.iter().map(|x| x * um).collect(),
+            xs.iter().map(|&x| f.law.force(x).0).collect(),
+        ),
+        Series::line(
+            "dry Hertz K_H·δ^1.5",
+            xs.iter().map(|x| x * um).collect(),
+            xs.iter().map(|&x| hertz.load_at(x)).collect(),
+        ),
+    ];
+    line_chart(
+        &dir.join("force_approach"),
+        &format!(
+            "Contact law, {} method (M = {:.0}, L = {:.1}, Ry/Rx = {:.1})",
+            f.method, f.moes_m, f.moes_l, f.ry_over_rx
+        ),
+        "approach δ (µm)",
+        "contact force Q (N)",
+        &series,
+    )
+}
+
 /// Run `contact`.
 pub fn run(args: &ContactArgs) -> Result<()> {
     let text = std::fs::read_to_string(&args.contact)
@@ -166,6 +206,7 @@ pub fn run(args: &ContactArgs) -> Result<()> {
             dir.join("fit.json"),
             serde_json::to_string_pretty(&fit_json(&fit))?,
         )?;
+        plot_fit(&fit, &c, dir)?;
     }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&fit_json(&fit))?);

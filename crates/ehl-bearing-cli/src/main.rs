@@ -27,7 +27,6 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    let _ = plot::PLACEHOLDER;
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Equilibrium(a) => equilibrium_cmd::run(a),

@@ -38,9 +38,6 @@ type Px = (i32, i32);
 /// A line sample and a marker, positioned in pixels around an anchor point.
 type Glyph<C, DB> = ComposedElement<C, DB, PathElement<Px>, Polygon<Px>>;
 
-/// Kept for `main.rs`, which references it until the commands use this module.
-pub const PLACEHOLDER: () = ();
-
 /// Width in pixels of every figure.
 pub const FIGURE_WIDTH: u32 = 1000;
 /// Height in pixels of a [`line_chart`] / [`heatmap`] figure.
