@@ -233,38 +233,6 @@ impl Level {
         (sr, sw)
     }
 
-    /// Effect on row (i, j) of a unit change of P at (m, l).
-    #[inline]
-    fn effect(&self, i: usize, j: usize, m: usize, l: usize, cw: &[f64; 5]) -> f64 {
-        // cw = [diag, west, east, south, north] Poiseuille coefficients of row (i, j)
-        let mut e = 0.0;
-        if l == j {
-            if m == i {
-                e += cw[0];
-            } else if m + 1 == i {
-                e += cw[1];
-            } else if m == i + 1 {
-                e += cw[2];
-            }
-        } else if m == i {
-            if l + 1 == j {
-                e += cw[3];
-            } else if l == j + 1 {
-                e += cw[4];
-            }
-        }
-        let w = Self::wedge_w(i);
-        let dy = j as isize - l as isize;
-        let mut s = 0.0;
-        for (t, wt) in w.iter().enumerate() {
-            if *wt != 0.0 {
-                let row = i - t;
-                s += wt * self.rho[j * self.nx + row] * self.k(row as isize - m as isize, dy);
-            }
-        }
-        e - s / self.hx
-    }
-
     /// One relaxation sweep (line relaxation along X, lines ordered in Y), then film update.
     pub fn relax(&mut self, pr: &Problem, prm: &MgParams, h0: f64) {
         let (nx, ny) = (self.nx, self.ny);
@@ -277,6 +245,13 @@ impl Level {
         let mut rhs = std::mem::take(&mut self.rhs);
         let mut jd = std::mem::take(&mut self.jd);
         let k0 = self.kloc[0][0];
+        // Kernel of a Jacobi-distributive change along its own line (dy = 0).
+        let mut kd = [0.0; KX + 1];
+        for (d, v) in kd.iter_mut().enumerate().take(KX) {
+            let di = d as isize;
+            *v = self.k(di, 0)
+                - 0.25 * (self.k(di - 1, 0) + self.k(di + 1, 0) + 2.0 * self.k(di, 1));
+        }
         let mut any_jd = false;
         let mut bsave = band.clone();
         let mut rsave = rhs.clone();
@@ -313,14 +288,41 @@ impl Level {
                 ];
                 let kmin = i.saturating_sub(BAND).max(1);
                 let kmax = (i + BAND).min(nx - 2);
+                let ww = Self::wedge_w(i);
+                let rr = [
+                    ww[0] * self.rho[idx] / self.hx,
+                    ww[1] * self.rho[idx - 1] / self.hx,
+                    if i >= 2 {
+                        ww[2] * self.rho[idx - 2] / self.hx
+                    } else {
+                        0.0
+                    },
+                ];
+                let poi = |m: usize| {
+                    if m == i {
+                        cw[0]
+                    } else if m + 1 == i {
+                        cw[1]
+                    } else if m == i + 1 {
+                        cw[2]
+                    } else {
+                        0.0
+                    }
+                };
                 for k in kmin..=kmax {
-                    let mut a = self.effect(i, j, k, j, &cw);
+                    // wedge: Σ_t rr_t · K(i − t − k)
+                    let tab = if jd[k] { &kd } else { &self.kloc[0] };
+                    let mut wsum = 0.0;
+                    for (t, r) in rr.iter().enumerate() {
+                        let d = (i as isize - t as isize - k as isize).unsigned_abs();
+                        wsum += r * tab[d];
+                    }
+                    let mut a = poi(k) - wsum;
                     if jd[k] {
-                        a -= 0.25
-                            * (self.effect(i, j, k - 1, j, &cw)
-                                + self.effect(i, j, k + 1, j, &cw)
-                                + self.effect(i, j, k, j - 1, &cw)
-                                + self.effect(i, j, k, j + 1, &cw));
+                        a -= 0.25 * (poi(k - 1) + poi(k + 1));
+                        if k == i {
+                            a -= 0.25 * (cw[3] + cw[4]);
+                        }
                     }
                     band[(i - 1) * nb + (k + BAND - i)] = a;
                 }
