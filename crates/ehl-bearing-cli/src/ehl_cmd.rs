@@ -110,6 +110,7 @@ fn json(r: &EhlSolution) -> serde_json::Value {
         "grid": r.grid,
         "cycles": r.cycles,
         "continuation_steps": r.continuation_steps,
+        "attempts": r.attempts,
         "seconds": r.seconds,
         "residual_history": r.residual_history,
     })

@@ -263,6 +263,9 @@ pub struct EhlSolution {
     pub residual_history: Vec<f64>,
     /// Continuation steps in load used (0 when the direct start converged).
     pub continuation_steps: usize,
+    /// Starts tried: 1 = the given settings; 2–3 = more conservative relaxation after a
+    /// divergence; 4 = load continuation with the most conservative settings.
+    pub attempts: usize,
     /// Fields on the finest grid.
     pub fields: EhlFields,
 }

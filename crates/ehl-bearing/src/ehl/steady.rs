@@ -425,6 +425,7 @@ fn finish(
         seconds: t0.elapsed().as_secs_f64(),
         residual_history: core.history,
         continuation_steps: steps,
+        attempts: 1,
         fields,
     }
 }
@@ -435,13 +436,39 @@ pub fn solve_steady(c: &EhlContact, s: &EhlSettings) -> Result<EhlSolution, EhlE
     let t0 = Instant::now();
     let (pr, sc) = setup(c, s)?;
     let h_est = h_estimate(&sc);
-    match iterate(&pr, s, Start::Hertz, h_est, s.max_cycles) {
-        Ok(core) => {
-            let n = core.cycles;
-            Ok(finish(c, &sc, core, n, 0, t0))
+    let mut cycles = 0;
+    for (attempt, sk) in fallback_ladder(s).iter().enumerate() {
+        match iterate(&pr, sk, Start::Hertz, h_est, s.max_cycles) {
+            Ok(core) => {
+                let n = cycles + core.cycles;
+                let mut r = finish(c, &sc, core, n, 0, t0);
+                r.attempts = attempt + 1;
+                return Ok(r);
+            }
+            Err((cyc, _)) => cycles += cyc,
         }
-        Err((cyc, _)) => continuation(c, s, &sc, cyc, t0),
     }
+    let conservative = fallback_ladder(s)[2];
+    continuation(c, &conservative, &sc, cycles, t0)
+}
+
+/// The settings tried in turn when a start diverges: as given; then a smaller h0 gain, a wider
+/// Jacobi-distributive zone and smaller distributive steps; then both more conservative still.
+fn fallback_ladder(s: &EhlSettings) -> [EhlSettings; 3] {
+    let b = EhlSettings {
+        h0_gain: s.h0_gain * 0.4,
+        jd_threshold: s.jd_threshold.max(1.0),
+        omega_jd: s.omega_jd.min(0.2),
+        ..*s
+    };
+    let c = EhlSettings {
+        h0_gain: s.h0_gain * 0.2,
+        jd_threshold: s.jd_threshold.max(1.0),
+        omega_jd: s.omega_jd.min(0.15),
+        omega_gs: s.omega_gs.min(0.3),
+        ..*s
+    };
+    [*s, b, c]
 }
 
 /// Load continuation: solve at M_k = M_start·2^k (dimensionless pressure carried over), up to M.
@@ -482,7 +509,9 @@ fn continuation(
                 cycles_total += core.cycles;
                 last_res = core.residual;
                 if last {
-                    return Ok(finish(c, &sck, core, cycles_total, steps, t0));
+                    let mut r = finish(c, &sck, core, cycles_total, steps, t0);
+                    r.attempts = 4;
+                    return Ok(r);
                 }
                 p_prev = Some(core.hier.levels.last().expect("level").p.clone());
             }
