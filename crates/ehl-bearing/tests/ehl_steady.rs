@@ -118,9 +118,9 @@ fn nvm_combination_rule_reproduces_its_asymptotes() {
         let he = (h_ei.powi(-4) + h00.powi(-4)).powf(-0.25);
         let h = nijenbanning_central(1e4, 1e-9, d);
         assert!((h / he - 1.0).abs() < 0.01, "EI d={d}: {h} vs {he}");
-        // rigid-piezoviscous: tiny M, large L
-        let [_, _, h_rp, ..] = nijenbanning_asymptotes(0.01, 100.0, d);
-        let h = nijenbanning_central(0.01, 100.0, d);
+        // rigid-piezoviscous: very large L at moderate M (H_RP ∝ L^(2/3) outgrows H_RI ∝ M^-2)
+        let [_, _, h_rp, ..] = nijenbanning_asymptotes(10.0, 1e4, d);
+        let h = nijenbanning_central(10.0, 1e4, d);
         assert!((h / h_rp - 1.0).abs() < 0.02, "RP d={d}: {h} vs {h_rp}");
         // elastic-piezoviscous: large M and L (the isoviscous part adds a few percent)
         let [_, _, _, h_ep, ..] = nijenbanning_asymptotes(1e5, 50.0, d);
@@ -184,38 +184,42 @@ fn grid_convergence_is_second_order() {
     assert!((1.5..=2.5).contains(&om), "H_min order {om}");
 }
 
-/// At high load the pressure tends to the Hertz ellipse: M = 1000, L = 10, Ry/Rx = 12
-/// (Roelands + Dowson–Higginson): |P − √(1 − X² − Y²)| < 0.03 inside X² + Y² ≤ 0.5, and the
-/// approach within 12 % of the Hertz deflection (the film is still ~5 % of δ there).
+/// At high load the pressure tends to the Hertz ellipse: Ry/Rx = 12, L = 10 (Roelands +
+/// Dowson–Higginson), 129²: the largest |P − √(1 − X² − Y²)| inside X² + Y² ≤ 0.5 falls as M
+/// grows from 300 to 1000 to 3000 and is below 3 % of p_h at M = 3000; the approach tends to the
+/// Hertz deflection.
 #[test]
 fn high_load_pressure_tends_to_hertz() {
-    let c = MoesCase::new(
-        1000.0,
-        10.0,
-        12.0,
-        ViscosityModel::Roelands,
-        DensityModel::DowsonHigginson,
-    );
-    let x = solve_moes(&c, &settings(257)).unwrap();
-    assert!(x.converged);
-    let f = &x.fields;
-    let nx = f.x.len();
-    let mut dev: f64 = 0.0;
-    for (j, y) in f.y.iter().enumerate() {
-        for (i, xx) in f.x.iter().enumerate() {
-            let (xh, yh) = (xx / f.a_x, y / f.a_y);
-            let r2 = xh * xh + yh * yh;
-            if r2 <= 0.5 {
-                dev = dev.max((f.p_dimensionless[j * nx + i] - (1.0 - r2).sqrt()).abs());
+    let mut last = (f64::INFINITY, 0.0);
+    for m in [300.0, 1000.0, 3000.0] {
+        let c = MoesCase::new(
+            m,
+            10.0,
+            12.0,
+            ViscosityModel::Roelands,
+            DensityModel::DowsonHigginson,
+        );
+        let x = solve_moes(&c, &settings(129)).unwrap();
+        assert!(x.converged);
+        let f = &x.fields;
+        let nx = f.x.len();
+        let mut dev: f64 = 0.0;
+        for (j, y) in f.y.iter().enumerate() {
+            for (i, xx) in f.x.iter().enumerate() {
+                let (xh, yh) = (xx / f.a_x, y / f.a_y);
+                let r2 = xh * xh + yh * yh;
+                if r2 <= 0.5 {
+                    dev = dev.max((f.p_dimensionless[j * nx + i] - (1.0 - r2).sqrt()).abs());
+                }
             }
         }
+        let ratio = x.approach / x.approach_hertz;
+        println!("M {m}: max |P - P_Hertz| = {dev:.4}, δ/δ_H = {ratio:.4}");
+        assert!(dev < last.0 && ratio > last.1, "M {m}");
+        last = (dev, ratio);
     }
-    println!(
-        "max |P - P_Hertz| = {dev:.4}, δ/δ_H = {:.4}",
-        x.approach / x.approach_hertz
-    );
-    assert!(dev < 0.03, "{dev}");
-    assert!(rel(x.approach, x.approach_hertz).abs() < 0.12);
+    assert!(last.0 < 0.03, "{}", last.0);
+    assert!(last.1 > 0.9, "{}", last.1);
 }
 
 /// Force balance to tolerance and the residual falling every multigrid cycle, across the range.

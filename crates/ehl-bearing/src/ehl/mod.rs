@@ -263,8 +263,8 @@ pub struct EhlSolution {
     pub residual_history: Vec<f64>,
     /// Continuation steps in load used (0 when the direct start converged).
     pub continuation_steps: usize,
-    /// Starts tried: 1 = the given settings; 2–3 = more conservative relaxation after a
-    /// divergence; 4 = load continuation with the most conservative settings.
+    /// Starts tried: 1 = the given settings; 2–5 = more conservative relaxation after a
+    /// divergence or stagnation; 6 = load continuation with the most conservative settings.
     pub attempts: usize,
     /// Fields on the finest grid.
     pub fields: EhlFields,

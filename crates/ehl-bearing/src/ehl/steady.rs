@@ -357,6 +357,11 @@ fn iterate(
         if history.len() > 3 && rel > 100.0 * best.max(1e-6) {
             return Err((cycles, residual));
         }
+        // Stagnation: less than a factor 2 gained over the last 6 cycles, far from tolerance.
+        let n = history.len();
+        if n >= 12 && rel > 10.0 * s.tol_residual && history[n - 7] < 2.0 * rel {
+            break;
+        }
     }
     Ok(Core {
         hier,
@@ -437,38 +442,64 @@ pub fn solve_steady(c: &EhlContact, s: &EhlSettings) -> Result<EhlSolution, EhlE
     let (pr, sc) = setup(c, s)?;
     let h_est = h_estimate(&sc);
     let mut cycles = 0;
-    for (attempt, sk) in fallback_ladder(s).iter().enumerate() {
+    let mut best: Option<(Core, usize)> = None;
+    let ladder = fallback_ladder(s);
+    for (attempt, sk) in ladder.iter().enumerate() {
         match iterate(&pr, sk, Start::Hertz, h_est, s.max_cycles) {
             Ok(core) => {
-                let n = cycles + core.cycles;
-                let mut r = finish(c, &sc, core, n, 0, t0);
-                r.attempts = attempt + 1;
-                return Ok(r);
+                cycles += core.cycles;
+                if core.converged {
+                    let mut r = finish(c, &sc, core, cycles, 0, t0);
+                    r.attempts = attempt + 1;
+                    return Ok(r);
+                }
+                if best.as_ref().is_none_or(|b| core.residual < b.0.residual) {
+                    best = Some((core, attempt + 1));
+                }
             }
             Err((cyc, _)) => cycles += cyc,
         }
     }
-    let conservative = fallback_ladder(s)[2];
-    continuation(c, &conservative, &sc, cycles, t0)
+    let conservative = ladder[ladder.len() - 1];
+    match continuation(c, &conservative, &sc, cycles, t0) {
+        Ok(r) if r.converged => Ok(r),
+        other => match best {
+            Some((core, attempt)) => {
+                let mut r = finish(c, &sc, core, cycles, 0, t0);
+                r.attempts = attempt;
+                Ok(r)
+            }
+            None => other,
+        },
+    }
 }
 
-/// The settings tried in turn when a start diverges: as given; then a smaller h0 gain, a wider
-/// Jacobi-distributive zone and smaller distributive steps; then both more conservative still.
-fn fallback_ladder(s: &EhlSettings) -> [EhlSettings; 3] {
-    let b = EhlSettings {
+/// The settings tried in turn when a start diverges or stagnates: as given; a smaller h0 gain;
+/// a wider Jacobi-distributive zone; both with smaller distributive steps; all more conservative
+/// still (also used for load continuation).
+fn fallback_ladder(s: &EhlSettings) -> [EhlSettings; 5] {
+    let a = EhlSettings {
         h0_gain: s.h0_gain * 0.4,
+        ..*s
+    };
+    let b = EhlSettings {
         jd_threshold: s.jd_threshold.max(1.0),
-        omega_jd: s.omega_jd.min(0.2),
         ..*s
     };
     let c = EhlSettings {
+        h0_gain: s.h0_gain * 0.4,
+        jd_threshold: s.jd_threshold.max(1.0),
+        omega_jd: s.omega_jd.min(0.15),
+        ..*s
+    };
+    let d = EhlSettings {
         h0_gain: s.h0_gain * 0.2,
         jd_threshold: s.jd_threshold.max(1.0),
         omega_jd: s.omega_jd.min(0.15),
         omega_gs: s.omega_gs.min(0.3),
         ..*s
     };
-    [*s, b, c]
+    [*s, a, b, c, d]
 }
 
 /// Load continuation: solve at M_k = M_start·2^k (dimensionless pressure carried over), up to M.
@@ -510,7 +541,7 @@ fn continuation(
                 last_res = core.residual;
                 if last {
                     let mut r = finish(c, &sck, core, cycles_total, steps, t0);
-                    r.attempts = 4;
+                    r.attempts = 6;
                     return Ok(r);
                 }
                 p_prev = Some(core.hier.levels.last().expect("level").p.clone());
