@@ -174,8 +174,8 @@ impl Deformation {
         let nc = lx / 2 + 1;
         for ix in 0..nc {
             let col = &mut self.cols[ix * ly..(ix + 1) * ly];
-            for j in 0..ny {
-                col[j] = self.rows[j * lx + ix];
+            for (j, c) in col.iter_mut().enumerate().take(ny) {
+                *c = self.rows[j * lx + ix];
             }
             for c in col[ny..].iter_mut() {
                 *c = Complex::new(0.0, 0.0);

@@ -393,7 +393,7 @@ fn solve_band(a: &mut [f64], x: &mut [f64], n: usize, b: usize) -> bool {
     let nb = 2 * b + 1;
     for r in 0..n {
         let piv = a[r * nb + b];
-        if !(piv.abs() > 1e-300) || !piv.is_finite() {
+        if piv.abs() <= 1e-300 || !piv.is_finite() {
             return false;
         }
         for rr in r + 1..(r + b + 1).min(n) {

@@ -34,7 +34,7 @@ fn validate_contact(c: &EhlContact) -> Result<(), EhlError> {
     check_pos("lubricant.viscosity [Pa s]", c.lubricant.viscosity)?;
     check_pos("lubricant.density [kg/m3]", c.lubricant.density)?;
     let a = c.lubricant.pressure_viscosity;
-    if !(a.is_finite() && a >= 0.0 && a < 1e-6) {
+    if !(a.is_finite() && (0.0..1e-6).contains(&a)) {
         return Err(invalid(
             "lubricant.pressure_viscosity [1/Pa]",
             a,
@@ -78,7 +78,7 @@ fn validate_settings(s: &EhlSettings) -> Result<(), EhlError> {
         ("settings.outlet", s.outlet),
         ("settings.half_width", s.half_width.unwrap_or(2.0)),
     ] {
-        if !(v.is_finite() && v >= 1.05 && v <= 100.0) {
+        if !(v.is_finite() && (1.05..=100.0).contains(&v)) {
             return Err(invalid(f, v, "1.05 to 100 semi-axes"));
         }
     }
@@ -453,7 +453,7 @@ pub fn solve_steady(c: &EhlContact, s: &EhlSettings) -> Result<EhlSolution, EhlE
                     r.attempts = attempt + 1;
                     return Ok(r);
                 }
-                if best.as_ref().is_none_or(|b| core.residual < b.0.residual) {
+                if best.as_ref().map_or(true, |b| core.residual < b.0.residual) {
                     best = Some((core, attempt + 1));
                 }
             }
