@@ -193,9 +193,13 @@ fn setup(c: &EhlContact, s: &EhlSettings) -> Result<(Problem, Scales), EhlError>
         u,
     };
     let h_est = h_estimate(&sc);
-    let auto = (3.0 + 1.5 * ay / ax)
-        .min(10.5)
-        .max((1.0 + 3.5 * (2.0 * h_est).sqrt()).min(30.0));
+    // Elongated contacts need a long inlet at moderate load (10.5 a_x); at high load the inlet
+    // zone shortens and 6 a_x suffices (log-linear in M from M = 100 to 1000); light loads get
+    // a longer inlet from the film estimate.
+    let elong = (3.0 + 1.5 * ay / ax).min(10.5);
+    let f = (m / 100.0).log10().clamp(0.0, 1.0);
+    let auto =
+        (elong - (elong - 6.0).max(0.0) * f).max((1.0 + 3.5 * (2.0 * h_est).sqrt()).min(30.0));
     pr.x_min = -s.inlet.unwrap_or(auto);
     Ok((pr, sc))
 }
