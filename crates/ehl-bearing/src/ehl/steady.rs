@@ -330,19 +330,6 @@ fn iterate(
         let lv = &mut hier.levels[top];
         let (sr, sw) = lv.residual(pr);
         let rel = if sw > 0.0 { sr / sw } else { f64::INFINITY };
-        if std::env::var("EHL_DEBUG").is_ok() {
-            let (mut im, mut vm) = (0, 0.0);
-            for (k, v) in lv.delta_ref().iter().enumerate() {
-                if v.abs() > vm {
-                    vm = v.abs();
-                    im = k;
-                }
-            }
-            eprintln!(
-                "cyc rel {rel:.3e} max|r| {vm:.3e} at X {:.3} Y {:.3} P {:.4e} H {:.4e} h0 {:.6e} I {:.8} g {:.8}",
-                lv.x[im % lv.nx], lv.y[im / lv.nx], lv.p[im], lv.h[im], hier_h0_dbg(), lv.integral(), lv.g
-            );
-        }
         fb = (lv.integral() - lv.g).abs() / lv.g;
         let hc = centre(&hier);
         if !(rel.is_finite() && hier.h0.is_finite() && hc.is_finite()) {
@@ -375,10 +362,6 @@ fn iterate(
         residual,
         fb,
     })
-}
-
-fn hier_h0_dbg() -> f64 {
-    0.0
 }
 
 fn h_estimate(sc: &Scales) -> f64 {
