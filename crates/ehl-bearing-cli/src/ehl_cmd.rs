@@ -57,14 +57,17 @@ pub struct EhlArgs {
     /// Transverse half-width of the domain in semi-axes a_y (default from the solver settings).
     #[arg(long)]
     pub half_width: Option<f64>,
+    /// Largest number of multigrid cycles (default from the solver settings, 40).
+    #[arg(long)]
+    pub max_cycles: Option<usize>,
     /// Write pressure.csv and film.csv (long format x_m,y_m,value; Pa and m) into this directory.
     #[arg(long, value_name = "DIR")]
     pub fields: Option<PathBuf>,
     /// Moes load parameter M = W·U^(-3/4) (dimensionless mode).
-    #[arg(long, requires = "moes_l")]
+    #[arg(long, requires = "moes_l", allow_negative_numbers = true)]
     pub moes_m: Option<f64>,
     /// Moes material parameter L = G·U^(1/4) (dimensionless mode).
-    #[arg(long, requires = "moes_m")]
+    #[arg(long, requires = "moes_m", allow_negative_numbers = true)]
     pub moes_l: Option<f64>,
     /// Ry/Rx in the dimensionless mode (default 1).
     #[arg(long, default_value_t = 1.0)]
@@ -84,6 +87,9 @@ fn settings(args: &EhlArgs) -> EhlSettings {
     }
     if let Some(v) = args.inlet {
         s.inlet = Some(v);
+    }
+    if let Some(v) = args.max_cycles {
+        s.max_cycles = v;
     }
     if let Some(v) = args.half_width {
         s.half_width = Some(v);
@@ -110,6 +116,7 @@ fn json(r: &EhlSolution) -> serde_json::Value {
         "grid": r.grid,
         "cycles": r.cycles,
         "continuation_steps": r.continuation_steps,
+        "attempts": r.attempts,
         "seconds": r.seconds,
         "residual_history": r.residual_history,
     })
@@ -151,8 +158,8 @@ pub fn table(r: &EhlSolution) -> String {
     let _ = writeln!(s, "  grid                 {} × {}", r.grid[0], r.grid[1]);
     let _ = writeln!(
         s,
-        "  cycles               {} ({} continuation steps)",
-        r.cycles, r.continuation_steps
+        "  cycles               {} ({} starts, {} continuation steps)",
+        r.cycles, r.attempts, r.continuation_steps
     );
     let _ = writeln!(s, "  wall time            {:.3} s", r.seconds);
     s

@@ -169,25 +169,33 @@ impl Deformation {
         self.fx
             .process_with_scratch(&mut self.rows, &mut self.scratch);
         // Transpose into columns (zero-padded in y), forward along y, multiply, inverse along y.
-        for ix in 0..lx {
+        // The rows are real, so their spectra are Hermitian in x: only the columns
+        // 0..=lx/2 are needed; the others are their complex conjugates.
+        let nc = lx / 2 + 1;
+        for ix in 0..nc {
             let col = &mut self.cols[ix * ly..(ix + 1) * ly];
-            for j in 0..ny {
-                col[j] = self.rows[j * lx + ix];
+            for (j, c) in col.iter_mut().enumerate().take(ny) {
+                *c = self.rows[j * lx + ix];
             }
             for c in col[ny..].iter_mut() {
                 *c = Complex::new(0.0, 0.0);
             }
         }
+        let used = nc * ly;
         self.fy
-            .process_with_scratch(&mut self.cols, &mut self.scratch);
-        for (c, k) in self.cols.iter_mut().zip(&self.kernel_hat) {
+            .process_with_scratch(&mut self.cols[..used], &mut self.scratch);
+        for (c, k) in self.cols[..used].iter_mut().zip(&self.kernel_hat) {
             *c *= *k;
         }
         self.fyi
-            .process_with_scratch(&mut self.cols, &mut self.scratch);
-        for ix in 0..lx {
+            .process_with_scratch(&mut self.cols[..used], &mut self.scratch);
+        for ix in 0..nc {
             for j in 0..ny {
-                self.rows[j * lx + ix] = self.cols[ix * ly + j];
+                let v = self.cols[ix * ly + j];
+                self.rows[j * lx + ix] = v;
+                if ix > 0 && ix < lx - ix {
+                    self.rows[j * lx + (lx - ix)] = v.conj();
+                }
             }
         }
         self.fxi

@@ -79,10 +79,11 @@ pub struct EhlSettings {
     /// Points per side on the coarsest level, 2^k + 1 ≥ 9 (default 33).
     pub coarsest: usize,
     /// Inlet length upstream of the contact centre, in a_x. `None` (default): automatic,
-    /// max(min(10.5, 3 + 1.5·a_y/a_x), min(30, 1 + 3.5·√(2·H_est))) with H_est = the NVM
-    /// central film in units a_x²/Rx: 4.5 for a circular contact at moderate load, 10.5 from
-    /// Ry/Rx ≈ 12 on, longer at light load where the inlet zone is long (domain-convergence study
-    /// in docs/ehl.md). The x-line relaxation wants (inlet + outlet)/(2·half_width) ≲ a_y/a_x.
+    /// max(e − max(e − 6, 0)·f, min(30, 1 + 3.5·√(2·H_est))) with e = min(10.5, 3 + 1.5·a_y/a_x),
+    /// f = clamp(log10(M/100), 0, 1) and H_est the NVM central film in units a_x²/Rx: 4.5 for a
+    /// circular contact at moderate load; for Ry/Rx ≳ 12 10.5 at M ≤ 100 falling to 6 at
+    /// M ≥ 1000; longer at light load (domain-convergence study in docs/ehl.md). The x-line
+    /// relaxation wants (inlet + outlet)/(2·half_width) ≲ a_y/a_x.
     pub inlet: Option<f64>,
     /// Outlet length downstream of the centre, in a_x (default 1.5).
     pub outlet: f64,
@@ -119,7 +120,7 @@ pub struct EhlSettings {
 }
 
 impl Default for EhlSettings {
-    /// Defaults: 257 × 257 points, automatic inlet (4.5 a_x circular to 10.5 a_x elongated),
+    /// Defaults: 257 × 257 points, automatic inlet (4.5 a_x circular, 6 to 10.5 a_x elongated),
     /// outlet 1.5 a_x, automatic half-width (3 a_y circular to 2 a_y elongated) (see docs/ehl.md for the domain- and grid-convergence
     /// study behind them).
     fn default() -> Self {
@@ -263,6 +264,9 @@ pub struct EhlSolution {
     pub residual_history: Vec<f64>,
     /// Continuation steps in load used (0 when the direct start converged).
     pub continuation_steps: usize,
+    /// Starts tried: 1 = the given settings; 2–5 = more conservative relaxation after a
+    /// divergence or stagnation; 6 = load continuation with the most conservative settings.
+    pub attempts: usize,
     /// Fields on the finest grid.
     pub fields: EhlFields,
 }

@@ -34,7 +34,7 @@ fn validate_contact(c: &EhlContact) -> Result<(), EhlError> {
     check_pos("lubricant.viscosity [Pa s]", c.lubricant.viscosity)?;
     check_pos("lubricant.density [kg/m3]", c.lubricant.density)?;
     let a = c.lubricant.pressure_viscosity;
-    if !(a.is_finite() && a >= 0.0 && a < 1e-6) {
+    if !(a.is_finite() && (0.0..1e-6).contains(&a)) {
         return Err(invalid(
             "lubricant.pressure_viscosity [1/Pa]",
             a,
@@ -78,7 +78,7 @@ fn validate_settings(s: &EhlSettings) -> Result<(), EhlError> {
         ("settings.outlet", s.outlet),
         ("settings.half_width", s.half_width.unwrap_or(2.0)),
     ] {
-        if !(v.is_finite() && v >= 1.05 && v <= 100.0) {
+        if !(v.is_finite() && (1.05..=100.0).contains(&v)) {
             return Err(invalid(f, v, "1.05 to 100 semi-axes"));
         }
     }
@@ -193,9 +193,13 @@ fn setup(c: &EhlContact, s: &EhlSettings) -> Result<(Problem, Scales), EhlError>
         u,
     };
     let h_est = h_estimate(&sc);
-    let auto = (3.0 + 1.5 * ay / ax)
-        .min(10.5)
-        .max((1.0 + 3.5 * (2.0 * h_est).sqrt()).min(30.0));
+    // Elongated contacts need a long inlet at moderate load (10.5 a_x); at high load the inlet
+    // zone shortens and 6 a_x suffices (log-linear in M from M = 100 to 1000); light loads get
+    // a longer inlet from the film estimate.
+    let elong = (3.0 + 1.5 * ay / ax).min(10.5);
+    let f = (m / 100.0).log10().clamp(0.0, 1.0);
+    let auto =
+        (elong - (elong - 6.0).max(0.0) * f).max((1.0 + 3.5 * (2.0 * h_est).sqrt()).min(30.0));
     pr.x_min = -s.inlet.unwrap_or(auto);
     Ok((pr, sc))
 }
@@ -326,19 +330,6 @@ fn iterate(
         let lv = &mut hier.levels[top];
         let (sr, sw) = lv.residual(pr);
         let rel = if sw > 0.0 { sr / sw } else { f64::INFINITY };
-        if std::env::var("EHL_DEBUG").is_ok() {
-            let (mut im, mut vm) = (0, 0.0);
-            for (k, v) in lv.delta_ref().iter().enumerate() {
-                if v.abs() > vm {
-                    vm = v.abs();
-                    im = k;
-                }
-            }
-            eprintln!(
-                "cyc rel {rel:.3e} max|r| {vm:.3e} at X {:.3} Y {:.3} P {:.4e} H {:.4e} h0 {:.6e} I {:.8} g {:.8}",
-                lv.x[im % lv.nx], lv.y[im / lv.nx], lv.p[im], lv.h[im], hier_h0_dbg(), lv.integral(), lv.g
-            );
-        }
         fb = (lv.integral() - lv.g).abs() / lv.g;
         let hc = centre(&hier);
         if !(rel.is_finite() && hier.h0.is_finite() && hc.is_finite()) {
@@ -357,6 +348,11 @@ fn iterate(
         if history.len() > 3 && rel > 100.0 * best.max(1e-6) {
             return Err((cycles, residual));
         }
+        // Stagnation: less than a factor 2 gained over the last 6 cycles, far from tolerance.
+        let n = history.len();
+        if n >= 12 && rel > 10.0 * s.tol_residual && history[n - 7] < 2.0 * rel {
+            break;
+        }
     }
     Ok(Core {
         hier,
@@ -366,10 +362,6 @@ fn iterate(
         residual,
         fb,
     })
-}
-
-fn hier_h0_dbg() -> f64 {
-    0.0
 }
 
 fn h_estimate(sc: &Scales) -> f64 {
@@ -425,6 +417,7 @@ fn finish(
         seconds: t0.elapsed().as_secs_f64(),
         residual_history: core.history,
         continuation_steps: steps,
+        attempts: 1,
         fields,
     }
 }
@@ -435,13 +428,65 @@ pub fn solve_steady(c: &EhlContact, s: &EhlSettings) -> Result<EhlSolution, EhlE
     let t0 = Instant::now();
     let (pr, sc) = setup(c, s)?;
     let h_est = h_estimate(&sc);
-    match iterate(&pr, s, Start::Hertz, h_est, s.max_cycles) {
-        Ok(core) => {
-            let n = core.cycles;
-            Ok(finish(c, &sc, core, n, 0, t0))
+    let mut cycles = 0;
+    let mut best: Option<(Core, usize)> = None;
+    let ladder = fallback_ladder(s);
+    for (attempt, sk) in ladder.iter().enumerate() {
+        match iterate(&pr, sk, Start::Hertz, h_est, s.max_cycles) {
+            Ok(core) => {
+                cycles += core.cycles;
+                if core.converged {
+                    let mut r = finish(c, &sc, core, cycles, 0, t0);
+                    r.attempts = attempt + 1;
+                    return Ok(r);
+                }
+                if best.as_ref().map_or(true, |b| core.residual < b.0.residual) {
+                    best = Some((core, attempt + 1));
+                }
+            }
+            Err((cyc, _)) => cycles += cyc,
         }
-        Err((cyc, _)) => continuation(c, s, &sc, cyc, t0),
     }
+    let conservative = ladder[ladder.len() - 1];
+    match continuation(c, &conservative, &sc, cycles, t0) {
+        Ok(r) if r.converged => Ok(r),
+        other => match best {
+            Some((core, attempt)) => {
+                let mut r = finish(c, &sc, core, cycles, 0, t0);
+                r.attempts = attempt;
+                Ok(r)
+            }
+            None => other,
+        },
+    }
+}
+
+/// The settings tried in turn when a start diverges or stagnates: as given; a smaller h0 gain;
+/// a wider Jacobi-distributive zone; both with smaller distributive steps; all more conservative
+/// still (also used for load continuation).
+fn fallback_ladder(s: &EhlSettings) -> [EhlSettings; 5] {
+    let a = EhlSettings {
+        h0_gain: s.h0_gain * 0.4,
+        ..*s
+    };
+    let b = EhlSettings {
+        jd_threshold: s.jd_threshold.max(1.0),
+        ..*s
+    };
+    let c = EhlSettings {
+        h0_gain: s.h0_gain * 0.4,
+        jd_threshold: s.jd_threshold.max(1.0),
+        omega_jd: s.omega_jd.min(0.15),
+        ..*s
+    };
+    let d = EhlSettings {
+        h0_gain: s.h0_gain * 0.2,
+        jd_threshold: s.jd_threshold.max(1.0),
+        omega_jd: s.omega_jd.min(0.15),
+        omega_gs: s.omega_gs.min(0.3),
+        ..*s
+    };
+    [*s, a, b, c, d]
 }
 
 /// Load continuation: solve at M_k = M_start·2^k (dimensionless pressure carried over), up to M.
@@ -482,7 +527,9 @@ fn continuation(
                 cycles_total += core.cycles;
                 last_res = core.residual;
                 if last {
-                    return Ok(finish(c, &sck, core, cycles_total, steps, t0));
+                    let mut r = finish(c, &sck, core, cycles_total, steps, t0);
+                    r.attempts = 6;
+                    return Ok(r);
                 }
                 p_prev = Some(core.hier.levels.last().expect("level").p.clone());
             }
