@@ -13,6 +13,50 @@ pub struct EquilibriumArgs {
     /// Print JSON in SI units instead of a table.
     #[arg(long)]
     pub json: bool,
+    /// Also solve the steady EHL problem of every loaded contact and report its central and
+    /// minimum film (uses the case's [lubricant]).
+    #[arg(long)]
+    pub film: bool,
+    /// Grid of the EHL solutions for --film (2^k + 1; default 129).
+    #[arg(long, default_value_t = 129, requires = "film")]
+    pub grid: usize,
+}
+
+/// EHL film of one contact (None when unloaded).
+pub struct Film {
+    /// The steady solution, or the solver's message.
+    pub result: Result<ehl_bearing::ehl::EhlSolution, String>,
+}
+
+/// Solve the steady EHL problem of every loaded contact, in parallel; index 2j inner, 2j+1 outer.
+pub fn films(case: &Case, eq: &Equilibrium, grid: usize) -> Vec<Option<Film>> {
+    use ehl_bearing::ehl::{solve_steady, EhlContact, EhlSettings};
+    use rayon::prelude::*;
+    let settings = EhlSettings {
+        grid,
+        ..EhlSettings::default()
+    };
+    let e_reduced = case.bearing.reduced_modulus();
+    let contacts: Vec<_> = eq.balls.iter().flat_map(|b| [b.inner, b.outer]).collect();
+    contacts
+        .par_iter()
+        .map(|c| {
+            if c.load <= 0.0 || c.sum_velocity <= 0.0 {
+                return None;
+            }
+            let ec = EhlContact {
+                load: c.load,
+                rx: c.rx,
+                ry: c.ry,
+                sum_velocity: c.sum_velocity,
+                e_reduced,
+                lubricant: case.lubricant,
+            };
+            Some(Film {
+                result: solve_steady(&ec, &settings).map_err(|e| e.to_string()),
+            })
+        })
+        .collect()
 }
 
 /// Run `equilibrium`.
@@ -21,10 +65,36 @@ pub fn run(args: &EquilibriumArgs) -> anyhow::Result<()> {
     let laws = ContactLaws::hertz(&case.bearing)?;
     let eq = solve_equilibrium(&case.bearing, &laws, &case.operating, &case.settings)
         .with_context(|| format!("solving {}", args.case.display()))?;
+    let films = if args.film {
+        Some(films(&case, &eq, args.grid))
+    } else {
+        None
+    };
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&equilibrium_json(&eq))?);
+        let mut v = equilibrium_json(&eq);
+        if let Some(f) = &films {
+            for (j, b) in v["balls"].as_array_mut().into_iter().flatten().enumerate() {
+                for (k, race) in ["inner", "outer"].iter().enumerate() {
+                    b[race]["film"] = film_json(&f[2 * j + k]);
+                }
+            }
+        }
+        println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         print!("{}", table(&case, &eq));
+        if let Some(f) = &films {
+            print!("{}", film_table(&case, &eq, f));
+        }
+    }
+    if let Some(f) = &films {
+        let failed = f
+            .iter()
+            .flatten()
+            .filter(|x| !matches!(&x.result, Ok(s) if s.converged))
+            .count();
+        if failed > 0 {
+            anyhow::bail!("{failed} EHL contact solution(s) did not converge (see the film table)");
+        }
     }
     Ok(())
 }
@@ -123,6 +193,77 @@ pub fn table(case: &Case, eq: &Equilibrium) -> String {
                 .collect::<Vec<_>>()
                 .join(" ")
         );
+    }
+    s
+}
+
+fn film_json(f: &Option<Film>) -> serde_json::Value {
+    match f {
+        None => serde_json::Value::Null,
+        Some(Film { result: Ok(s) }) => serde_json::json!({
+            "converged": s.converged,
+            "h_central": s.h_central,
+            "h_min": s.h_min,
+            "p_max": s.p_max,
+            "approach": s.approach,
+            "M": s.moes_m,
+            "L": s.moes_l,
+            "ry_over_rx": s.ry_over_rx,
+            "force_balance_residual": s.force_balance_residual,
+            "residual": s.residual,
+        }),
+        Some(Film { result: Err(e) }) => serde_json::json!({ "converged": false, "error": e }),
+    }
+}
+
+/// Film table in engineering units.
+pub fn film_table(case: &Case, eq: &Equilibrium, films: &[Option<Film>]) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    let l = &case.lubricant;
+    let _ = writeln!(
+        s,
+        "\nEHL films ({}lubricant: η0 = {} Pa·s, α = {:.3e} 1/Pa, {:?}, {:?})",
+        if case.lubricant_given { "" } else { "default " },
+        l.viscosity,
+        l.pressure_viscosity,
+        l.viscosity_model,
+        l.density_model
+    );
+    let _ = writeln!(
+        s,
+        "{:>4} {:>5} | {:>8} {:>7} {:>8} {:>8} {:>8} {:>7} | conv",
+        "ball", "race", "Q N", "M", "L", "h_c µm", "h_min µm", "p GPa"
+    );
+    for (j, b) in eq.balls.iter().enumerate() {
+        for (k, (race, c)) in [("inner", &b.inner), ("outer", &b.outer)]
+            .iter()
+            .enumerate()
+        {
+            match &films[2 * j + k] {
+                None => {
+                    let _ = writeln!(s, "{j:>4} {race:>5} | {:>8.2}  unloaded", c.load);
+                }
+                Some(Film { result: Ok(x) }) => {
+                    let _ = writeln!(
+                        s,
+                        "{:>4} {:>5} | {:>8.2} {:>7.1} {:>8.2} {:>8.4} {:>8.4} {:>7.3} | {}",
+                        j,
+                        race,
+                        c.load,
+                        x.moes_m,
+                        x.moes_l,
+                        x.h_central * 1e6,
+                        x.h_min * 1e6,
+                        x.p_max * 1e-9,
+                        if x.converged { "yes" } else { "NO" }
+                    );
+                }
+                Some(Film { result: Err(e) }) => {
+                    let _ = writeln!(s, "{j:>4} {race:>5} | {:>8.2}  failed: {e}", c.load);
+                }
+            }
+        }
     }
     s
 }

@@ -1,6 +1,7 @@
 //! `ehl-bearing` command line: thin layer over the `ehl-bearing` library.
 
 mod characterize_cmd;
+mod contact_cmd;
 mod ehl_cmd;
 mod equilibrium_cmd;
 mod plot;
@@ -25,15 +26,20 @@ enum Command {
     Characterize(characterize_cmd::CharacterizeArgs),
     /// Load × speed study: per-point results, CSV, trend curves and plots (resumable).
     Study(study_cmd::StudyArgs),
+    /// One steady EHL point contact (contact file or Moes parameters).
+    Ehl(ehl_cmd::EhlArgs),
+    /// Characterize one lubricated contact: fit Q = K·δ^d + ΔF to EHL solutions.
+    Contact(contact_cmd::ContactArgs),
 }
 
 fn main() -> ExitCode {
-    let _ = (ehl_cmd::PLACEHOLDER, plot::PLACEHOLDER);
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Equilibrium(a) => equilibrium_cmd::run(a),
         Command::Characterize(a) => characterize_cmd::run(a),
         Command::Study(a) => study_cmd::run(a),
+        Command::Ehl(a) => ehl_cmd::run(a),
+        Command::Contact(a) => contact_cmd::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

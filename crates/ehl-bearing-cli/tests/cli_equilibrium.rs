@@ -104,3 +104,31 @@ fn bad_input_exits_non_zero_with_the_field_named() {
         .unwrap();
     assert!(!out.status.success());
 }
+
+#[test]
+fn film_option_reports_ehl_films_of_every_contact() {
+    // Coarse grid for speed: the check is that every loaded contact gets a converged film with
+    // h_min < h_c, in m, of the order of a micrometre for the seed (docs/ehl.md has the accuracy).
+    let out = bin()
+        .args(["equilibrium", SEED, "--json", "--film", "--grid", "65"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    for b in v["balls"].as_array().unwrap() {
+        for race in ["inner", "outer"] {
+            let f = &b[race]["film"];
+            assert_eq!(f["converged"], Value::Bool(true), "{f}");
+            let (hc, hm) = (
+                f["h_central"].as_f64().unwrap(),
+                f["h_min"].as_f64().unwrap(),
+            );
+            assert!(hm > 0.0 && hm < hc && hc > 1e-7 && hc < 2e-6, "{hc} {hm}");
+            assert!(f["M"].as_f64().unwrap() > 10.0);
+        }
+    }
+}

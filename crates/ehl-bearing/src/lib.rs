@@ -11,6 +11,7 @@
 
 pub mod bearing;
 pub mod characterize;
+pub mod contact;
 pub mod contact_law;
 pub mod ehl;
 pub mod error;

@@ -1,11 +1,272 @@
-//! Elastohydrodynamic point contact (placeholder: the solver is being written).
+//! Steady isothermal elastohydrodynamic (EHL) point contact.
+//!
+//! The solver follows Venner & Lubrecht, *Multilevel Methods in Lubrication* (2000): the
+//! Reynolds equation with cavitation by projection (p ≥ 0), the film
+//! h = h0 + x²/2Rx + y²/2Ry + v(x, y) with the elastic deformation v of the half-space, and the
+//! force balance through h0, made dimensionless with the Hertz semi-axes (a_x along the rolling
+//! direction x, a_y transverse) and the Hertz pressure p_h; FAS multigrid with a full-multigrid
+//! start, line relaxation along the rolling direction (Gauss–Seidel / Jacobi-distributive), the
+//! deformation by DC-FFT on every level, load continuation when the direct start fails.
+//! Everything in SI at the interface; see `docs/ehl.md` for the validation.
+//!
+//! Moes' groups (used for inputs and outputs; the seed paper's eq. 7 is wrong): W = w/(E′Rx²),
+//! U = η0·u_s/(E′Rx) with the SUM velocity u_s = u1 + u2, G = αE′, M = W·U^(−3/4),
+//! L = G·U^(1/4), H_Moes = (h/Rx)·U^(−1/2).
 
+pub mod deformation;
+pub mod formulas;
+pub mod input;
+mod multigrid;
+mod steady;
+
+use serde::{Deserialize, Serialize};
 use thiserror::Error;
+
+pub use crate::material::{DensityModel, ViscosityModel};
+pub use steady::{solve_moes, solve_steady, solve_steady_from};
 
 /// Errors of the EHL solver.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum EhlError {
-    /// Invalid input.
-    #[error("invalid EHL input: {0}")]
-    Invalid(String),
+    /// An input is out of its valid range.
+    #[error("invalid EHL input: {field} = {value} (valid range: {range})")]
+    Invalid {
+        /// Name of the offending input.
+        field: &'static str,
+        /// Its value (in the unit of the field).
+        value: f64,
+        /// The valid range, in words.
+        range: &'static str,
+    },
+    /// A contact file could not be read or has an invalid entry.
+    #[error("{0}")]
+    File(String),
+    /// The iteration produced non-finite numbers or blew up, also after load continuation.
+    #[error(
+        "EHL solver diverged after {cycles} cycles (M = {m:.4}, L = {l:.4}, Ry/Rx = {ratio:.4}, \
+         last relative residual {residual:e})"
+    )]
+    Diverged {
+        /// Multigrid cycles done.
+        cycles: usize,
+        /// Moes load parameter of the case.
+        m: f64,
+        /// Moes material parameter of the case.
+        l: f64,
+        /// Ry/Rx of the case.
+        ratio: f64,
+        /// Last finite relative residual.
+        residual: f64,
+    },
+}
+
+/// Multigrid cycle type.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CycleType {
+    /// V-cycle: one coarse-grid correction per level.
+    V,
+    /// W-cycle: two coarse-grid corrections per level (more robust, ~1.5× the work).
+    W,
+}
+
+/// Numerical settings of the steady solver. Lengths of the domain are in units of the Hertz
+/// semi-axis of the respective direction (a_x along x, a_y along y).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct EhlSettings {
+    /// Grid points per side on the finest level, 2^k + 1, from 17 to 1025 (default 257).
+    pub grid: usize,
+    /// Points per side on the coarsest level, 2^k + 1 ≥ 9 (default 33).
+    pub coarsest: usize,
+    /// Inlet length upstream of the contact centre, in a_x. `None` (default): automatic,
+    /// max(e − max(e − 6, 0)·f, min(30, 1 + 3.5·√(2·H_est))) with e = min(10.5, 3 + 1.5·a_y/a_x),
+    /// f = clamp(log10(M/100), 0, 1) and H_est the NVM central film in units a_x²/Rx: 4.5 for a
+    /// circular contact at moderate load; for Ry/Rx ≳ 12 10.5 at M ≤ 100 falling to 6 at
+    /// M ≥ 1000; longer at light load (domain-convergence study in docs/ehl.md). The x-line
+    /// relaxation wants (inlet + outlet)/(2·half_width) ≲ a_y/a_x.
+    pub inlet: Option<f64>,
+    /// Outlet length downstream of the centre, in a_x (default 1.5).
+    pub outlet: f64,
+    /// Transverse half-width of the domain, in a_y. `None` (default): automatic,
+    /// clamp(3.5 − 0.5·a_y/a_x, 2, 3), i.e. 3 for a circular contact, 2 from Ry/Rx ≈ 4 on.
+    pub half_width: Option<f64>,
+    /// Largest number of multigrid cycles on the finest grid (default 40).
+    pub max_cycles: usize,
+    /// Convergence: relative residual Σ|r|/Σ|∂(ρ̄H)/∂X| below this (dimensionless, default 1e-4).
+    pub tol_residual: f64,
+    /// Convergence: relative force-balance error |∬p − w|/w below this (default 1e-5).
+    pub tol_force: f64,
+    /// Convergence: relative change of h_c and h0 over the last cycle below this (default 1e-5).
+    pub tol_film: f64,
+    /// Cycle type (default W).
+    pub cycle: CycleType,
+    /// Relaxation sweeps before the coarse-grid correction (default 2).
+    pub pre_sweeps: usize,
+    /// Relaxation sweeps after the coarse-grid correction (default 1).
+    pub post_sweeps: usize,
+    /// Relaxation sweeps on the coarsest grid per visit, each followed by an h0 update (default 10).
+    pub coarse_sweeps: usize,
+    /// Under-relaxation of Gauss–Seidel line changes (default 0.4).
+    pub omega_gs: f64,
+    /// Under-relaxation of Jacobi-distributive changes (default 0.3).
+    pub omega_jd: f64,
+    /// Gain of the h0 update on the coarsest grid, ΔH0 = −gain·(2π/3 − ∬P), dimensionless (default 0.05).
+    pub h0_gain: f64,
+    /// Switch to Jacobi-distributive relaxation where the Poiseuille diagonal is below this times
+    /// the wedge-term diagonal (default 0.3).
+    pub jd_threshold: f64,
+    /// FAS cycles on each intermediate level of the full-multigrid start (default 2).
+    pub fmg_cycles: usize,
+}
+
+impl Default for EhlSettings {
+    /// Defaults: 257 × 257 points, automatic inlet (4.5 a_x circular, 6 to 10.5 a_x elongated),
+    /// outlet 1.5 a_x, automatic half-width (3 a_y circular to 2 a_y elongated) (see docs/ehl.md for the domain- and grid-convergence
+    /// study behind them).
+    fn default() -> Self {
+        EhlSettings {
+            grid: 257,
+            coarsest: 33,
+            inlet: None,
+            outlet: 1.5,
+            half_width: None,
+            max_cycles: 40,
+            tol_residual: 1e-4,
+            tol_force: 1e-5,
+            tol_film: 1e-5,
+            cycle: CycleType::W,
+            pre_sweeps: 2,
+            post_sweeps: 1,
+            coarse_sweeps: 10,
+            omega_gs: 0.4,
+            omega_jd: 0.3,
+            h0_gain: 0.05,
+            jd_threshold: 0.3,
+            fmg_cycles: 2,
+        }
+    }
+}
+
+/// One lubricated elliptical point contact, SI units. x is the rolling (entrainment) direction.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct EhlContact {
+    /// Normal load w, N (> 0).
+    pub load: f64,
+    /// Reduced curvature radius in the rolling direction Rx, m (> 0, Rx ≤ Ry).
+    pub rx: f64,
+    /// Reduced curvature radius transverse to rolling Ry, m (1 ≤ Ry/Rx ≤ 1000).
+    pub ry: f64,
+    /// Sum velocity u_s = u1 + u2, m/s (> 0).
+    pub sum_velocity: f64,
+    /// Reduced modulus E′, Pa: 2/E′ = (1−ν1²)/E1 + (1−ν2²)/E2.
+    pub e_reduced: f64,
+    /// Lubricant and its rheology models.
+    pub lubricant: crate::material::Lubricant,
+}
+
+/// A dimensionless case in Moes' parameters, for benchmarks and comparisons with the
+/// literature.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct MoesCase {
+    /// Moes load parameter M = W·U^(−3/4) (> 0).
+    pub m: f64,
+    /// Moes material parameter L = G·U^(1/4) (≥ 0).
+    pub l: f64,
+    /// Radius ratio Ry/Rx, in [1, 1000].
+    pub ry_over_rx: f64,
+    /// Viscosity model.
+    pub viscosity: ViscosityModel,
+    /// Density model.
+    pub density: DensityModel,
+    /// α·p0 with Roelands' p0 = 1.96e8 Pa (dimensionless; default 4.312 = 2.2e-8 1/Pa × 1.96e8 Pa,
+    /// the project's default oil). With L it fixes the Hertz pressure in Pa, which Roelands and
+    /// Dowson–Higginson need.
+    pub alpha_p0: f64,
+    /// ln(η0/η∞) = ln η0 + 9.67 with η0 in Pa·s (dimensionless; default 6.451 = ln 0.04 + 9.67).
+    pub ln_eta0_ratio: f64,
+}
+
+impl MoesCase {
+    /// A case with the project's default oil constants (α p0 = 4.312, ln η0 + 9.67 = 6.451).
+    pub fn new(m: f64, l: f64, ry_over_rx: f64, v: ViscosityModel, d: DensityModel) -> Self {
+        MoesCase {
+            m,
+            l,
+            ry_over_rx,
+            viscosity: v,
+            density: d,
+            alpha_p0: 2.2e-8 * crate::material::ROELANDS_P0,
+            ln_eta0_ratio: 0.04_f64.ln() + crate::material::ROELANDS_LN_ETA_INF,
+        }
+    }
+}
+
+/// Pressure and film fields on the finest grid, SI units. Arrays are row-major with x fastest:
+/// value at (x[i], y[j]) is at index i + nx·j.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EhlFields {
+    /// Rolling-direction coordinates of the grid nodes, m (contact centre at 0).
+    pub x: Vec<f64>,
+    /// Transverse coordinates of the grid nodes, m.
+    pub y: Vec<f64>,
+    /// Pressure, Pa.
+    pub p: Vec<f64>,
+    /// Film thickness, m.
+    pub h: Vec<f64>,
+    /// Dimensionless pressure P = p/p_h.
+    pub p_dimensionless: Vec<f64>,
+    /// Dimensionless film H = h·Rx/a_x².
+    pub h_dimensionless: Vec<f64>,
+    /// Hertz semi-axis along x, m.
+    pub a_x: f64,
+    /// Hertz semi-axis along y, m.
+    pub a_y: f64,
+}
+
+/// Result of a steady EHL solution. Dimensional values in SI; Moes-scaled values dimensionless.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EhlSolution {
+    /// True when all convergence criteria of [`EhlSettings`] were met.
+    pub converged: bool,
+    /// Moes load parameter M.
+    pub moes_m: f64,
+    /// Moes material parameter L.
+    pub moes_l: f64,
+    /// Ry/Rx.
+    pub ry_over_rx: f64,
+    /// Central film thickness at the geometric contact centre x = y = 0, m.
+    pub h_central: f64,
+    /// Minimum film thickness over the grid, m.
+    pub h_min: f64,
+    /// Maximum pressure, Pa.
+    pub p_max: f64,
+    /// Hertz maximum pressure of the same load, Pa.
+    pub p_hertz: f64,
+    /// Approach of distant points δ = −h0, m (tends to the Hertz deflection at high load).
+    pub approach: f64,
+    /// Hertz deflection of the same load, m.
+    pub approach_hertz: f64,
+    /// Central film in Moes scaling, (h_c/Rx)·U^(−1/2).
+    pub h_central_moes: f64,
+    /// Minimum film in Moes scaling, (h_min/Rx)·U^(−1/2).
+    pub h_min_moes: f64,
+    /// Relative force-balance error |∬p dA − w|/w.
+    pub force_balance_residual: f64,
+    /// Final relative residual of the Reynolds equation, Σ|r|/Σ|∂(ρ̄H)/∂X|.
+    pub residual: f64,
+    /// Grid [nx, ny] of the finest level.
+    pub grid: [usize; 2],
+    /// Multigrid cycles on the finest grid (all continuation steps included).
+    pub cycles: usize,
+    /// Wall-clock time, s.
+    pub seconds: f64,
+    /// Relative residual after each finest-grid cycle.
+    pub residual_history: Vec<f64>,
+    /// Continuation steps in load used (0 when the direct start converged).
+    pub continuation_steps: usize,
+    /// Starts tried: 1 = the given settings; 2–5 = more conservative relaxation after a
+    /// divergence or stagnation; 6 = load continuation with the most conservative settings.
+    pub attempts: usize,
+    /// Fields on the finest grid.
+    pub fields: EhlFields,
 }

@@ -1,0 +1,220 @@
+//! `ehl-bearing contact CONTACT.toml [--method quasi-static|harmonic] [--json] [-o DIR]`:
+//! characterize one lubricated contact by the law Q = K·δ^d + ΔF.
+
+use anyhow::{bail, Context, Result};
+use ehl_bearing::contact::{characterize_quasi_static, ContactFit, QuasiStaticSettings};
+use ehl_bearing::ehl;
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+/// How the force–approach data are produced.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Method {
+    /// A family of steady EHL solutions over w0·(1 ± ε).
+    QuasiStatic,
+    /// Transient EHL with the ball's equation of motion under w0·(1 + ε·sin Ωt) (not available yet).
+    Harmonic,
+}
+
+/// Arguments of `contact`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct ContactArgs {
+    /// Contact file (TOML): load_n, rx_mm, ry_mm, sum_velocity_m_s, materials, [lubricant].
+    #[arg(value_name = "CONTACT.toml")]
+    pub contact: PathBuf,
+    /// Characterization method.
+    #[arg(long, value_enum, default_value_t = Method::QuasiStatic)]
+    pub method: Method,
+    /// Relative load amplitude ε (default 0.2).
+    #[arg(long)]
+    pub amplitude: Option<f64>,
+    /// Number of steady solutions of the quasi-static family (default 7).
+    #[arg(long)]
+    pub points: Option<usize>,
+    /// Grid points per side of the EHL solutions (2^k + 1; default 129).
+    #[arg(long)]
+    pub grid: Option<usize>,
+    /// Print JSON (SI units) instead of a table.
+    #[arg(long)]
+    pub json: bool,
+    /// Write samples.csv, fit.json and the plot force_approach.{png,svg} into this directory.
+    #[arg(short = 'o', long = "output", value_name = "DIR")]
+    pub output: Option<PathBuf>,
+}
+
+/// The result as JSON, SI units.
+pub fn fit_json(f: &ContactFit) -> serde_json::Value {
+    serde_json::json!({
+        "method": f.method,
+        "K": f.k,
+        "d": f.d,
+        "delta_f": f.delta_f,
+        "c": f.c,
+        "std_errors": f.std_errors,
+        "r_squared": f.r_squared,
+        "rms_residual": f.rms_residual,
+        "delta_range": f.delta_range,
+        "excitation": f.excitation,
+        "converged": f.converged,
+        "seconds": f.seconds,
+        "load": f.load,
+        "approach": f.approach,
+        "M": f.moes_m,
+        "L": f.moes_l,
+        "ry_over_rx": f.ry_over_rx,
+        "samples": f.samples,
+    })
+}
+
+fn table(f: &ContactFit) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{} characterization: w0 = {:.2} N, M = {:.1}, L = {:.2}, Ry/Rx = {:.2}",
+        f.method, f.load, f.moes_m, f.moes_l, f.ry_over_rx
+    );
+    let _ = writeln!(
+        s,
+        "Q = K·δ^d + ΔF:  K = {:.5e} N/m^d (±{:.1e}),  d = {:.4} (±{:.4}),  ΔF = {:.3} N (±{:.3})",
+        f.k, f.std_errors.k, f.d, f.std_errors.d, f.delta_f, f.std_errors.delta_f
+    );
+    let _ = writeln!(
+        s,
+        "fit: R² = {:.8}, RMS residual {:.3e} N; δ range {:.4}–{:.4} µm; approach at w0 {:.4} µm",
+        f.r_squared,
+        f.rms_residual,
+        f.delta_range[0] * 1e6,
+        f.delta_range[1] * 1e6,
+        f.approach * 1e6
+    );
+    let _ = writeln!(
+        s,
+        "\n{:>10} {:>11} {:>10} {:>10} {:>9} {:>10} {:>5}",
+        "load N", "δ µm", "h_c µm", "h_min µm", "p_max GPa", "fit err N", "conv"
+    );
+    for x in &f.samples {
+        let q = f.k * x.approach.powf(f.d) + f.delta_f;
+        let _ = writeln!(
+            s,
+            "{:>10.3} {:>11.5} {:>10.5} {:>10.5} {:>9.4} {:>10.2e} {:>5}",
+            x.load,
+            x.approach * 1e6,
+            x.h_central * 1e6,
+            x.h_min * 1e6,
+            x.p_max * 1e-9,
+            q - x.load,
+            x.converged
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\n{} in {:.2} s",
+        if f.converged {
+            "converged"
+        } else {
+            "NOT CONVERGED (see the residuals of the samples)"
+        },
+        f.seconds
+    );
+    s
+}
+
+/// Q against δ: the EHL samples, the fitted law over and below the fitted range (with its
+/// extension), and the dry Hertz law of the same contact for comparison.
+fn plot_fit(f: &ContactFit, c: &ehl::EhlContact, dir: &std::path::Path) -> Result<()> {
+    use crate::plot::{line_chart, Series};
+    use ehl_bearing::ContactLaw;
+    let um = 1e6;
+    let [lo, hi] = f.delta_range;
+    let span = hi - lo;
+    let (a, b) = ((lo - 0.6 * span).max(0.3 * lo), hi + 0.3 * span);
+    let xs: Vec<f64> = (0..=200).map(|i| a + (b - a) * i as f64 / 200.0).collect();
+    let hertz = ehl_bearing::hertz::HertzGeometry::new(c.rx, c.ry, c.e_reduced)?;
+    let series = vec![
+        Series::markers(
+            "EHL steady solutions",
+            f.samples.iter().map(|s| s.approach * um).collect(),
+            f.samples.iter().map(|s| s.load).collect(),
+        ),
+        Series::line(
+            format!("fit K·δ^d + ΔF, d = {:.4}, ΔF = {:.2} N", f.d, f.delta_f),
+            xs.iter().map(|x| x * um).collect(),
+            xs.iter().map(|&x| f.law.force(x).0).collect(),
+        ),
+        Series::line(
+            "dry Hertz K_H·δ^1.5",
+            xs.iter().map(|x| x * um).collect(),
+            xs.iter().map(|&x| hertz.load_at(x)).collect(),
+        ),
+    ];
+    line_chart(
+        &dir.join("force_approach"),
+        &format!(
+            "Contact law, {} method (M = {:.0}, L = {:.1}, Ry/Rx = {:.1})",
+            f.method, f.moes_m, f.moes_l, f.ry_over_rx
+        ),
+        "approach δ (µm)",
+        "contact force Q (N)",
+        &series,
+    )
+}
+
+/// Run `contact`.
+pub fn run(args: &ContactArgs) -> Result<()> {
+    let text = std::fs::read_to_string(&args.contact)
+        .with_context(|| format!("reading {}", args.contact.display()))?;
+    let c = ehl::input::parse_contact_toml(&text)
+        .with_context(|| format!("in {}", args.contact.display()))?;
+    if args.method == Method::Harmonic {
+        bail!(
+            "method harmonic is not available yet: the transient EHL solver with the ball's equation \
+             of motion is not implemented; use --method quasi-static"
+        );
+    }
+    let mut s = QuasiStaticSettings::default();
+    if let Some(a) = args.amplitude {
+        s.amplitude = a;
+    }
+    if let Some(p) = args.points {
+        s.points = p;
+    }
+    if let Some(g) = args.grid {
+        s.ehl.grid = g;
+    }
+    let fit = characterize_quasi_static(&c, &s)?;
+    if let Some(dir) = &args.output {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+        let mut csv = String::from(
+            "load_n,approach_m,h_central_m,h_min_m,p_max_pa,residual,force_balance_residual,converged\n",
+        );
+        for x in &fit.samples {
+            let _ = writeln!(
+                csv,
+                "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{}",
+                x.load,
+                x.approach,
+                x.h_central,
+                x.h_min,
+                x.p_max,
+                x.residual,
+                x.force_balance_residual,
+                x.converged
+            );
+        }
+        std::fs::write(dir.join("samples.csv"), csv)?;
+        std::fs::write(
+            dir.join("fit.json"),
+            serde_json::to_string_pretty(&fit_json(&fit))?,
+        )?;
+        plot_fit(&fit, &c, dir)?;
+    }
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&fit_json(&fit))?);
+    } else {
+        print!("{}", table(&fit));
+    }
+    if !fit.converged {
+        bail!("the characterization did not converge (see the sample residuals above)");
+    }
+    Ok(())
+}

@@ -1,0 +1,234 @@
+//! Elastic deformation of the half-space by the discrete-convolution FFT method (DC-FFT,
+//! Liu, Wang & Liu 2000).
+//!
+//! The pressure is taken piecewise constant on rectangular cells of size `hx × hy` centred on the
+//! grid nodes. The exact influence coefficient of a uniform unit pressure on one cell is the
+//! integral of 1/r over the rectangle (Johnson, *Contact Mechanics*, §3.9):
+//! ∬ dx′dy′/√((x−x′)²+(y−y′)²) = [F(x−x′, y−y′)] over the four corners with
+//! F(x, y) = x·asinh(y/|x|) + y·asinh(x/|y|). The deformation on the grid is the linear
+//! (aperiodic) convolution of these coefficients with the nodal pressures, computed by
+//! zero-padding to at least 2n − 1 points per direction and a 2-D FFT. The FFT plans and the
+//! transformed kernel are built once per grid; the buffers are reused.
+
+use rustfft::{num_complex::Complex, Fft, FftPlanner};
+use std::sync::Arc;
+
+/// x·asinh(y/|x|), continued by 0 at x = 0.
+fn term(x: f64, y: f64) -> f64 {
+    if x == 0.0 {
+        0.0
+    } else {
+        x * (y / x.abs()).asinh()
+    }
+}
+
+/// F(x, y) = x·asinh(y/|x|) + y·asinh(x/|y|): a primitive of 1/r in both variables.
+fn prim(x: f64, y: f64) -> f64 {
+    term(x, y) + term(y, x)
+}
+
+/// ∬ 1/r over a rectangle of size `hx × hy` centred at the origin, seen from the point (x, y).
+/// Lengths in any consistent unit; the result has that unit.
+pub fn rect_influence(x: f64, y: f64, hx: f64, hy: f64) -> f64 {
+    let (x1, x2) = (x - 0.5 * hx, x + 0.5 * hx);
+    let (y1, y2) = (y - 0.5 * hy, y + 0.5 * hy);
+    prim(x2, y2) - prim(x1, y2) - prim(x2, y1) + prim(x1, y1)
+}
+
+/// Smallest integer ≥ n whose prime factors are 2, 3 and 5 (fast FFT lengths).
+fn smooth_length(n: usize) -> usize {
+    let mut m = n.max(1);
+    loop {
+        let mut k = m;
+        for p in [2, 3, 5] {
+            while k % p == 0 {
+                k /= p;
+            }
+        }
+        if k == 1 {
+            return m;
+        }
+        m += 1;
+    }
+}
+
+/// FFT convolution of nodal pressures with the rectangle influence coefficients on an `nx × ny`
+/// grid (x index fastest), scaled by a constant factor.
+pub struct Deformation {
+    nx: usize,
+    ny: usize,
+    lx: usize,
+    ly: usize,
+    /// Transformed kernel, transposed layout (index ix·ly + iy), including 1/(lx·ly).
+    kernel_hat: Vec<Complex<f64>>,
+    fx: Arc<dyn Fft<f64>>,
+    fxi: Arc<dyn Fft<f64>>,
+    fy: Arc<dyn Fft<f64>>,
+    fyi: Arc<dyn Fft<f64>>,
+    rows: Vec<Complex<f64>>,
+    cols: Vec<Complex<f64>>,
+    scratch: Vec<Complex<f64>>,
+    hx: f64,
+    hy: f64,
+    scale: f64,
+}
+
+impl std::fmt::Debug for Deformation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Deformation")
+            .field("nx", &self.nx)
+            .field("ny", &self.ny)
+            .field("lx", &self.lx)
+            .field("ly", &self.ly)
+            .finish()
+    }
+}
+
+impl Clone for Deformation {
+    fn clone(&self) -> Self {
+        Deformation::new(self.nx, self.ny, self.hx, self.hy, self.scale)
+    }
+}
+
+impl Deformation {
+    /// Plans the convolution for an `nx × ny` grid with spacings `hx`, `hy` (same length unit) and
+    /// overall factor `scale` (deformation = scale · Σ K·P).
+    pub fn new(nx: usize, ny: usize, hx: f64, hy: f64, scale: f64) -> Self {
+        let lx = smooth_length(2 * nx - 1);
+        let ly = smooth_length(2 * ny - 1);
+        let mut planner = FftPlanner::<f64>::new();
+        let fx = planner.plan_fft_forward(lx);
+        let fxi = planner.plan_fft_inverse(lx);
+        let fy = planner.plan_fft_forward(ly);
+        let fyi = planner.plan_fft_inverse(ly);
+        let scratch_len = [&fx, &fxi, &fy, &fyi]
+            .iter()
+            .map(|f| f.get_inplace_scratch_len())
+            .max()
+            .unwrap_or(0);
+        // Kernel in circular layout, rows of length lx (x fastest).
+        let mut k = vec![Complex::new(0.0, 0.0); lx * ly];
+        let nxi = nx as isize;
+        let nyi = ny as isize;
+        for dy in -(nyi - 1)..nyi {
+            let iy = dy.rem_euclid(ly as isize) as usize;
+            for dx in -(nxi - 1)..nxi {
+                let ix = dx.rem_euclid(lx as isize) as usize;
+                let v = rect_influence(dx as f64 * hx, dy as f64 * hy, hx, hy);
+                k[iy * lx + ix] = Complex::new(v * scale / (lx * ly) as f64, 0.0);
+            }
+        }
+        let mut scratch = vec![Complex::new(0.0, 0.0); scratch_len];
+        fx.process_with_scratch(&mut k, &mut scratch);
+        let mut kt = vec![Complex::new(0.0, 0.0); lx * ly];
+        for iy in 0..ly {
+            for ix in 0..lx {
+                kt[ix * ly + iy] = k[iy * lx + ix];
+            }
+        }
+        fy.process_with_scratch(&mut kt, &mut scratch);
+        Deformation {
+            nx,
+            ny,
+            lx,
+            ly,
+            kernel_hat: kt,
+            fx,
+            fxi,
+            fy,
+            fyi,
+            rows: vec![Complex::new(0.0, 0.0); lx * ny],
+            cols: vec![Complex::new(0.0, 0.0); lx * ly],
+            scratch,
+            hx,
+            hy,
+            scale,
+        }
+    }
+
+    /// Influence coefficient (scaled) of node offset (dx, dy).
+    pub fn coefficient(&self, dx: isize, dy: isize) -> f64 {
+        self.scale * rect_influence(dx as f64 * self.hx, dy as f64 * self.hy, self.hx, self.hy)
+    }
+
+    /// Computes `out[i + nx·j] = scale · Σ_kl K(i−k, j−l)·p[k + nx·l]`.
+    pub fn apply(&mut self, p: &[f64], out: &mut [f64]) {
+        let (nx, ny, lx, ly) = (self.nx, self.ny, self.lx, self.ly);
+        debug_assert_eq!(p.len(), nx * ny);
+        debug_assert_eq!(out.len(), nx * ny);
+        // Forward along x on the ny data rows.
+        for j in 0..ny {
+            let row = &mut self.rows[j * lx..(j + 1) * lx];
+            for i in 0..nx {
+                row[i] = Complex::new(p[j * nx + i], 0.0);
+            }
+            for c in row[nx..].iter_mut() {
+                *c = Complex::new(0.0, 0.0);
+            }
+        }
+        self.fx
+            .process_with_scratch(&mut self.rows, &mut self.scratch);
+        // Transpose into columns (zero-padded in y), forward along y, multiply, inverse along y.
+        // The rows are real, so their spectra are Hermitian in x: only the columns
+        // 0..=lx/2 are needed; the others are their complex conjugates.
+        let nc = lx / 2 + 1;
+        for ix in 0..nc {
+            let col = &mut self.cols[ix * ly..(ix + 1) * ly];
+            for (j, c) in col.iter_mut().enumerate().take(ny) {
+                *c = self.rows[j * lx + ix];
+            }
+            for c in col[ny..].iter_mut() {
+                *c = Complex::new(0.0, 0.0);
+            }
+        }
+        let used = nc * ly;
+        self.fy
+            .process_with_scratch(&mut self.cols[..used], &mut self.scratch);
+        for (c, k) in self.cols[..used].iter_mut().zip(&self.kernel_hat) {
+            *c *= *k;
+        }
+        self.fyi
+            .process_with_scratch(&mut self.cols[..used], &mut self.scratch);
+        for ix in 0..nc {
+            for j in 0..ny {
+                let v = self.cols[ix * ly + j];
+                self.rows[j * lx + ix] = v;
+                if ix > 0 && ix < lx - ix {
+                    self.rows[j * lx + (lx - ix)] = v.conj();
+                }
+            }
+        }
+        self.fxi
+            .process_with_scratch(&mut self.rows, &mut self.scratch);
+        for j in 0..ny {
+            for i in 0..nx {
+                out[j * nx + i] = self.rows[j * lx + i].re;
+            }
+        }
+    }
+
+    /// Direct O(n²) summation, for tests: same result as [`Deformation::apply`] to round-off.
+    pub fn apply_direct(&self, p: &[f64], out: &mut [f64]) {
+        let (nx, ny) = (self.nx, self.ny);
+        for j in 0..ny {
+            for i in 0..nx {
+                let mut s = 0.0;
+                for l in 0..ny {
+                    for k in 0..nx {
+                        let pk = p[l * nx + k];
+                        if pk != 0.0 {
+                            s += pk
+                                * rect_influence(
+                                    (i as f64 - k as f64) * self.hx,
+                                    (j as f64 - l as f64) * self.hy,
+                                    self.hx,
+                                    self.hy,
+                                );
+                        }
+                    }
+                }
+                out[j * nx + i] = self.scale * s;
+            }
+        }
+    }
+}

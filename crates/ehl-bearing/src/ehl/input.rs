@@ -1,0 +1,150 @@
+//! Contact files (TOML) for one EHL contact, in engineering units with the unit in every key.
+//!
+//! Keys: `load_n` (N), `rx_mm`, `ry_mm` (mm, x = rolling direction, Rx ≤ Ry), `sum_velocity_m_s`
+//! (u1 + u2, m/s), either `reduced_modulus_gpa` (E′, GPa, 2/E′ = Σ(1−ν²)/E) or the tables
+//! `[ball_material]`, `[ring_material]` (`youngs_modulus_gpa`, `poisson_ratio`, `density_kg_m3`;
+//! default AISI 52100: 208 GPa, 0.3, 7850 kg/m³), and an optional `[lubricant]` table
+//! (`viscosity_pa_s` default 0.04, `pressure_viscosity_1_pa` default 2.2e-8, `density_kg_m3`
+//! default 870, `viscosity_model` = "roelands" (default) | "barus", `density_model` =
+//! "dowson-higginson" (default) | "incompressible"). Unknown keys are rejected; invalid values
+//! give an error naming the key, the value and the valid range.
+
+use super::{EhlContact, EhlError};
+use crate::material::{reduced_modulus, DensityModel, Lubricant, Solid, ViscosityModel};
+use serde::Deserialize;
+
+macro_rules! fail {
+    ($($t:tt)*) => {
+        return Err(EhlError::File(format!($($t)*)))
+    };
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MaterialToml {
+    youngs_modulus_gpa: Option<f64>,
+    poisson_ratio: Option<f64>,
+    density_kg_m3: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LubricantToml {
+    viscosity_pa_s: Option<f64>,
+    pressure_viscosity_1_pa: Option<f64>,
+    density_kg_m3: Option<f64>,
+    viscosity_model: Option<String>,
+    density_model: Option<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ContactToml {
+    load_n: f64,
+    rx_mm: f64,
+    ry_mm: f64,
+    sum_velocity_m_s: f64,
+    reduced_modulus_gpa: Option<f64>,
+    ball_material: Option<MaterialToml>,
+    ring_material: Option<MaterialToml>,
+    lubricant: Option<LubricantToml>,
+}
+
+fn positive(field: &str, v: f64) -> Result<f64, EhlError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        fail!("{field} = {v} is invalid: must be finite and > 0")
+    }
+}
+
+fn solid(name: &str, m: &Option<MaterialToml>) -> Result<Solid, EhlError> {
+    let d = Solid::AISI_52100;
+    let Some(m) = m else { return Ok(d) };
+    let e = match m.youngs_modulus_gpa {
+        Some(v) => positive(&format!("{name}.youngs_modulus_gpa"), v)? * 1e9,
+        None => d.youngs_modulus,
+    };
+    let nu = m.poisson_ratio.unwrap_or(d.poisson_ratio);
+    if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
+        fail!("{name}.poisson_ratio = {nu} is invalid: valid range -1 < nu < 0.5");
+    }
+    let rho = match m.density_kg_m3 {
+        Some(v) => positive(&format!("{name}.density_kg_m3"), v)?,
+        None => d.density,
+    };
+    Ok(Solid {
+        youngs_modulus: e,
+        poisson_ratio: nu,
+        density: rho,
+    })
+}
+
+fn lubricant(l: &Option<LubricantToml>) -> Result<Lubricant, EhlError> {
+    let d = Lubricant::DEFAULT_MINERAL_OIL;
+    let Some(l) = l else { return Ok(d) };
+    let viscosity = match l.viscosity_pa_s {
+        Some(v) => positive("lubricant.viscosity_pa_s", v)?,
+        None => d.viscosity,
+    };
+    let alpha = l.pressure_viscosity_1_pa.unwrap_or(d.pressure_viscosity);
+    if !(alpha.is_finite() && (0.0..1e-6).contains(&alpha)) {
+        fail!("lubricant.pressure_viscosity_1_pa = {alpha} is invalid: valid range 0 <= alpha < 1e-6 1/Pa");
+    }
+    let density = match l.density_kg_m3 {
+        Some(v) => positive("lubricant.density_kg_m3", v)?,
+        None => d.density,
+    };
+    let viscosity_model = match l.viscosity_model.as_deref() {
+        None | Some("roelands") => ViscosityModel::Roelands,
+        Some("barus") => ViscosityModel::Barus,
+        Some(o) => fail!(
+            "lubricant.viscosity_model = \"{o}\" is invalid: valid values \"roelands\", \"barus\""
+        ),
+    };
+    let density_model = match l.density_model.as_deref() {
+        None | Some("dowson-higginson") => DensityModel::DowsonHigginson,
+        Some("incompressible") => DensityModel::Incompressible,
+        Some(o) => fail!(
+            "lubricant.density_model = \"{o}\" is invalid: valid values \"dowson-higginson\", \"incompressible\""
+        ),
+    };
+    Ok(Lubricant {
+        viscosity,
+        pressure_viscosity: alpha,
+        density,
+        viscosity_model,
+        density_model,
+    })
+}
+
+/// Parses and validates a contact file's text.
+pub fn parse_contact_toml(text: &str) -> Result<EhlContact, EhlError> {
+    let t: ContactToml =
+        toml::from_str(text).map_err(|e| EhlError::File(format!("contact file: {e}")))?;
+    let load = positive("load_n", t.load_n)?;
+    let rx = positive("rx_mm", t.rx_mm)? * 1e-3;
+    let ry = positive("ry_mm", t.ry_mm)? * 1e-3;
+    let ratio = ry / rx;
+    if !(1.0..=1000.0).contains(&ratio) {
+        fail!(
+            "ry_mm/rx_mm = {ratio} is invalid: valid range 1 to 1000 (x is the rolling direction with the smaller radius)"
+        );
+    }
+    let us = positive("sum_velocity_m_s", t.sum_velocity_m_s)?;
+    let e_reduced = match (t.reduced_modulus_gpa, &t.ball_material, &t.ring_material) {
+        (Some(_), Some(_), _) | (Some(_), _, Some(_)) => {
+            fail!("give either reduced_modulus_gpa or [ball_material]/[ring_material], not both")
+        }
+        (Some(e), None, None) => positive("reduced_modulus_gpa", e)? * 1e9,
+        (None, b, r) => reduced_modulus(&solid("ball_material", b)?, &solid("ring_material", r)?),
+    };
+    Ok(EhlContact {
+        load,
+        rx,
+        ry,
+        sum_velocity: us,
+        e_reduced,
+        lubricant: lubricant(&t.lubricant)?,
+    })
+}

@@ -1,0 +1,564 @@
+//! Dimensionless steady EHL problem and its FAS multigrid solver (Venner & Lubrecht 2000).
+//!
+//! Coordinates: X = x/a_x (rolling direction, a_x the Hertz semi-axis along x), Y = y/a_y,
+//! P = p/p_h, H = h·R_x/a_x². Reynolds:
+//! ∂/∂X(ε ∂P/∂X) + κ²·∂/∂Y(ε ∂P/∂Y) − ∂(ρ̄H)/∂X = 0, ε = ρ̄H³/(η̄λ̄), κ = a_x/a_y,
+//! λ̄ = 6·η0·u_s·R_x²/(a_x³·p_h); film H = H0 + X²/2 + g_y·Y² + c·∬P/r̃, with r̃ measured in units
+//! of a_x; force balance ∬P dX dY = 2π/3.
+//!
+//! Discretization: second-order central differences for the Poiseuille terms (ε at half points
+//! by averaging), second-order upwind for the wedge term (first-order upwind on the first interior
+//! line), piecewise-constant pressure cells for the deformation (DC-FFT on every level).
+//! Relaxation: line relaxation along X, Gauss–Seidel where the Poiseuille term dominates and
+//! Jacobi-distributive (change δ at a point, −δ/4 at its four neighbours) where the wedge term
+//! dominates; the line systems include the deformation coupling of the line's own points
+//! (banded). Cavitation by projection P ≥ 0. H0 is updated on the coarsest grid from the force
+//! balance (FAS right-hand side included).
+
+use super::deformation::Deformation;
+use crate::material::Lubricant;
+
+/// Half bandwidth of the line systems.
+const BAND: usize = 2;
+/// Largest |dx| of the local kernel table.
+const KX: usize = 2 * BAND + 3;
+
+/// The dimensionless problem.
+#[derive(Debug, Clone)]
+pub(crate) struct Problem {
+    /// λ̄ = 6η0·u_s·Rx²/(a_x³·p_h).
+    pub lambda: f64,
+    /// κ² = (a_x/a_y)².
+    pub kappa2: f64,
+    /// Coefficient of Y² in H: (Rx/Ry)(a_y/a_x)²/2.
+    pub gy: f64,
+    /// Deformation factor c = 2·Rx·p_h/(π·E′·a_x).
+    pub def_scale: f64,
+    /// a_y/a_x.
+    pub aspect: f64,
+    /// Lubricant (rheology), evaluated at p = p_h·P.
+    pub lub: Lubricant,
+    /// Hertz pressure, Pa.
+    pub ph: f64,
+    /// Domain: X in [x_min, x_max], Y in [−y_half, y_half].
+    pub x_min: f64,
+    /// See `x_min`.
+    pub x_max: f64,
+    /// See `x_min`.
+    pub y_half: f64,
+}
+
+impl Problem {
+    fn eta(&self, p: f64) -> f64 {
+        self.lub.viscosity_ratio(self.ph * p.max(0.0))
+    }
+    fn rho(&self, p: f64) -> f64 {
+        self.lub.density_ratio(self.ph * p.max(0.0))
+    }
+}
+
+/// Relaxation and cycle parameters.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct MgParams {
+    pub pre: usize,
+    pub post: usize,
+    pub coarse_sweeps: usize,
+    pub gamma: usize,
+    pub omega_gs: f64,
+    pub omega_jd: f64,
+    pub h0_relax: f64,
+    pub jd_threshold: f64,
+}
+
+/// One grid level.
+#[derive(Debug, Clone)]
+pub(crate) struct Level {
+    pub nx: usize,
+    pub ny: usize,
+    pub hx: f64,
+    pub hy: f64,
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    pub p: Vec<f64>,
+    pub h: Vec<f64>,
+    f: Vec<f64>,
+    eps: Vec<f64>,
+    rho: Vec<f64>,
+    w: Vec<f64>,
+    delta: Vec<f64>,
+    pbar: Vec<f64>,
+    /// Force-balance target ∬P (FAS-corrected on coarse levels).
+    pub g: f64,
+    def: Deformation,
+    /// Scaled kernel K(|dx|, |dy|) for |dx| ≤ KX, |dy| ≤ 1.
+    kloc: [[f64; KX + 1]; 2],
+    // line buffers
+    band: Vec<f64>,
+    rhs: Vec<f64>,
+    jd: Vec<bool>,
+}
+
+impl Level {
+    pub fn new(n: usize, pr: &Problem) -> Level {
+        let (nx, ny) = (n, n);
+        let hx = (pr.x_max - pr.x_min) / (nx - 1) as f64;
+        let hy = 2.0 * pr.y_half / (ny - 1) as f64;
+        let x: Vec<f64> = (0..nx).map(|i| pr.x_min + i as f64 * hx).collect();
+        let y: Vec<f64> = (0..ny).map(|j| -pr.y_half + j as f64 * hy).collect();
+        let def = Deformation::new(nx, ny, hx, hy * pr.aspect, pr.def_scale);
+        let mut kloc = [[0.0; KX + 1]; 2];
+        for (dy, row) in kloc.iter_mut().enumerate() {
+            for (dx, k) in row.iter_mut().enumerate() {
+                *k = def.coefficient(dx as isize, dy as isize);
+            }
+        }
+        let nn = nx * ny;
+        Level {
+            nx,
+            ny,
+            hx,
+            hy,
+            x,
+            y,
+            p: vec![0.0; nn],
+            h: vec![0.0; nn],
+            f: vec![0.0; nn],
+            eps: vec![0.0; nn],
+            rho: vec![1.0; nn],
+            w: vec![0.0; nn],
+            delta: vec![0.0; nn],
+            pbar: vec![0.0; nn],
+            g: 2.0 * std::f64::consts::PI / 3.0,
+            def,
+            kloc,
+            band: vec![0.0; nx * (2 * BAND + 1)],
+            rhs: vec![0.0; nx],
+            jd: vec![false; nx],
+        }
+    }
+
+    fn k(&self, dx: isize, dy: isize) -> f64 {
+        let ax = dx.unsigned_abs();
+        let ay = dy.unsigned_abs();
+        if ax <= KX && ay <= 1 {
+            self.kloc[ay][ax]
+        } else {
+            0.0
+        }
+    }
+
+    /// ∬P dX dY (trapezoid; boundary values are zero).
+    pub fn integral(&self) -> f64 {
+        self.p.iter().sum::<f64>() * self.hx * self.hy
+    }
+
+    /// Recomputes H, ρ̄ and ε from P and H0.
+    pub fn update_film(&mut self, pr: &Problem, h0: f64) {
+        self.def.apply(&self.p, &mut self.w);
+        let nx = self.nx;
+        for j in 0..self.ny {
+            let yy = pr.gy * self.y[j] * self.y[j];
+            for i in 0..nx {
+                let idx = j * nx + i;
+                let hh = h0 + 0.5 * self.x[i] * self.x[i] + yy + self.w[idx];
+                self.h[idx] = hh;
+                let p = self.p[idx];
+                let r = pr.rho(p);
+                self.rho[idx] = r;
+                let hp = hh.max(0.0);
+                self.eps[idx] = r * hp * hp * hp / (pr.eta(p) * pr.lambda);
+            }
+        }
+    }
+
+    /// Wedge weights for row i.
+    fn wedge_w(i: usize) -> [f64; 3] {
+        if i >= 2 {
+            [1.5, -2.0, 0.5]
+        } else {
+            [1.0, -1.0, 0.0]
+        }
+    }
+
+    /// Discrete operator L(P) at interior (i, j), and the wedge-term magnitude.
+    fn op(&self, pr: &Problem, i: usize, j: usize) -> (f64, f64) {
+        let nx = self.nx;
+        let idx = j * nx + i;
+        let e = &self.eps;
+        let p = &self.p;
+        let ew = 0.5 * (e[idx] + e[idx - 1]);
+        let ee = 0.5 * (e[idx] + e[idx + 1]);
+        let es = 0.5 * (e[idx] + e[idx - nx]);
+        let en = 0.5 * (e[idx] + e[idx + nx]);
+        let pc = p[idx];
+        let poi = (ew * (p[idx - 1] - pc) + ee * (p[idx + 1] - pc)) / (self.hx * self.hx)
+            + pr.kappa2 * (es * (p[idx - nx] - pc) + en * (p[idx + nx] - pc)) / (self.hy * self.hy);
+        let w = Self::wedge_w(i);
+        let mut wedge = 0.0;
+        for (t, wt) in w.iter().enumerate() {
+            if *wt != 0.0 {
+                let k = idx - t;
+                wedge += wt * self.rho[k] * self.h[k];
+            }
+        }
+        wedge /= self.hx;
+        (poi - wedge, wedge.abs())
+    }
+
+    /// Residual field f − L(P) (zero on the boundary and where P ≤ 0), written to `self.delta`;
+    /// returns (Σ|r_c|, Σ|wedge|) over the non-cavitated interior, r_c the complementarity
+    /// residual (|r|, limited to P·|diagonal| where the step would make P negative).
+    pub fn residual(&mut self, pr: &Problem) -> (f64, f64) {
+        let (nx, ny) = (self.nx, self.ny);
+        let mut sr = 0.0;
+        let mut sw = 0.0;
+        let mut r = std::mem::take(&mut self.delta);
+        r.iter_mut().for_each(|v| *v = 0.0);
+        for j in 1..ny - 1 {
+            for i in 1..nx - 1 {
+                let idx = j * nx + i;
+                if self.p[idx] > 0.0 {
+                    let (l, w) = self.op(pr, i, j);
+                    let v = self.f[idx] - l;
+                    r[idx] = v;
+                    // Complementarity (projected) residual: a point that wants to fall below
+                    // zero counts only the change that reaches P = 0 (P·|diagonal|).
+                    let e = &self.eps;
+                    let d = 0.5 * (2.0 * e[idx] + e[idx - 1] + e[idx + 1]) / (self.hx * self.hx)
+                        + 0.5 * pr.kappa2 * (2.0 * e[idx] + e[idx - nx] + e[idx + nx])
+                            / (self.hy * self.hy)
+                        + 1.5 * self.rho[idx] * self.kloc[0][0] / self.hx;
+                    let c = if v > 0.0 { v.min(self.p[idx] * d) } else { -v };
+                    sr += c;
+                    sw += w;
+                }
+            }
+        }
+        self.delta = r;
+        (sr, sw)
+    }
+
+    /// One relaxation sweep (line relaxation along X, lines ordered in Y), then film update.
+    pub fn relax(&mut self, pr: &Problem, prm: &MgParams, h0: f64) {
+        let (nx, ny) = (self.nx, self.ny);
+        let hx2 = self.hx * self.hx;
+        let ky = pr.kappa2 / (self.hy * self.hy);
+        let nb = 2 * BAND + 1;
+        let mut delta = std::mem::take(&mut self.delta);
+        delta.iter_mut().for_each(|v| *v = 0.0);
+        let mut band = std::mem::take(&mut self.band);
+        let mut rhs = std::mem::take(&mut self.rhs);
+        let mut jd = std::mem::take(&mut self.jd);
+        let k0 = self.kloc[0][0];
+        // Kernel of a Jacobi-distributive change along its own line (dy = 0).
+        let mut kd = [0.0; KX + 1];
+        for (d, v) in kd.iter_mut().enumerate().take(KX) {
+            let di = d as isize;
+            *v = self.k(di, 0)
+                - 0.25 * (self.k(di - 1, 0) + self.k(di + 1, 0) + 2.0 * self.k(di, 1));
+        }
+        let mut any_jd = false;
+        let mut om = vec![prm.omega_gs; nx];
+        let mut bsave = band.clone();
+        let mut rsave = rhs.clone();
+        for j in 1..ny - 1 {
+            // classify and residuals
+            for i in 1..nx - 1 {
+                let idx = j * nx + i;
+                let e = &self.eps;
+                let ew = 0.5 * (e[idx] + e[idx - 1]);
+                let ee = 0.5 * (e[idx] + e[idx + 1]);
+                let es = 0.5 * (e[idx] + e[idx - nx]);
+                let en = 0.5 * (e[idx] + e[idx + nx]);
+                let ap = (ew + ee) / hx2 + ky * (es + en);
+                let aw = self.rho[idx] * k0 / self.hx;
+                jd[i] = ap < prm.jd_threshold * aw;
+                // Deep in the Poiseuille-dominated inlet the line solve is stable undamped (ω = 1);
+                // damping there leaves interpolation errors of the coarse-grid correction alive.
+                om[i] = if ap > 1000.0 * aw { 1.0 } else { prm.omega_gs };
+                let (l, _) = self.op(pr, i, j);
+                rhs[i] = self.f[idx] - l;
+            }
+            // build band matrix: row r = i-1, column offset c = k - i + BAND
+            band.iter_mut().for_each(|v| *v = 0.0);
+            for i in 1..nx - 1 {
+                let idx = j * nx + i;
+                let e = &self.eps;
+                let ew = 0.5 * (e[idx] + e[idx - 1]);
+                let ee = 0.5 * (e[idx] + e[idx + 1]);
+                let es = 0.5 * (e[idx] + e[idx - nx]);
+                let en = 0.5 * (e[idx] + e[idx + nx]);
+                let cw = [
+                    -(ew + ee) / hx2 - ky * (es + en),
+                    ew / hx2,
+                    ee / hx2,
+                    ky * es,
+                    ky * en,
+                ];
+                let kmin = i.saturating_sub(BAND).max(1);
+                let kmax = (i + BAND).min(nx - 2);
+                let ww = Self::wedge_w(i);
+                let rr = [
+                    ww[0] * self.rho[idx] / self.hx,
+                    ww[1] * self.rho[idx - 1] / self.hx,
+                    if i >= 2 {
+                        ww[2] * self.rho[idx - 2] / self.hx
+                    } else {
+                        0.0
+                    },
+                ];
+                let poi = |m: usize| {
+                    if m == i {
+                        cw[0]
+                    } else if m + 1 == i {
+                        cw[1]
+                    } else if m == i + 1 {
+                        cw[2]
+                    } else {
+                        0.0
+                    }
+                };
+                for k in kmin..=kmax {
+                    // wedge: Σ_t rr_t · K(i − t − k)
+                    let tab = if jd[k] { &kd } else { &self.kloc[0] };
+                    let mut wsum = 0.0;
+                    for (t, r) in rr.iter().enumerate() {
+                        let d = (i as isize - t as isize - k as isize).unsigned_abs();
+                        wsum += r * tab[d];
+                    }
+                    let mut a = poi(k) - wsum;
+                    if jd[k] {
+                        a -= 0.25 * (poi(k - 1) + poi(k + 1));
+                        if k == i {
+                            a -= 0.25 * (cw[3] + cw[4]);
+                        }
+                    }
+                    band[(i - 1) * nb + (k + BAND - i)] = a;
+                }
+            }
+            let n = nx - 2;
+            bsave.copy_from_slice(&band);
+            rsave.copy_from_slice(&rhs);
+            if !solve_band(&mut band, &mut rhs[1..nx - 1], n, BAND) {
+                continue;
+            }
+            // Projected solve: Gauss–Seidel points that would become negative are held at zero
+            // and the line is solved again with those rows replaced by P + ω·δ = 0.
+            let mut clamp = false;
+            for i in 1..nx - 1 {
+                if !jd[i] && self.p[j * nx + i] + om[i] * rhs[i] < 0.0 {
+                    clamp = true;
+                    let r = i - 1;
+                    for c in 0..nb {
+                        bsave[r * nb + c] = 0.0;
+                    }
+                    bsave[r * nb + BAND] = 1.0;
+                    rsave[i] = -self.p[j * nx + i] / om[i];
+                }
+            }
+            if clamp {
+                band.copy_from_slice(&bsave);
+                rhs.copy_from_slice(&rsave);
+                if !solve_band(&mut band, &mut rhs[1..nx - 1], n, BAND) {
+                    continue;
+                }
+            }
+            for i in 1..nx - 1 {
+                let d = rhs[i];
+                let idx = j * nx + i;
+                if jd[i] {
+                    delta[idx] = d;
+                    any_jd = true;
+                } else {
+                    let v = self.p[idx] + om[i] * d;
+                    self.p[idx] = v.max(0.0);
+                }
+            }
+        }
+        if any_jd {
+            for j in 1..ny - 1 {
+                for i in 1..nx - 1 {
+                    let idx = j * nx + i;
+                    let d = delta[idx]
+                        - 0.25
+                            * (delta[idx - 1] + delta[idx + 1] + delta[idx - nx] + delta[idx + nx]);
+                    if d != 0.0 {
+                        self.p[idx] = (self.p[idx] + prm.omega_jd * d).max(0.0);
+                    }
+                }
+            }
+        }
+        self.delta = delta;
+        self.band = band;
+        self.rhs = rhs;
+        self.jd = jd;
+        self.update_film(pr, h0);
+    }
+}
+
+/// Solves a banded system in place (no pivoting): `a` holds n rows of 2b+1 entries, row r's
+/// entry for column c at a[r·(2b+1) + c − r + b]. The solution overwrites `x`.
+fn solve_band(a: &mut [f64], x: &mut [f64], n: usize, b: usize) -> bool {
+    let nb = 2 * b + 1;
+    for r in 0..n {
+        let piv = a[r * nb + b];
+        if piv.abs() <= 1e-300 || !piv.is_finite() {
+            return false;
+        }
+        for rr in r + 1..(r + b + 1).min(n) {
+            let f = a[rr * nb + (r + b - rr)] / piv;
+            if f == 0.0 {
+                continue;
+            }
+            for c in r..(r + b + 1).min(n) {
+                a[rr * nb + (c + b - rr)] -= f * a[r * nb + (c + b - r)];
+            }
+            x[rr] -= f * x[r];
+        }
+    }
+    for r in (0..n).rev() {
+        let mut s = x[r];
+        for c in r + 1..(r + b + 1).min(n) {
+            s -= a[r * nb + (c + b - r)] * x[c];
+        }
+        x[r] = s / a[r * nb + b];
+        if !x[r].is_finite() {
+            return false;
+        }
+    }
+    true
+}
+
+/// The level hierarchy and the global unknown H0.
+#[derive(Debug, Clone)]
+pub(crate) struct Hierarchy {
+    pub levels: Vec<Level>,
+    pub h0: f64,
+}
+
+/// Bilinear interpolation of a coarse field to the fine grid.
+fn interpolate(c: &[f64], ncx: usize, ncy: usize, f: &mut [f64], nfx: usize) {
+    let _ = ncy;
+    let nfy = 2 * ncy - 1;
+    for jf in 0..nfy {
+        let jc = jf / 2;
+        let oy = jf % 2 == 1;
+        for i_f in 0..nfx {
+            let ic = i_f / 2;
+            let ox = i_f % 2 == 1;
+            let v = match (ox, oy) {
+                (false, false) => c[jc * ncx + ic],
+                (true, false) => 0.5 * (c[jc * ncx + ic] + c[jc * ncx + ic + 1]),
+                (false, true) => 0.5 * (c[jc * ncx + ic] + c[(jc + 1) * ncx + ic]),
+                (true, true) => {
+                    0.25 * (c[jc * ncx + ic]
+                        + c[jc * ncx + ic + 1]
+                        + c[(jc + 1) * ncx + ic]
+                        + c[(jc + 1) * ncx + ic + 1])
+                }
+            };
+            f[jf * nfx + i_f] = v;
+        }
+    }
+}
+
+impl Hierarchy {
+    /// Levels from `n_fine` down to `n_coarse` points per side (both 2^k + 1).
+    pub fn new(pr: &Problem, n_fine: usize, n_coarse: usize) -> Hierarchy {
+        let mut sizes = vec![n_fine];
+        let mut n = n_fine;
+        while n > n_coarse && (n - 1) % 2 == 0 && (n - 1) / 2 >= 4 {
+            n = (n - 1) / 2 + 1;
+            sizes.push(n);
+        }
+        sizes.reverse();
+        Hierarchy {
+            levels: sizes.iter().map(|&n| Level::new(n, pr)).collect(),
+            h0: 0.0,
+        }
+    }
+
+    /// One FAS cycle with `levels[k]` as the finest.
+    pub fn cycle(&mut self, pr: &Problem, prm: &MgParams, k: usize) {
+        if k == 0 {
+            for _ in 0..prm.coarse_sweeps {
+                let h0 = self.h0;
+                let lv = &mut self.levels[0];
+                lv.relax(pr, prm, h0);
+                let err = lv.g - lv.integral();
+                self.h0 -= prm.h0_relax * err;
+                let h0 = self.h0;
+                self.levels[0].update_film(pr, h0);
+            }
+            return;
+        }
+        for _ in 0..prm.pre {
+            let h0 = self.h0;
+            self.levels[k].relax(pr, prm, h0);
+        }
+        // restriction
+        let (lo, hi) = self.levels.split_at_mut(k);
+        let coarse = &mut lo[k - 1];
+        let fine = &mut hi[0];
+        fine.residual(pr);
+        let (ncx, ncy, nfx) = (coarse.nx, coarse.ny, fine.nx);
+        for jc in 0..ncy {
+            for ic in 0..ncx {
+                coarse.p[jc * ncx + ic] = fine.p[2 * jc * nfx + 2 * ic];
+            }
+        }
+        coarse.pbar.copy_from_slice(&coarse.p);
+        coarse.update_film(pr, self.h0);
+        coarse.f.iter_mut().for_each(|v| *v = 0.0);
+        for jc in 1..ncy - 1 {
+            for ic in 1..ncx - 1 {
+                let (l, _) = coarse.op(pr, ic, jc);
+                let fi = 2 * jc * nfx + 2 * ic;
+                let r = &fine.delta;
+                let rw = 0.25 * r[fi]
+                    + 0.125 * (r[fi - 1] + r[fi + 1] + r[fi - nfx] + r[fi + nfx])
+                    + 0.0625
+                        * (r[fi - 1 - nfx] + r[fi + 1 - nfx] + r[fi - 1 + nfx] + r[fi + 1 + nfx]);
+                coarse.f[jc * ncx + ic] = l + rw;
+            }
+        }
+        coarse.g = fine.g + coarse.integral() - fine.integral();
+        for _ in 0..prm.gamma {
+            self.cycle(pr, prm, k - 1);
+        }
+        // correction
+        let (lo, hi) = self.levels.split_at_mut(k);
+        let coarse = &mut lo[k - 1];
+        let fine = &mut hi[0];
+        let (ncx, ncy) = (coarse.nx, coarse.ny);
+        let mut e = std::mem::take(&mut coarse.w);
+        for (ev, (p, pb)) in e.iter_mut().zip(coarse.p.iter().zip(&coarse.pbar)) {
+            *ev = p - pb;
+        }
+        let nfx = fine.nx;
+        interpolate(&e, ncx, ncy, &mut fine.delta, nfx);
+        for (p, d) in fine.p.iter_mut().zip(&fine.delta) {
+            if *p > 0.0 {
+                *p = (*p + d).max(0.0);
+            }
+        }
+        coarse.w = e;
+        let h0 = self.h0;
+        coarse.update_film(pr, h0);
+        fine.update_film(pr, h0);
+        for _ in 0..prm.post {
+            let h0 = self.h0;
+            self.levels[k].relax(pr, prm, h0);
+        }
+    }
+
+    /// Interpolates the solution of level k−1 onto level k (FMG step) and updates its film.
+    pub fn prolong_solution(&mut self, pr: &Problem, k: usize) {
+        let (lo, hi) = self.levels.split_at_mut(k);
+        let coarse = &lo[k - 1];
+        let fine = &mut hi[0];
+        let nfx = fine.nx;
+        interpolate(&coarse.p, coarse.nx, coarse.ny, &mut fine.p, nfx);
+        fine.update_film(pr, self.h0);
+    }
+}

@@ -1,0 +1,641 @@
+//! Steady solver driver: input validation, problem set-up, full-multigrid start, cycles to
+//! convergence, load continuation, and the dimensional results.
+
+use super::formulas::nijenbanning_central;
+use super::multigrid::{Hierarchy, MgParams, Problem};
+use super::{CycleType, EhlContact, EhlError, EhlFields, EhlSettings, EhlSolution, MoesCase};
+use crate::hertz::HertzGeometry;
+use crate::material::{Lubricant, ROELANDS_LN_ETA_INF, ROELANDS_P0};
+use std::f64::consts::PI;
+use std::time::Instant;
+
+fn invalid(field: &'static str, value: f64, range: &'static str) -> EhlError {
+    EhlError::Invalid {
+        field,
+        value,
+        range,
+    }
+}
+
+fn check_pos(field: &'static str, v: f64) -> Result<(), EhlError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(invalid(field, v, "finite and > 0"))
+    }
+}
+
+fn validate_contact(c: &EhlContact) -> Result<(), EhlError> {
+    check_pos("load [N]", c.load)?;
+    check_pos("rx [m]", c.rx)?;
+    check_pos("ry [m]", c.ry)?;
+    check_pos("sum_velocity [m/s]", c.sum_velocity)?;
+    check_pos("e_reduced [Pa]", c.e_reduced)?;
+    check_pos("lubricant.viscosity [Pa s]", c.lubricant.viscosity)?;
+    check_pos("lubricant.density [kg/m3]", c.lubricant.density)?;
+    let a = c.lubricant.pressure_viscosity;
+    if !(a.is_finite() && (0.0..1e-6).contains(&a)) {
+        return Err(invalid(
+            "lubricant.pressure_viscosity [1/Pa]",
+            a,
+            "finite, 0 <= alpha < 1e-6",
+        ));
+    }
+    if c.lubricant.viscosity_model == super::ViscosityModel::Roelands
+        && c.lubricant.viscosity.ln() + ROELANDS_LN_ETA_INF <= 0.0
+    {
+        return Err(invalid(
+            "lubricant.viscosity [Pa s]",
+            c.lubricant.viscosity,
+            "> 6.31e-5 Pa s for the Roelands model",
+        ));
+    }
+    let r = c.ry / c.rx;
+    if !(1.0..=1000.0).contains(&r) {
+        return Err(invalid("ry/rx", r, "1 <= Ry/Rx <= 1000"));
+    }
+    Ok(())
+}
+
+fn validate_settings(s: &EhlSettings) -> Result<(), EhlError> {
+    let pow2 = |n: usize| n >= 2 && (n - 1).is_power_of_two();
+    if !(pow2(s.grid) && (17..=1025).contains(&s.grid)) {
+        return Err(invalid(
+            "settings.grid",
+            s.grid as f64,
+            "2^k + 1, 17 to 1025",
+        ));
+    }
+    if !(pow2(s.coarsest) && s.coarsest >= 9 && s.coarsest <= s.grid) {
+        return Err(invalid(
+            "settings.coarsest",
+            s.coarsest as f64,
+            "2^k + 1, >= 9 and <= grid",
+        ));
+    }
+    for (f, v) in [
+        ("settings.inlet", s.inlet.unwrap_or(4.5)),
+        ("settings.outlet", s.outlet),
+        ("settings.half_width", s.half_width.unwrap_or(2.0)),
+    ] {
+        if !(v.is_finite() && (1.05..=100.0).contains(&v)) {
+            return Err(invalid(f, v, "1.05 to 100 semi-axes"));
+        }
+    }
+    for (f, v) in [
+        ("settings.omega_gs", s.omega_gs),
+        ("settings.omega_jd", s.omega_jd),
+        ("settings.h0_gain", s.h0_gain),
+        ("settings.jd_threshold", s.jd_threshold),
+    ] {
+        if !(v.is_finite() && v > 0.0 && v <= 2.0) {
+            return Err(invalid(f, v, "0 < value <= 2"));
+        }
+    }
+    for (f, v) in [
+        ("settings.tol_residual", s.tol_residual),
+        ("settings.tol_force", s.tol_force),
+        ("settings.tol_film", s.tol_film),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(invalid(f, v, "finite and > 0"));
+        }
+    }
+    if s.max_cycles == 0 || s.max_cycles > 10_000 {
+        return Err(invalid(
+            "settings.max_cycles",
+            s.max_cycles as f64,
+            "1 to 10000",
+        ));
+    }
+    if s.coarse_sweeps == 0 || s.pre_sweeps + s.post_sweeps == 0 {
+        return Err(invalid(
+            "settings.coarse_sweeps / pre_sweeps + post_sweeps",
+            0.0,
+            ">= 1",
+        ));
+    }
+    Ok(())
+}
+
+/// Dimensional scales of one contact.
+#[derive(Debug, Clone, Copy)]
+struct Scales {
+    ax: f64,
+    ay: f64,
+    ph: f64,
+    rx: f64,
+    /// Hertz deflection, m.
+    delta_hertz: f64,
+    m: f64,
+    l: f64,
+    ratio: f64,
+    /// U = η0 u_s/(E′Rx).
+    u: f64,
+}
+
+impl Scales {
+    /// h (m) from H.
+    fn h(&self, hh: f64) -> f64 {
+        hh * self.ax * self.ax / self.rx
+    }
+    /// Moes H from dimensionless H.
+    fn moes(&self, hh: f64) -> f64 {
+        self.h(hh) / self.rx / self.u.sqrt()
+    }
+}
+
+fn setup(c: &EhlContact, s: &EhlSettings) -> Result<(Problem, Scales), EhlError> {
+    validate_contact(c)?;
+    validate_settings(s)?;
+    let g = HertzGeometry::new(c.rx, c.ry, c.e_reduced)
+        .map_err(|_| invalid("ry/rx", c.ry / c.rx, "1 <= Ry/Rx <= 1000"))?;
+    let hz = g.contact(c.load);
+    let (ax, ay, ph) = (hz.semi_minor, hz.semi_major, hz.max_pressure);
+    let e = c.e_reduced;
+    let eta0 = c.lubricant.viscosity;
+    let u = eta0 * c.sum_velocity / (e * c.rx);
+    let w = c.load / (e * c.rx * c.rx);
+    let gg = c.lubricant.pressure_viscosity * e;
+    let m = w * u.powf(-0.75);
+    let l = gg * u.powf(0.25);
+    let pr = Problem {
+        lambda: 6.0 * eta0 * c.sum_velocity * c.rx * c.rx / (ax * ax * ax * ph),
+        kappa2: (ax / ay).powi(2),
+        gy: 0.5 * (c.rx / c.ry) * (ay / ax).powi(2),
+        def_scale: 2.0 * c.rx * ph / (PI * e * ax),
+        aspect: ay / ax,
+        lub: c.lubricant,
+        ph,
+        x_min: 0.0,
+        x_max: s.outlet,
+        y_half: s
+            .half_width
+            .unwrap_or((3.5 - 0.5 * ay / ax).clamp(2.0, 3.0)),
+    };
+    if !(pr.lambda.is_finite() && pr.lambda > 0.0 && m.is_finite() && l.is_finite()) {
+        return Err(invalid(
+            "load/speed combination (M)",
+            m,
+            "finite Moes parameters",
+        ));
+    }
+    let mut pr = pr;
+    let sc = Scales {
+        ax,
+        ay,
+        ph,
+        rx: c.rx,
+        delta_hertz: hz.deflection,
+        m,
+        l,
+        ratio: c.ry / c.rx,
+        u,
+    };
+    let h_est = h_estimate(&sc);
+    // Elongated contacts need a long inlet at moderate load (10.5 a_x); at high load the inlet
+    // zone shortens and 6 a_x suffices (log-linear in M from M = 100 to 1000); light loads get
+    // a longer inlet from the film estimate.
+    let elong = (3.0 + 1.5 * ay / ax).min(10.5);
+    let f = (m / 100.0).log10().clamp(0.0, 1.0);
+    let auto =
+        (elong - (elong - 6.0).max(0.0) * f).max((1.0 + 3.5 * (2.0 * h_est).sqrt()).min(30.0));
+    pr.x_min = -s.inlet.unwrap_or(auto);
+    Ok((pr, sc))
+}
+
+/// Result of the dimensionless iteration.
+struct Core {
+    hier: Hierarchy,
+    converged: bool,
+    cycles: usize,
+    history: Vec<f64>,
+    residual: f64,
+    fb: f64,
+}
+
+/// Bilinear value of a nodal field at (x0, y0) on a uniform grid.
+fn bilinear(f: &[f64], x: &[f64], y: &[f64], x0: f64, y0: f64) -> f64 {
+    let nx = x.len();
+    let ny = y.len();
+    let hx = x[1] - x[0];
+    let hy = y[1] - y[0];
+    let fi = ((x0 - x[0]) / hx).clamp(0.0, (nx - 1) as f64);
+    let fj = ((y0 - y[0]) / hy).clamp(0.0, (ny - 1) as f64);
+    let i = (fi.floor() as usize).min(nx - 2);
+    let j = (fj.floor() as usize).min(ny - 2);
+    let tx = fi - i as f64;
+    let ty = fj - j as f64;
+    let v = |a: usize, b: usize| f[b * nx + a];
+    (1.0 - tx) * (1.0 - ty) * v(i, j)
+        + tx * (1.0 - ty) * v(i + 1, j)
+        + (1.0 - tx) * ty * v(i, j + 1)
+        + tx * ty * v(i + 1, j + 1)
+}
+
+fn params(s: &EhlSettings) -> MgParams {
+    MgParams {
+        pre: s.pre_sweeps,
+        post: s.post_sweeps,
+        coarse_sweeps: s.coarse_sweeps,
+        gamma: match s.cycle {
+            CycleType::V => 1,
+            CycleType::W => 2,
+        },
+        omega_gs: s.omega_gs,
+        omega_jd: s.omega_jd,
+        h0_relax: s.h0_gain,
+        jd_threshold: s.jd_threshold,
+    }
+}
+
+/// Starting pressure on the finest grid: given, or Hertz.
+enum Start {
+    Hertz,
+    Given { p: Vec<f64>, h0: Option<f64> },
+}
+
+/// Sets H0 so that the central film equals `h_est` for the current pressure of level `k`.
+fn set_h0_from_estimate(hier: &mut Hierarchy, pr: &Problem, k: usize, h_est: f64) {
+    let lv = &mut hier.levels[k];
+    lv.update_film(pr, 0.0);
+    let hc = bilinear(&lv.h, &lv.x, &lv.y, 0.0, 0.0);
+    hier.h0 = h_est - hc;
+    lv.update_film(pr, hier.h0);
+}
+
+fn hertz_fill(lv: &mut super::multigrid::Level) {
+    let nx = lv.nx;
+    for j in 0..lv.ny {
+        for i in 0..nx {
+            let r2 = lv.x[i] * lv.x[i] + lv.y[j] * lv.y[j];
+            lv.p[j * nx + i] = if r2 < 1.0 { (1.0 - r2).sqrt() } else { 0.0 };
+        }
+    }
+}
+
+/// Runs the multigrid iteration. `Err((cycles, residual))` on divergence.
+fn iterate(
+    pr: &Problem,
+    s: &EhlSettings,
+    start: Start,
+    h_est: f64,
+    max_cycles: usize,
+) -> Result<Core, (usize, f64)> {
+    let prm = params(s);
+    let mut hier = Hierarchy::new(pr, s.grid, s.coarsest);
+    let nl = hier.levels.len();
+    let top = nl - 1;
+    match start {
+        Start::Hertz => {
+            hertz_fill(&mut hier.levels[0]);
+            set_h0_from_estimate(&mut hier, pr, 0, h_est);
+            for _ in 0..4 {
+                hier.cycle(pr, &prm, 0);
+            }
+            for k in 1..nl {
+                hier.prolong_solution(pr, k);
+                if k < top {
+                    for _ in 0..s.fmg_cycles {
+                        hier.cycle(pr, &prm, k);
+                    }
+                }
+            }
+        }
+        Start::Given { p, h0 } => {
+            hier.levels[top].p.copy_from_slice(&p);
+            match h0 {
+                Some(h0) => {
+                    hier.h0 = h0;
+                    hier.levels[top].update_film(pr, h0);
+                }
+                None => set_h0_from_estimate(&mut hier, pr, top, h_est),
+            }
+        }
+    }
+    let mut history = Vec::new();
+    let mut converged = false;
+    let mut residual = f64::NAN;
+    let mut fb = f64::NAN;
+    let mut cycles = 0;
+    let centre = |h: &Hierarchy| {
+        let lv = &h.levels[top];
+        bilinear(&lv.h, &lv.x, &lv.y, 0.0, 0.0)
+    };
+    for _ in 0..max_cycles {
+        let hc_old = centre(&hier);
+        let h0_old = hier.h0;
+        hier.cycle(pr, &prm, top);
+        cycles += 1;
+        let lv = &mut hier.levels[top];
+        let (sr, sw) = lv.residual(pr);
+        let rel = if sw > 0.0 { sr / sw } else { f64::INFINITY };
+        fb = (lv.integral() - lv.g).abs() / lv.g;
+        let hc = centre(&hier);
+        if !(rel.is_finite() && hier.h0.is_finite() && hc.is_finite()) {
+            return Err((cycles, residual));
+        }
+        residual = rel;
+        history.push(rel);
+        let scale = hc.abs().max(1e-12);
+        let dh =
+            ((hc - hc_old).abs() / scale).max((hier.h0 - h0_old).abs() / hier.h0.abs().max(scale));
+        if rel < s.tol_residual && fb < s.tol_force && dh < s.tol_film {
+            converged = true;
+            break;
+        }
+        let best = history.iter().cloned().fold(f64::INFINITY, f64::min);
+        if history.len() > 3 && rel > 100.0 * best.max(1e-6) {
+            return Err((cycles, residual));
+        }
+        // Stagnation: less than a factor 2 gained over the last 6 cycles, far from tolerance.
+        let n = history.len();
+        if n >= 12 && rel > 10.0 * s.tol_residual && history[n - 7] < 2.0 * rel {
+            break;
+        }
+    }
+    Ok(Core {
+        hier,
+        converged,
+        cycles,
+        history,
+        residual,
+        fb,
+    })
+}
+
+fn h_estimate(sc: &Scales) -> f64 {
+    let hm = nijenbanning_central(sc.m, sc.l.max(1e-6), 1.0 / sc.ratio);
+    let h_m = hm * sc.u.sqrt() * sc.rx; // m
+    h_m * sc.rx / (sc.ax * sc.ax)
+}
+
+fn contact_with_load(c: &EhlContact, load: f64) -> EhlContact {
+    EhlContact { load, ..*c }
+}
+
+fn finish(
+    c: &EhlContact,
+    sc: &Scales,
+    core: Core,
+    cycles_total: usize,
+    steps: usize,
+    t0: Instant,
+) -> EhlSolution {
+    let lv = core.hier.levels.last().expect("at least one level");
+    let hc = bilinear(&lv.h, &lv.x, &lv.y, 0.0, 0.0);
+    let hmin = lv.h.iter().cloned().fold(f64::INFINITY, f64::min);
+    let pmax = lv.p.iter().cloned().fold(0.0, f64::max);
+    let fields = EhlFields {
+        x: lv.x.iter().map(|v| v * sc.ax).collect(),
+        y: lv.y.iter().map(|v| v * sc.ay).collect(),
+        p: lv.p.iter().map(|v| v * sc.ph).collect(),
+        h: lv.h.iter().map(|v| sc.h(*v)).collect(),
+        p_dimensionless: lv.p.clone(),
+        h_dimensionless: lv.h.clone(),
+        a_x: sc.ax,
+        a_y: sc.ay,
+    };
+    let _ = c;
+    EhlSolution {
+        converged: core.converged,
+        moes_m: sc.m,
+        moes_l: sc.l,
+        ry_over_rx: sc.ratio,
+        h_central: sc.h(hc),
+        h_min: sc.h(hmin),
+        p_max: pmax * sc.ph,
+        p_hertz: sc.ph,
+        approach: -sc.h(core.hier.h0),
+        approach_hertz: sc.delta_hertz,
+        h_central_moes: sc.moes(hc),
+        h_min_moes: sc.moes(hmin),
+        force_balance_residual: core.fb,
+        residual: core.residual,
+        grid: [lv.nx, lv.ny],
+        cycles: cycles_total,
+        seconds: t0.elapsed().as_secs_f64(),
+        residual_history: core.history,
+        continuation_steps: steps,
+        attempts: 1,
+        fields,
+    }
+}
+
+/// Solves one steady contact from a Hertzian start (load continuation if the direct start
+/// diverges). A run that stops at `max_cycles` is returned with `converged: false`.
+pub fn solve_steady(c: &EhlContact, s: &EhlSettings) -> Result<EhlSolution, EhlError> {
+    let t0 = Instant::now();
+    let (pr, sc) = setup(c, s)?;
+    let h_est = h_estimate(&sc);
+    let mut cycles = 0;
+    let mut best: Option<(Core, usize)> = None;
+    let ladder = fallback_ladder(s);
+    for (attempt, sk) in ladder.iter().enumerate() {
+        match iterate(&pr, sk, Start::Hertz, h_est, s.max_cycles) {
+            Ok(core) => {
+                cycles += core.cycles;
+                if core.converged {
+                    let mut r = finish(c, &sc, core, cycles, 0, t0);
+                    r.attempts = attempt + 1;
+                    return Ok(r);
+                }
+                if best.as_ref().map_or(true, |b| core.residual < b.0.residual) {
+                    best = Some((core, attempt + 1));
+                }
+            }
+            Err((cyc, _)) => cycles += cyc,
+        }
+    }
+    let conservative = ladder[ladder.len() - 1];
+    match continuation(c, &conservative, &sc, cycles, t0) {
+        Ok(r) if r.converged => Ok(r),
+        other => match best {
+            Some((core, attempt)) => {
+                let mut r = finish(c, &sc, core, cycles, 0, t0);
+                r.attempts = attempt;
+                Ok(r)
+            }
+            None => other,
+        },
+    }
+}
+
+/// The settings tried in turn when a start diverges or stagnates: as given; a smaller h0 gain;
+/// a wider Jacobi-distributive zone; both with smaller distributive steps; all more conservative
+/// still (also used for load continuation).
+fn fallback_ladder(s: &EhlSettings) -> [EhlSettings; 5] {
+    let a = EhlSettings {
+        h0_gain: s.h0_gain * 0.4,
+        ..*s
+    };
+    let b = EhlSettings {
+        jd_threshold: s.jd_threshold.max(1.0),
+        ..*s
+    };
+    let c = EhlSettings {
+        h0_gain: s.h0_gain * 0.4,
+        jd_threshold: s.jd_threshold.max(1.0),
+        omega_jd: s.omega_jd.min(0.15),
+        ..*s
+    };
+    let d = EhlSettings {
+        h0_gain: s.h0_gain * 0.2,
+        jd_threshold: s.jd_threshold.max(1.0),
+        omega_jd: s.omega_jd.min(0.15),
+        omega_gs: s.omega_gs.min(0.3),
+        ..*s
+    };
+    [*s, a, b, c, d]
+}
+
+/// Load continuation: solve at M_k = M_start·2^k (dimensionless pressure carried over), up to M.
+fn continuation(
+    c: &EhlContact,
+    s: &EhlSettings,
+    sc: &Scales,
+    mut cycles_total: usize,
+    t0: Instant,
+) -> Result<EhlSolution, EhlError> {
+    let m_start = (sc.m / 2.0).min(20.0);
+    let mut loads = Vec::new();
+    let mut mk = m_start;
+    while mk < sc.m {
+        loads.push(c.load * mk / sc.m);
+        mk *= 2.0;
+    }
+    loads.push(c.load);
+    let mut p_prev: Option<Vec<f64>> = None;
+    let mut last_res = f64::NAN;
+    let steps = loads.len();
+    for (k, &load) in loads.iter().enumerate() {
+        let ck = contact_with_load(c, load);
+        let (pr, sck) = setup(&ck, s)?;
+        let h_est = h_estimate(&sck);
+        let last = k + 1 == steps;
+        let start = match p_prev.take() {
+            None => Start::Hertz,
+            Some(p) => Start::Given { p, h0: None },
+        };
+        let maxc = if last {
+            s.max_cycles
+        } else {
+            6.min(s.max_cycles)
+        };
+        match iterate(&pr, s, start, h_est, maxc) {
+            Ok(core) => {
+                cycles_total += core.cycles;
+                last_res = core.residual;
+                if last {
+                    let mut r = finish(c, &sck, core, cycles_total, steps, t0);
+                    r.attempts = 6;
+                    return Ok(r);
+                }
+                p_prev = Some(core.hier.levels.last().expect("level").p.clone());
+            }
+            Err((cyc, res)) => {
+                cycles_total += cyc;
+                let res = if res.is_finite() { res } else { last_res };
+                return Err(EhlError::Diverged {
+                    cycles: cycles_total,
+                    m: sc.m,
+                    l: sc.l,
+                    ratio: sc.ratio,
+                    residual: res,
+                });
+            }
+        }
+    }
+    Err(EhlError::Diverged {
+        cycles: cycles_total,
+        m: sc.m,
+        l: sc.l,
+        ratio: sc.ratio,
+        residual: last_res,
+    })
+}
+
+/// Solves a contact starting from a previous solution (warm start): the previous pressure,
+/// rescaled to the new Hertz pressure and semi-axes, and the previous approach. Useful for
+/// sweeps in load or speed and for the bearing loop. Falls back to [`solve_steady`] if the warm
+/// start diverges.
+pub fn solve_steady_from(
+    c: &EhlContact,
+    s: &EhlSettings,
+    previous: &EhlSolution,
+) -> Result<EhlSolution, EhlError> {
+    let t0 = Instant::now();
+    let (pr, sc) = setup(c, s)?;
+    let f = &previous.fields;
+    if f.x.len() < 2 || f.y.len() < 2 || f.p.len() != f.x.len() * f.y.len() {
+        return solve_steady(c, s);
+    }
+    let n = s.grid;
+    let hx = (pr.x_max - pr.x_min) / (n - 1) as f64;
+    let hy = 2.0 * pr.y_half / (n - 1) as f64;
+    let (x0, x1) = (f.x[0], f.x[f.x.len() - 1]);
+    let (y0, y1) = (f.y[0], f.y[f.y.len() - 1]);
+    let mut p = vec![0.0; n * n];
+    for j in 1..n - 1 {
+        let y = (-pr.y_half + j as f64 * hy) * sc.ay;
+        for i in 1..n - 1 {
+            let x = (pr.x_min + i as f64 * hx) * sc.ax;
+            if x > x0 && x < x1 && y > y0 && y < y1 {
+                p[j * n + i] = bilinear(&f.p, &f.x, &f.y, x, y) / sc.ph;
+            }
+        }
+    }
+    let h0 = -previous.approach * sc.rx / (sc.ax * sc.ax);
+    let h_est = h_estimate(&sc);
+    match iterate(
+        &pr,
+        s,
+        Start::Given { p, h0: Some(h0) },
+        h_est,
+        s.max_cycles,
+    ) {
+        Ok(core) if core.converged => {
+            let n = core.cycles;
+            Ok(finish(c, &sc, core, n, 0, t0))
+        }
+        _ => solve_steady(c, s),
+    }
+}
+
+/// Solves a dimensionless case. The dimensional contact behind it: E′ = 2.2e11 Pa, Rx = 10 mm,
+/// Ry = Rx·ratio, α = alpha_p0/p0, η0 = exp(ln_eta0_ratio − 9.67), ρ0 = 870 kg/m³; U, W and the
+/// load follow from M and L. The dimensionless results depend only on (M, L, Ry/Rx, α p0,
+/// ln η0 + 9.67), the dimensional ones refer to that contact.
+pub fn solve_moes(c: &MoesCase, s: &EhlSettings) -> Result<EhlSolution, EhlError> {
+    check_pos("M", c.m)?;
+    if !(c.l.is_finite() && c.l > 0.0) {
+        return Err(invalid("L", c.l, "finite and > 0"));
+    }
+    if !(c.ry_over_rx.is_finite() && (1.0..=1000.0).contains(&c.ry_over_rx)) {
+        return Err(invalid("ry_over_rx", c.ry_over_rx, "1 <= Ry/Rx <= 1000"));
+    }
+    check_pos("alpha_p0", c.alpha_p0)?;
+    check_pos("ln_eta0_ratio", c.ln_eta0_ratio)?;
+    let e = 2.2e11;
+    let rx = 0.01;
+    let alpha = c.alpha_p0 / ROELANDS_P0;
+    let eta0 = (c.ln_eta0_ratio - ROELANDS_LN_ETA_INF).exp();
+    let g = alpha * e;
+    let u = (c.l / g).powi(4);
+    let w = c.m * u.powf(0.75);
+    let contact = EhlContact {
+        load: w * e * rx * rx,
+        rx,
+        ry: rx * c.ry_over_rx,
+        sum_velocity: u * e * rx / eta0,
+        e_reduced: e,
+        lubricant: Lubricant {
+            viscosity: eta0,
+            pressure_viscosity: alpha,
+            density: 870.0,
+            viscosity_model: c.viscosity,
+            density_model: c.density,
+        },
+    };
+    solve_steady(&contact, s)
+}

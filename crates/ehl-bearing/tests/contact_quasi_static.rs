@@ -1,0 +1,100 @@
+//! Quasi-static characterization of a seed contact: the fitted law reproduces its data, and the
+//! paper's trends hold (d grows toward 1.5 with load, ΔF grows with speed).
+//! Grid 65 keeps the test fast; the trends are the same on 129 (see docs/contact.md).
+
+use ehl_bearing::contact::{characterize_quasi_static, ContactFit, QuasiStaticSettings};
+use ehl_bearing::ehl::{EhlContact, EhlSettings};
+use ehl_bearing::material::{reduced_modulus, Lubricant, Solid};
+use ehl_bearing::ContactLaw;
+
+/// The seed's inner-race contact (7006, DESIGN.md §2): Rx = 2.9487 mm, Ry = 178.5 mm; sum
+/// velocity 10.85 m/s at 5000 rpm and 6.5 m/s at 3000 rpm.
+fn inner(load: f64, us: f64) -> EhlContact {
+    EhlContact {
+        load,
+        rx: 2.9487e-3,
+        ry: 178.5e-3,
+        sum_velocity: us,
+        e_reduced: reduced_modulus(&Solid::AISI_52100, &Solid::AISI_52100),
+        lubricant: Lubricant::DEFAULT_MINERAL_OIL,
+    }
+}
+
+fn settings() -> QuasiStaticSettings {
+    QuasiStaticSettings {
+        ehl: EhlSettings {
+            grid: 65,
+            ..EhlSettings::default()
+        },
+        ..QuasiStaticSettings::default()
+    }
+}
+
+fn run(load: f64, us: f64) -> ContactFit {
+    let f = characterize_quasi_static(&inner(load, us), &settings()).unwrap();
+    assert!(f.converged, "{load} N, {us} m/s");
+    f
+}
+
+#[test]
+fn fitted_law_reproduces_the_ehl_family() {
+    let f = run(300.0, 10.85);
+    assert_eq!(f.samples.len(), 7);
+    // Every EHL sample within 4 RMS residuals of the law, and the RMS itself small against the
+    // load (the EHL solutions are converged to 1e-5 in film and force).
+    for s in &f.samples {
+        let (q, _) = f.law.force(s.approach);
+        assert!(
+            (q - s.load).abs() <= 4.0 * f.rms_residual + 1e-9,
+            "{q} vs {}",
+            s.load
+        );
+    }
+    assert!(f.rms_residual < 1e-3 * f.load, "{}", f.rms_residual);
+    assert!(f.r_squared > 0.99999);
+    // The law inverts to the approach of the operating point.
+    let d0 = f.law.approach_at(f.load).unwrap();
+    assert!((d0 - f.approach).abs() < 1e-3 * f.approach);
+    // Lubricated: positive lift at zero approach, index between 1 and the dry 1.5.
+    assert!(f.delta_f > 0.0 && f.d > 1.0 && f.d < 1.5, "{f:?}");
+}
+
+#[test]
+fn paper_trends_d_grows_with_load_and_lift_grows_with_speed() {
+    // d toward 1.5 (Hertz) as the load grows, at 5000 rpm.
+    let d: Vec<f64> = [100.0, 300.0, 600.0]
+        .iter()
+        .map(|&w| run(w, 10.85).d)
+        .collect();
+    assert!(d[0] < d[1] && d[1] < d[2] && d[2] < 1.5, "{d:?}");
+    // ΔF grows with speed at fixed load (3000 → 5000 rpm); the rise is many standard errors.
+    let slow = run(300.0, 6.5);
+    let fast = run(300.0, 10.85);
+    let se = slow.std_errors.delta_f.hypot(fast.std_errors.delta_f);
+    assert!(
+        fast.delta_f - slow.delta_f > 5.0 * se,
+        "{} {} ± {se}",
+        slow.delta_f,
+        fast.delta_f
+    );
+}
+
+#[test]
+fn invalid_settings_are_errors() {
+    let mut s = settings();
+    s.amplitude = 1.5;
+    let e = characterize_quasi_static(&inner(300.0, 10.85), &s)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("amplitude"), "{e}");
+    let mut s = settings();
+    s.points = 3;
+    let e = characterize_quasi_static(&inner(300.0, 10.85), &s)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("points"), "{e}");
+    let e = characterize_quasi_static(&inner(-1.0, 10.85), &settings())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("load"), "{e}");
+}
