@@ -5,7 +5,7 @@ use anyhow::{bail, Context};
 use ehl_bearing::characterize::{
     characterization_json, characterize_bearing_with_progress, BearingCharacterization,
     CharacterizeSettings, ContactCharacterizer, ContactRow, HertzCharacterizer, Progress,
-    SyntheticCharacterizer,
+    QuasiStaticCharacterizer, SyntheticCharacterizer,
 };
 use ehl_bearing::io::{read_case, Case};
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -108,8 +108,28 @@ pub fn characterizer(
             }
             Ok(Box::new(s))
         }
-        "quasi-static" | "harmonic" => bail!(
-            "method {method} is not available yet (the EHL characterization is not in this build); use --method hertz"
+        "quasi-static" => {
+            check_keys(&["amplitude", "points", "grid"])?;
+            let mut q = QuasiStaticCharacterizer::default();
+            q.settings.amplitude = get_f64("amplitude", q.settings.amplitude)?;
+            if let Some(v) = opts.get("points") {
+                q.settings.points = v
+                    .as_u64()
+                    .filter(|n| (4..=101).contains(n))
+                    .with_context(|| format!("method_options.points = {v}: expected an integer from 4 to 101"))?
+                    as usize;
+            }
+            if let Some(v) = opts.get("grid") {
+                q.settings.ehl.grid = v
+                    .as_u64()
+                    .filter(|n| (9..=4097).contains(n))
+                    .with_context(|| format!("method_options.grid = {v}: expected an integer grid size from 9 to 4097"))?
+                    as usize;
+            }
+            Ok(Box::new(q))
+        }
+        "harmonic" => bail!(
+            "method {method} is not available yet (the transient EHL characterization is not in this build); use --method quasi-static or hertz"
         ),
         other => bail!("unknown method {other:?}: expected one of {}", METHODS.join(", ")),
     }

@@ -424,6 +424,55 @@ impl ContactCharacterizer for SyntheticCharacterizer {
     }
 }
 
+/// The EHL quasi-static method ([`crate::contact::characterize_quasi_static`]: a family of steady
+/// EHL solutions at w0·(1 ± ε), fitted) as a [`ContactCharacterizer`].
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct QuasiStaticCharacterizer {
+    /// Settings of the method (amplitude, number of solutions, EHL grid and solver).
+    pub settings: crate::contact::QuasiStaticSettings,
+}
+
+impl ContactCharacterizer for QuasiStaticCharacterizer {
+    fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error> {
+        c.validate()?;
+        let contact = crate::ehl::EhlContact {
+            load: c.load,
+            rx: c.rx,
+            ry: c.ry,
+            sum_velocity: c.sum_velocity,
+            e_reduced: c.e_reduced,
+            lubricant: c.lubricant,
+        };
+        let fit = crate::contact::characterize_quasi_static(&contact, &self.settings)?;
+        let approach = fit.law.approach_at(c.load).unwrap_or(fit.approach);
+        Ok(CharacterizedContact {
+            law: fit.law,
+            k: fit.k,
+            d: fit.d,
+            delta_f: fit.delta_f,
+            load: c.load,
+            approach,
+            moes_m: fit.moes_m,
+            moes_l: fit.moes_l,
+            ry_over_rx: fit.ry_over_rx,
+            r_squared: fit.r_squared,
+            rms_residual: fit.rms_residual,
+            converged: fit.converged,
+            method: self.name().to_string(),
+            seconds: fit.seconds,
+            samples: fit.samples.len(),
+        })
+    }
+
+    fn settings_json(&self) -> Value {
+        serde_json::to_value(self.settings).unwrap_or(Value::Null)
+    }
+
+    fn name(&self) -> &str {
+        "quasi-static"
+    }
+}
+
 /// Settings of [`characterize_bearing`].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct CharacterizeSettings {
