@@ -16,10 +16,11 @@
 use crate::characterize_cmd::{
     characterizer, contact_progress, progress_container, with_threads, write_atomic,
 };
+use crate::plot::{stacked_charts, Series};
 use anyhow::Context;
 use ehl_bearing::study::{
     fit_trends, point_rows, read_study, results_csv, run_point_with_progress, ResultRow,
-    TrendForceElement, TrendModel,
+    TrendCurve, TrendForceElement, TrendModel,
 };
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use serde_json::Value;
@@ -289,8 +290,78 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Plots of K, d and ΔF against the contact load, inner and outer raceways apart, one series per
-/// speed (the paper's Fig. 2). Waiting for the plot module.
-fn plots(_dir: &Path, _rows: &[ResultRow], _trends: Option<&TrendModel>) -> anyhow::Result<()> {
+/// Plots of K, d and ΔF against the contact load (the paper's Fig. 2): one figure per parameter,
+/// inner and outer raceways in separate panels sharing the load axis, one marker series per speed
+/// and the trend curves as lines (K and d: one curve; ΔF: one per speed).
+fn plots(dir: &Path, rows: &[ResultRow], trends: Option<&TrendModel>) -> anyhow::Result<()> {
+    let mut speeds: Vec<f64> = Vec::new();
+    for r in rows {
+        if !speeds.contains(&r.speed_rpm) {
+            speeds.push(r.speed_rpm);
+        }
+    }
+    type Get = fn(&ResultRow) -> f64;
+    let figures: [(&str, &str, &str, Get); 3] = [
+        ("k_vs_load", "Stiffness K", "K (N/m^d)", |r| r.contact.k),
+        ("d_vs_load", "Nonlinear index d", "d (–)", |r| r.contact.d),
+        (
+            "delta_f_vs_load",
+            "Lift at zero approach ΔF",
+            "ΔF (N)",
+            |r| r.contact.delta_f_n,
+        ),
+    ];
+    for (stem, title, y_label, get) in figures {
+        let mut panels = Vec::new();
+        for race in ["inner", "outer"] {
+            let mut series = Vec::new();
+            for &n in &speeds {
+                let mut pts: Vec<(f64, f64)> = rows
+                    .iter()
+                    .filter(|r| {
+                        r.speed_rpm == n && r.contact.race == race && !r.contact.load_floored
+                    })
+                    .map(|r| (r.contact.load_n, get(r)))
+                    .collect();
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                let (x, y): (Vec<f64>, Vec<f64>) = pts.into_iter().unzip();
+                series.push(Series::markers(format!("{n} rpm"), x, y));
+            }
+            if let Some(m) = trends {
+                let t = if race == "inner" { &m.inner } else { &m.outer };
+                let [lo, hi] = t.load_range_n;
+                let q: Vec<f64> = (0..=60)
+                    .map(|i| lo * (hi / lo).powf(i as f64 / 60.0))
+                    .collect();
+                let curve = |c: &TrendCurve, n: f64| q.iter().map(|&qi| c.eval(qi, n)).collect();
+                let omega = |rpm: f64| (rpm * std::f64::consts::PI / 30.0).abs();
+                match stem {
+                    "k_vs_load" => {
+                        series.push(Series::line("trend K(Q)", q.clone(), curve(&t.k, 0.0)))
+                    }
+                    "d_vs_load" => {
+                        series.push(Series::line("trend d(Q)", q.clone(), curve(&t.d, 0.0)))
+                    }
+                    _ => {
+                        for &n in &speeds {
+                            series.push(Series::line(
+                                format!("trend ΔF(Q, {n} rpm)"),
+                                q.clone(),
+                                curve(&t.delta_f, omega(n)),
+                            ));
+                        }
+                    }
+                }
+            }
+            panels.push((format!("{race}: {y_label}"), series));
+        }
+        stacked_charts(
+            &dir.join(stem),
+            &format!("{title} against contact load"),
+            "contact load Q (N)",
+            &panels,
+        )
+        .with_context(|| format!("plotting {stem}"))?;
+    }
     Ok(())
 }

@@ -77,7 +77,6 @@ fn characterize_table_and_output_folder() {
 #[test]
 fn unavailable_and_unknown_methods_are_clear_errors() {
     for (method, msg) in [
-        ("quasi-static", "method quasi-static is not available yet"),
         ("harmonic", "method harmonic is not available yet"),
         ("magic", "unknown method"),
     ] {
@@ -187,6 +186,18 @@ fn study_writes_long_csv_and_loadable_trends() {
     let model = ehl_bearing::study::TrendModel::from_json(&trends).unwrap();
     assert_eq!(model.inner.d.form, "hertz_limit");
     assert_eq!(std::fs::read_dir(out.join("points")).unwrap().count(), 9);
+    for stem in ["k_vs_load", "d_vs_load", "delta_f_vs_load"] {
+        for ext in ["png", "svg"] {
+            let f = out.join(format!("{stem}.{ext}"));
+            assert!(
+                std::fs::metadata(&f).unwrap().len() > 1000,
+                "{}",
+                f.display()
+            );
+        }
+    }
+    let svg = std::fs::read_to_string(out.join("d_vs_load.svg")).unwrap();
+    assert!(svg.contains("inner") && svg.contains("outer") && svg.contains("5000 rpm"));
 }
 
 #[test]

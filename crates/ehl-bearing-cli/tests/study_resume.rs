@@ -105,6 +105,7 @@ fn killed_study_resumes_to_identical_files() {
     assert_same_tree(&full, &resumed);
     assert!(tree(&full).contains_key("results.csv"));
     assert!(tree(&full).contains_key("trends.json"));
+    assert!(tree(&full).contains_key("k_vs_load.png"));
 }
 
 #[test]
