@@ -4,10 +4,11 @@
 //! Q = K·δ^d + ΔF) at that contact's load, sum velocity, Rx and Ry → equilibrium with the fitted
 //! laws → repeat until the largest relative change of the contact loads is below a tolerance.
 //!
-//! - [`ContactCharacterizer`] is the plug-in point for a characterization method (the EHL
-//!   quasi-static and harmonic methods live in `crate::contact`; [`HertzCharacterizer`] is the
-//!   documented reference method used by the tests; [`SyntheticCharacterizer`] has known
-//!   load- and speed-dependent parameters for testing trend curves).
+//! - [`ContactCharacterizer`] is the plug-in point for a characterization method:
+//!   [`QuasiStaticCharacterizer`] runs the EHL quasi-static method of `crate::contact`;
+//!   [`HertzCharacterizer`] is the documented reference method used by the tests;
+//!   [`SyntheticCharacterizer`] has known load- and speed-dependent parameters for testing trend
+//!   curves.
 //! - [`characterize_bearing`] runs the loop. Contacts of one iteration are characterized in
 //!   parallel (rayon); the result does not depend on the number of threads (bitwise).
 //! - Fitted laws are cached by their dimensionless inputs (Moes M, L, Ry/Rx; exact match of the
