@@ -330,3 +330,59 @@ fn cache_reuses_near_identical_contacts_with_a_bounded_error() {
     }
     assert_consistent(&cached);
 }
+
+#[test]
+fn quasi_static_characterizer_is_the_contact_module_behind_the_trait() {
+    use ehl_bearing::characterize::QuasiStaticCharacterizer;
+    use ehl_bearing::contact::{characterize_quasi_static, QuasiStaticSettings};
+    // The seed's inner contact at 300 N and 5000 rpm (u_s = 10.85 m/s, docs/contact.md), on a
+    // coarse 65² grid to keep the test short.
+    let case = seed();
+    let (rx, ry) = case
+        .bearing
+        .geometry
+        .curvature_radii(Race::Inner, 19f64.to_radians());
+    let mut settings = QuasiStaticSettings::default();
+    settings.ehl.grid = 65;
+    let ch = QuasiStaticCharacterizer { settings };
+    let c = ContactConditions {
+        race: Race::Inner,
+        load: 300.0,
+        rx,
+        ry,
+        sum_velocity: 10.85,
+        e_reduced: case.bearing.reduced_modulus(),
+        lubricant: case.lubricant,
+        ball_mass: case.bearing.ball_mass(),
+    };
+    let got = ch.characterize(&c).unwrap();
+    let direct = characterize_quasi_static(
+        &ehl_bearing::ehl::EhlContact {
+            load: 300.0,
+            rx,
+            ry,
+            sum_velocity: 10.85,
+            e_reduced: c.e_reduced,
+            lubricant: c.lubricant,
+        },
+        &settings,
+    )
+    .unwrap();
+    assert_eq!(
+        (got.k, got.d, got.delta_f),
+        (direct.k, direct.d, direct.delta_f)
+    );
+    assert_eq!(got.method, "quasi-static");
+    assert_eq!(got.samples, 7);
+    // The lubricated law: softer index than Hertz and a positive lift (the paper's findings).
+    assert!(got.d > 1.0 && got.d < 1.5, "{}", got.d);
+    assert!(got.delta_f > 0.0, "{}", got.delta_f);
+    // Moes M as defined in DESIGN.md §2 (not the paper's eq. 7), against this module's own.
+    assert!(
+        (got.moes_m / c.moes().m - 1.0).abs() < 1e-9,
+        "{} vs {}",
+        got.moes_m,
+        c.moes().m
+    );
+    assert_eq!(ch.settings_json()["ehl"]["grid"], 65);
+}
