@@ -337,7 +337,19 @@ fn plots(dir: &Path, rows: &[ResultRow], trends: Option<&TrendModel>) -> anyhow:
                 let omega = |rpm: f64| (rpm * std::f64::consts::PI / 30.0).abs();
                 match stem {
                     "k_vs_load" => {
-                        series.push(Series::line("trend K(Q)", q.clone(), curve(&t.k, 0.0)))
+                        series.push(Series::line(
+                            "power fit K = p0·Q^p1",
+                            q.clone(),
+                            curve(&t.k, 0.0),
+                        ));
+                        for &n in &speeds {
+                            let k = q.iter().map(|&qi| t.k_at(qi, omega(n))).collect();
+                            series.push(Series::line(
+                                format!("K used: (Q − ΔF)/δ^d, {n} rpm"),
+                                q.clone(),
+                                k,
+                            ));
+                        }
                     }
                     "d_vs_load" => {
                         series.push(Series::line("trend d(Q)", q.clone(), curve(&t.d, 0.0)))

@@ -494,6 +494,20 @@ pub struct RaceTrends {
 }
 
 impl RaceTrends {
+    /// The stiffness K (N/m^d) the force element uses at load `q` (N) and speed `n` (rad/s):
+    /// K = (Q − ΔF)/δ^d with d, ΔF and δ from their trends, so that the law passes through
+    /// (δ(Q, n), Q); the K(Q) power fit only where that anchor is not positive.
+    pub fn k_at(&self, q: f64, n: f64) -> f64 {
+        let d = self.d.eval(q, n);
+        let df = self.delta_f.eval(q, n);
+        let anchor = self.approach_at(q, n);
+        if anchor > 0.0 && q > df && d > 0.0 {
+            (q - df) / anchor.powf(d)
+        } else {
+            self.k.eval(q, n)
+        }
+    }
+
     /// The approach trend δ(Q, n), m, at load `q` (N) and speed `n` (rad/s).
     pub fn approach_at(&self, q: f64, n: f64) -> f64 {
         if self.approach.form == "power_elastic" {
@@ -1092,12 +1106,7 @@ impl TrendForceElement {
         let nc = n.clamp(nlo, nhi);
         let d = t.d.eval(qc, nc);
         let df = t.delta_f.eval(qc, nc);
-        let anchor = t.approach_at(qc, nc);
-        let k = if anchor > 0.0 && qc > df && d > 0.0 {
-            (qc - df) / anchor.powf(d)
-        } else {
-            t.k.eval(qc, nc)
-        };
+        let k = t.k_at(qc, nc);
         let q_lo = (0.8 * qc).max(df + 0.05 * qc);
         let q_hi = (1.2 * qc).max(1.5 * q_lo);
         let delta = |q: f64| ((q - df) / k).powf(1.0 / d);
