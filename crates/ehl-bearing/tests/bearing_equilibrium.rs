@@ -413,49 +413,40 @@ fn unloaded_balls_do_not_break_the_solver() {
 fn loads_the_bearing_cannot_carry_are_errors_with_residual_or_reason() {
     let b = b7006();
     let laws = ContactLaws::hertz(&b).unwrap();
-    // Radial load with almost no thrust: the loaded balls would need reversed contact angles.
-    let err = solve_equilibrium(
-        &b,
-        &laws,
-        &loads(50.0, 3000.0, 0.0, 0.0, 0.0, 5000.0, RaceControl::Outer),
-        &EquilibriumSettings::default(),
-    )
-    .unwrap_err()
-    .to_string();
-    assert!(err.contains("cannot carry"), "{err}");
-    // A reversed thrust on a single-row angular-contact bearing.
-    let err = solve_equilibrium(
-        &b,
-        &laws,
-        &loads(-1000.0, 0.0, 0.0, 0.0, 0.0, 0.0, RaceControl::Outer),
-        &EquilibriumSettings::default(),
-    )
-    .unwrap_err()
-    .to_string();
-    assert!(err.contains("cannot carry"), "{err}");
-    // An absurd load: deflections beyond 2 % of the ball diameter.
-    let err = solve_equilibrium(
-        &b,
-        &laws,
-        &loads(1e7, 0.0, 0.0, 0.0, 0.0, 0.0, RaceControl::Outer),
-        &EquilibriumSettings::default(),
-    )
-    .unwrap_err()
-    .to_string();
-    assert!(err.contains("cannot carry"), "{err}");
+    let error = |op: OperatingPoint, settings: EquilibriumSettings| {
+        solve_equilibrium(&b, &laws, &op, &settings)
+            .unwrap_err()
+            .to_string()
+    };
+    for (what, op) in [
+        // Radial load with almost no thrust: the loaded balls would need reversed contact angles.
+        (
+            "minimum thrust",
+            loads(50.0, 3000.0, 0.0, 0.0, 0.0, 5000.0, RaceControl::Outer),
+        ),
+        // A reversed thrust on a single-row angular-contact bearing.
+        (
+            "reversed thrust",
+            loads(-1000.0, 0.0, 0.0, 0.0, 0.0, 0.0, RaceControl::Outer),
+        ),
+        // An absurd load: deflections beyond 2 % of the ball diameter.
+        (
+            "overload",
+            loads(1e7, 0.0, 0.0, 0.0, 0.0, 0.0, RaceControl::Outer),
+        ),
+    ] {
+        let err = error(op, EquilibriumSettings::default());
+        assert!(err.contains("cannot carry"), "{what}: {err}");
+    }
     // Too few iterations: not converged, with the residual in the message.
     let settings = EquilibriumSettings {
         max_iterations: 1,
         ..Default::default()
     };
-    let err = solve_equilibrium(
-        &b,
-        &laws,
-        &loads(1000.0, 1000.0, 1000.0, 0.0, 0.0, 5000.0, RaceControl::Outer),
-        &settings,
-    )
-    .unwrap_err()
-    .to_string();
+    let err = error(
+        loads(1000.0, 1000.0, 1000.0, 0.0, 0.0, 5000.0, RaceControl::Outer),
+        settings,
+    );
     assert!(
         err.contains("did not converge") && err.contains("residual"),
         "{err}"
