@@ -3,6 +3,7 @@
 mod contact_cmd;
 mod ehl_cmd;
 mod equilibrium_cmd;
+mod fields_plot;
 mod plot;
 
 use clap::{Parser, Subcommand};
