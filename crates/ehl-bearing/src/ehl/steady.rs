@@ -66,11 +66,11 @@ fn validate_settings(s: &EhlSettings) -> Result<(), EhlError> {
             "2^k + 1, 17 to 1025",
         ));
     }
-    if !(pow2(s.coarsest) && s.coarsest >= 9 && s.coarsest <= s.grid) {
+    if !(pow2(s.coarsest) && s.coarsest >= 9) {
         return Err(invalid(
             "settings.coarsest",
             s.coarsest as f64,
-            "2^k + 1, >= 9 and <= grid",
+            "2^k + 1, >= 9 (a value above grid means a single level)",
         ));
     }
     for (f, v) in [
