@@ -44,7 +44,7 @@ pub enum EhlError {
     /// The iteration produced non-finite numbers or blew up, also after load continuation.
     #[error(
         "EHL solver diverged after {cycles} cycles (M = {m:.4}, L = {l:.4}, Ry/Rx = {ratio:.4}, \
-         last relative residual {residual:e})"
+         lowest relative residual reached {residual:e})"
     )]
     Diverged {
         /// Multigrid cycles done.
@@ -55,7 +55,7 @@ pub enum EhlError {
         l: f64,
         /// Ry/Rx of the case.
         ratio: f64,
-        /// Last finite relative residual.
+        /// Lowest relative residual reached before the divergence (NaN if none).
         residual: f64,
     },
 }
