@@ -17,32 +17,49 @@ pub struct EquilibriumArgs {
     /// minimum film (uses the case's [lubricant]).
     #[arg(long)]
     pub film: bool,
-    /// Grid of the EHL solutions for --film (2^k + 1; default 129).
-    #[arg(long, default_value_t = 129, requires = "film")]
-    pub grid: usize,
+    /// Grid of the EHL solutions for --film (2^k + 1; default that of `ehl`, 257).
+    #[arg(long, requires = "film")]
+    pub grid: Option<usize>,
 }
 
-/// EHL film of one contact (None when unloaded).
-pub struct Film {
+/// Contacts whose load is below this fraction of the largest contact load are reported unloaded.
+const UNLOADED_FRACTION: f64 = 1e-6;
+/// Contacts whose sum velocity is below this fraction of the largest are reported without
+/// entrainment (dry Hertz contact, no EHL film).
+const NO_ENTRAINMENT_FRACTION: f64 = 1e-6;
+
+/// EHL film of one contact.
+// One value per contact, a few dozen at most: boxing the solution would buy nothing.
+#[allow(clippy::large_enum_variant)]
+pub enum Film {
+    /// Load below `UNLOADED_FRACTION` of the largest.
+    Unloaded,
+    /// No entrainment (e.g. co-rotating rings): a dry contact, no film.
+    NoEntrainment,
     /// The steady solution, or the solver's message.
-    pub result: Result<ehl_bearing::ehl::EhlSolution, String>,
+    Solved(Result<ehl_bearing::ehl::EhlSolution, String>),
 }
 
 /// Solve the steady EHL problem of every loaded contact, in parallel; index 2j inner, 2j+1 outer.
-pub fn films(case: &Case, eq: &Equilibrium, grid: usize) -> Vec<Option<Film>> {
+pub fn films(case: &Case, eq: &Equilibrium, grid: Option<usize>) -> Vec<Film> {
     use ehl_bearing::ehl::{solve_steady, EhlContact, EhlSettings};
     use rayon::prelude::*;
-    let settings = EhlSettings {
-        grid,
-        ..EhlSettings::default()
-    };
+    let mut settings = EhlSettings::default();
+    if let Some(g) = grid {
+        settings.grid = g;
+    }
     let e_reduced = case.bearing.reduced_modulus();
     let contacts: Vec<_> = eq.balls.iter().flat_map(|b| [b.inner, b.outer]).collect();
+    let qmax = contacts.iter().map(|c| c.load).fold(0.0, f64::max);
+    let umax = contacts.iter().map(|c| c.sum_velocity).fold(0.0, f64::max);
     contacts
         .par_iter()
         .map(|c| {
-            if c.load <= 0.0 || c.sum_velocity <= 0.0 {
-                return None;
+            if c.load <= UNLOADED_FRACTION * qmax {
+                return Film::Unloaded;
+            }
+            if c.sum_velocity <= NO_ENTRAINMENT_FRACTION * umax || umax == 0.0 {
+                return Film::NoEntrainment;
             }
             let ec = EhlContact {
                 load: c.load,
@@ -52,9 +69,7 @@ pub fn films(case: &Case, eq: &Equilibrium, grid: usize) -> Vec<Option<Film>> {
                 e_reduced,
                 lubricant: case.lubricant,
             };
-            Some(Film {
-                result: solve_steady(&ec, &settings).map_err(|e| e.to_string()),
-            })
+            Film::Solved(solve_steady(&ec, &settings).map_err(|e| e.to_string()))
         })
         .collect()
 }
@@ -89,8 +104,7 @@ pub fn run(args: &EquilibriumArgs) -> anyhow::Result<()> {
     if let Some(f) = &films {
         let failed = f
             .iter()
-            .flatten()
-            .filter(|x| !matches!(&x.result, Ok(s) if s.converged))
+            .filter(|x| matches!(x, Film::Solved(r) if !matches!(r, Ok(s) if s.converged)))
             .count();
         if failed > 0 {
             anyhow::bail!("{failed} EHL contact solution(s) did not converge (see the film table)");
@@ -180,6 +194,9 @@ pub fn table(case: &Case, eq: &Equilibrium) -> String {
             b.centrifugal_force
         );
     }
+    for w in &eq.warnings {
+        let _ = writeln!(s, "warning: {w}");
+    }
     let _ = writeln!(
         s,
         "\nstiffness matrix (rows: reaction F_x, F_y, F_z [N], M_y, M_z [N·m]; columns: x, y, z [m], θy, θz [rad])"
@@ -197,10 +214,12 @@ pub fn table(case: &Case, eq: &Equilibrium) -> String {
     s
 }
 
-fn film_json(f: &Option<Film>) -> serde_json::Value {
+fn film_json(f: &Film) -> serde_json::Value {
     match f {
-        None => serde_json::Value::Null,
-        Some(Film { result: Ok(s) }) => serde_json::json!({
+        Film::Unloaded => serde_json::json!({ "state": "unloaded" }),
+        Film::NoEntrainment => serde_json::json!({ "state": "no-entrainment" }),
+        Film::Solved(Ok(s)) => serde_json::json!({
+            "state": "solved",
             "converged": s.converged,
             "h_central": s.h_central,
             "h_min": s.h_min,
@@ -212,12 +231,14 @@ fn film_json(f: &Option<Film>) -> serde_json::Value {
             "force_balance_residual": s.force_balance_residual,
             "residual": s.residual,
         }),
-        Some(Film { result: Err(e) }) => serde_json::json!({ "converged": false, "error": e }),
+        Film::Solved(Err(e)) => {
+            serde_json::json!({ "state": "failed", "converged": false, "error": e })
+        }
     }
 }
 
 /// Film table in engineering units.
-pub fn film_table(case: &Case, eq: &Equilibrium, films: &[Option<Film>]) -> String {
+pub fn film_table(case: &Case, eq: &Equilibrium, films: &[Film]) -> String {
     use std::fmt::Write;
     let mut s = String::new();
     let l = &case.lubricant;
@@ -241,10 +262,17 @@ pub fn film_table(case: &Case, eq: &Equilibrium, films: &[Option<Film>]) -> Stri
             .enumerate()
         {
             match &films[2 * j + k] {
-                None => {
+                Film::Unloaded => {
                     let _ = writeln!(s, "{j:>4} {race:>5} | {:>8.2}  unloaded", c.load);
                 }
-                Some(Film { result: Ok(x) }) => {
+                Film::NoEntrainment => {
+                    let _ = writeln!(
+                        s,
+                        "{j:>4} {race:>5} | {:>8.2}  no entrainment (dry contact)",
+                        c.load
+                    );
+                }
+                Film::Solved(Ok(x)) => {
                     let _ = writeln!(
                         s,
                         "{:>4} {:>5} | {:>8.2} {:>7.1} {:>8.2} {:>8.4} {:>8.4} {:>7.3} | {}",
@@ -259,7 +287,7 @@ pub fn film_table(case: &Case, eq: &Equilibrium, films: &[Option<Film>]) -> Stri
                         if x.converged { "yes" } else { "NO" }
                     );
                 }
-                Some(Film { result: Err(e) }) => {
+                Film::Solved(Err(e)) => {
                     let _ = writeln!(s, "{j:>4} {race:>5} | {:>8.2}  failed: {e}", c.load);
                 }
             }

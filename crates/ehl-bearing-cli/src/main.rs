@@ -4,6 +4,7 @@ mod characterize_cmd;
 mod contact_cmd;
 mod ehl_cmd;
 mod equilibrium_cmd;
+mod fields_plot;
 mod plot;
 mod study_cmd;
 

@@ -279,3 +279,47 @@ fn grid_table() {
         }
     }
 }
+
+/// Robustness sweep over the range bearings meet: M 5–2000, L 2–25, Ry/Rx 1–100, both rheologies,
+/// on `EHL_SWEEP_GRID` points (default 129).
+#[test]
+#[ignore]
+fn range_sweep() {
+    let grid: usize = std::env::var("EHL_SWEEP_GRID")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(129);
+    let s = EhlSettings {
+        grid,
+        ..Default::default()
+    };
+    let (mut ok, mut total) = (0, 0);
+    for barus in [false, true] {
+        for r in [1.0, 12.0, 61.0, 100.0] {
+            for l in [2.0, 10.0, 25.0] {
+                for m in [5.0, 20.0, 100.0, 500.0, 2000.0] {
+                    let mut c = case(m, l, r);
+                    if barus {
+                        c.viscosity = ViscosityModel::Barus;
+                        c.density = DensityModel::Incompressible;
+                    }
+                    total += 1;
+                    match solve_moes(&c, &s) {
+                        Ok(x) => {
+                            if x.converged {
+                                ok += 1;
+                            }
+                            println!(
+                                "barus {barus} R {r} L {l} M {m}: conv {} cycles {} starts {} cont {} t {:.2}s H_c {:.4} H_min {:.4}",
+                                x.converged, x.cycles, x.attempts, x.continuation_steps, x.seconds,
+                                x.h_central_moes, x.h_min_moes
+                            );
+                        }
+                        Err(e) => println!("barus {barus} R {r} L {l} M {m}: ERROR {e}"),
+                    }
+                }
+            }
+        }
+    }
+    println!("converged {ok} of {total}");
+}

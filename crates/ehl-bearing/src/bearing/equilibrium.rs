@@ -144,6 +144,12 @@ pub struct EquilibriumSettings {
     /// Largest deflection accepted, as a fraction of the ball diameter; beyond it the load is
     /// reported as one the bearing cannot carry.
     pub max_deflection_ratio: f64,
+    /// Smallest inner contact angle a loaded ball may take, rad. An angular-contact bearing has
+    /// its low shoulder (counterbore) on one side of the groove: a load that drives the contacts
+    /// past it is one the bearing cannot carry. Default −5° (a little past the groove bottom);
+    /// case files that give the bearing by its clearance (deep-groove bearings, shoulders on both
+    /// sides) default to −90°, i.e. no limit.
+    pub min_contact_angle: f64,
 }
 
 impl Default for EquilibriumSettings {
@@ -152,6 +158,7 @@ impl Default for EquilibriumSettings {
             tolerance: 1e-11,
             max_iterations: 100,
             max_deflection_ratio: 0.02,
+            min_contact_angle: -5f64.to_radians(),
         }
     }
 }
@@ -230,6 +237,9 @@ pub struct Equilibrium {
     pub stiffness: [[f64; 5]; 5],
     /// Per-ball states, ball 0 on +y.
     pub balls: Vec<BallState>,
+    /// Conditions under which the result is approximate (kinematic angle far from the contact
+    /// angles, gyroscopic friction at its limit), in words.
+    pub warnings: Vec<String>,
 }
 
 /// Bearing reactions and their Jacobian at given ring displacements: the bearing as a force
@@ -938,6 +948,18 @@ pub fn solve_equilibrium(
     }
     let balls = model.ball_states(&q, &mut warm)?;
     check_carried(bearing, &balls, settings)?;
+    // A free DOF with no ball touching the inner race (zero load at speed: the balls ride on the
+    // outer race) leaves the ring position undetermined.
+    let outer_total: f64 = balls.iter().map(|b| b.outer.load).sum();
+    if !free.is_empty()
+        && balls.iter().all(|b| b.inner.load <= 1e-9 * outer_total)
+        && outer_total > 0.0
+    {
+        return Err(BearingError::Overloaded {
+            reason: "no ball touches the inner race (the loads are zero and centrifugal force holds the balls on the outer race): the ring position is undetermined; apply a load or impose the displacements".into(),
+        });
+    }
+    let warnings = warnings(&balls);
     let full = model.evaluate_with(&q, &mut warm)?;
     Ok(Equilibrium {
         converged: true,
@@ -948,7 +970,50 @@ pub fn solve_equilibrium(
         reaction: full.reaction,
         stiffness: full.jacobian,
         balls,
+        warnings,
     })
+}
+
+/// Largest deviation of the kinematic angle from a loaded ball's contact angles before a warning,
+/// rad.
+const KINEMATIC_ANGLE_WARNING: f64 = 1.0 * std::f64::consts::PI / 180.0;
+
+fn warnings(balls: &[BallState]) -> Vec<String> {
+    let mut out = Vec::new();
+    let qmax = balls.iter().map(|b| b.inner.load).fold(0.0, f64::max);
+    let (mut worst, mut at) = (0.0_f64, 0);
+    for (j, b) in balls.iter().enumerate() {
+        if b.inner.load > 0.01 * qmax {
+            let dev = (b.inner.contact_angle - b.kinematic_angle)
+                .abs()
+                .max((b.outer.contact_angle - b.kinematic_angle).abs());
+            if dev > worst {
+                (worst, at) = (dev, j);
+            }
+        }
+    }
+    if worst > KINEMATIC_ANGLE_WARNING {
+        out.push(format!(
+            "the ball speeds are evaluated at the groove-centre angle, which differs from ball {at}'s contact angles by {:.2}°: orbital speed, centrifugal force and gyroscopic moment are approximate there (README, modelling choices)",
+            worst.to_degrees()
+        ));
+    }
+    for (j, b) in balls.iter().enumerate() {
+        for (race, f, q) in [
+            ("inner", b.inner_friction, b.inner.load),
+            ("outer", b.outer_friction, b.outer.load),
+        ] {
+            if q > 0.0 && f.abs() > 0.8 * MU_MAX * q {
+                out.push(format!(
+                    "ball {j}: the gyroscopic friction at the {race} contact, {:.3} N, is at {:.0} % of its limit μ_max·Q = {:.3} N: the moment is partly unresisted (the ball pivots)",
+                    f.abs(),
+                    100.0 * f.abs() / (MU_MAX * q),
+                    MU_MAX * q
+                ));
+            }
+        }
+    }
+    out
 }
 
 /// A solution outside what the bearing can physically carry is an error.
@@ -958,7 +1023,6 @@ fn check_carried(
     settings: &EquilibriumSettings,
 ) -> Result<(), BearingError> {
     let d = bearing.geometry.ball_diameter;
-    let angular = bearing.geometry.free_contact_angle > 1e-6;
     for (j, b) in balls.iter().enumerate() {
         for (race, c) in [("inner", &b.inner), ("outer", &b.outer)] {
             if c.deflection > settings.max_deflection_ratio * d {
@@ -974,11 +1038,12 @@ fn check_carried(
             }
             // The inner contact angle shows the direction of the ring's axial load; the outer one
             // may dip below zero for a lightly loaded ball held by centrifugal force and friction.
-            if angular && race == "inner" && c.load > 0.0 && c.contact_angle < -1e-3 {
+            if race == "inner" && c.load > 0.0 && c.contact_angle < settings.min_contact_angle {
                 return Err(BearingError::Overloaded {
                     reason: format!(
-                        "ball {j} {race} contact angle {:.2}° is reversed: a single-row angular-contact bearing cannot carry this axial load direction",
-                        c.contact_angle.to_degrees()
+                        "ball {j} {race} contact angle {:.2}° is below the shoulder limit {:.1}°: a single-row angular-contact bearing cannot carry this load (reversed or too little thrust)",
+                        c.contact_angle.to_degrees(),
+                        settings.min_contact_angle.to_degrees()
                     ),
                 });
             }

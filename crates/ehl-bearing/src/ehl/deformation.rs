@@ -137,7 +137,7 @@ impl Deformation {
             fxi,
             fy,
             fyi,
-            rows: vec![Complex::new(0.0, 0.0); lx * ny],
+            rows: vec![Complex::new(0.0, 0.0); lx * ny.div_ceil(2)],
             cols: vec![Complex::new(0.0, 0.0); lx * ly],
             scratch,
             hx,
@@ -152,33 +152,48 @@ impl Deformation {
     }
 
     /// Computes `out[i + nx·j] = scale · Σ_kl K(i−k, j−l)·p[k + nx·l]`.
+    ///
+    /// Rows are real: two rows are packed into one complex FFT along x (real and imaginary part),
+    /// and only the lx/2 + 1 non-redundant x-frequencies are transformed along y.
     pub fn apply(&mut self, p: &[f64], out: &mut [f64]) {
         let (nx, ny, lx, ly) = (self.nx, self.ny, self.lx, self.ly);
         debug_assert_eq!(p.len(), nx * ny);
         debug_assert_eq!(out.len(), nx * ny);
-        // Forward along x on the ny data rows.
-        for j in 0..ny {
-            let row = &mut self.rows[j * lx..(j + 1) * lx];
+        let zero = Complex::new(0.0, 0.0);
+        let npairs = ny.div_ceil(2);
+        // Forward along x: row pair q holds rows 2q (real part) and 2q + 1 (imaginary part).
+        for q in 0..npairs {
+            let (j0, j1) = (2 * q, 2 * q + 1);
+            let row = &mut self.rows[q * lx..(q + 1) * lx];
             for i in 0..nx {
-                row[i] = Complex::new(p[j * nx + i], 0.0);
+                let b = if j1 < ny { p[j1 * nx + i] } else { 0.0 };
+                row[i] = Complex::new(p[j0 * nx + i], b);
             }
             for c in row[nx..].iter_mut() {
-                *c = Complex::new(0.0, 0.0);
+                *c = zero;
             }
         }
+        let packed = npairs * lx;
         self.fx
-            .process_with_scratch(&mut self.rows, &mut self.scratch);
-        // Transpose into columns (zero-padded in y), forward along y, multiply, inverse along y.
-        // The rows are real, so their spectra are Hermitian in x: only the columns
-        // 0..=lx/2 are needed; the others are their complex conjugates.
+            .process_with_scratch(&mut self.rows[..packed], &mut self.scratch);
+        // Unpack the two spectra into columns (zero-padded in y): A[k] = (Z[k] + Z*[−k])/2,
+        // B[k] = (Z[k] − Z*[−k])/(2i).
         let nc = lx / 2 + 1;
         for ix in 0..nc {
-            let col = &mut self.cols[ix * ly..(ix + 1) * ly];
-            for (j, c) in col.iter_mut().enumerate().take(ny) {
-                *c = self.rows[j * lx + ix];
+            let mx = (lx - ix) % lx;
+            for q in 0..npairs {
+                let z = self.rows[q * lx + ix];
+                let zm = self.rows[q * lx + mx].conj();
+                let a = (z + zm) * 0.5;
+                let d = (z - zm) * 0.5;
+                let b = Complex::new(d.im, -d.re);
+                self.cols[ix * ly + 2 * q] = a;
+                if 2 * q + 1 < ny {
+                    self.cols[ix * ly + 2 * q + 1] = b;
+                }
             }
-            for c in col[ny..].iter_mut() {
-                *c = Complex::new(0.0, 0.0);
+            for c in self.cols[ix * ly + ny..(ix + 1) * ly].iter_mut() {
+                *c = zero;
             }
         }
         let used = nc * ly;
@@ -189,20 +204,40 @@ impl Deformation {
         }
         self.fyi
             .process_with_scratch(&mut self.cols[..used], &mut self.scratch);
-        for ix in 0..nc {
-            for j in 0..ny {
-                let v = self.cols[ix * ly + j];
-                self.rows[j * lx + ix] = v;
-                if ix > 0 && ix < lx - ix {
-                    self.rows[j * lx + (lx - ix)] = v.conj();
+        // Repack: Z[k] = S_2q[k] + i·S_2q+1[k] with the Hermitian completion S[lx − k] = S*[k];
+        // the inverse transform returns row 2q in the real and row 2q + 1 in the imaginary part.
+        let i_unit = Complex::new(0.0, 1.0);
+        for q in 0..npairs {
+            let (j0, j1) = (2 * q, 2 * q + 1);
+            for ix in 0..lx {
+                let (src, conj) = if ix < nc {
+                    (ix, false)
+                } else {
+                    (lx - ix, true)
+                };
+                let mut s0 = self.cols[src * ly + j0];
+                let mut s1 = if j1 < ny {
+                    self.cols[src * ly + j1]
+                } else {
+                    zero
+                };
+                if conj {
+                    s0 = s0.conj();
+                    s1 = s1.conj();
                 }
+                self.rows[q * lx + ix] = s0 + i_unit * s1;
             }
         }
         self.fxi
-            .process_with_scratch(&mut self.rows, &mut self.scratch);
-        for j in 0..ny {
+            .process_with_scratch(&mut self.rows[..packed], &mut self.scratch);
+        for q in 0..npairs {
+            let (j0, j1) = (2 * q, 2 * q + 1);
             for i in 0..nx {
-                out[j * nx + i] = self.rows[j * lx + i].re;
+                let v = self.rows[q * lx + i];
+                out[j0 * nx + i] = v.re;
+                if j1 < ny {
+                    out[j1 * nx + i] = v.im;
+                }
             }
         }
     }

@@ -44,7 +44,7 @@ pub enum EhlError {
     /// The iteration produced non-finite numbers or blew up, also after load continuation.
     #[error(
         "EHL solver diverged after {cycles} cycles (M = {m:.4}, L = {l:.4}, Ry/Rx = {ratio:.4}, \
-         last relative residual {residual:e})"
+         lowest relative residual reached {residual:e})"
     )]
     Diverged {
         /// Multigrid cycles done.
@@ -55,7 +55,7 @@ pub enum EhlError {
         l: f64,
         /// Ry/Rx of the case.
         ratio: f64,
-        /// Last finite relative residual.
+        /// Lowest relative residual reached before the divergence (NaN if none).
         residual: f64,
     },
 }
@@ -76,7 +76,8 @@ pub enum CycleType {
 pub struct EhlSettings {
     /// Grid points per side on the finest level, 2^k + 1, from 17 to 1025 (default 257).
     pub grid: usize,
-    /// Points per side on the coarsest level, 2^k + 1 ≥ 9 (default 33).
+    /// Points per side on the coarsest level, 2^k + 1 ≥ 9 (default 33; if larger than `grid`,
+    /// the finest grid is the only level).
     pub coarsest: usize,
     /// Inlet length upstream of the contact centre, in a_x. `None` (default): automatic,
     /// max(e − max(e − 6, 0)·f, min(30, 1 + 3.5·√(2·H_est))) with e = min(10.5, 3 + 1.5·a_y/a_x),
@@ -143,6 +144,18 @@ impl Default for EhlSettings {
             h0_gain: 0.05,
             jd_threshold: 0.3,
             fmg_cycles: 2,
+        }
+    }
+}
+
+impl EhlSettings {
+    /// A cheaper preset for loops over many contacts: 129 × 129 points, otherwise the defaults.
+    /// About 3–4× faster than the default; H_c within 1–1.5 % of the 257² value at moderate load
+    /// (M ≲ 300) but 5–10 % low at M ≳ 1000 on elongated contacts (docs/ehl.md §5.2).
+    pub fn fast() -> Self {
+        EhlSettings {
+            grid: 129,
+            ..Default::default()
         }
     }
 }

@@ -543,9 +543,8 @@ impl Hierarchy {
             }
         }
         coarse.w = e;
-        let h0 = self.h0;
-        coarse.update_film(pr, h0);
-        fine.update_film(pr, h0);
+        // (The coarse film is recomputed at the next restriction; only the fine one is needed.)
+        fine.update_film(pr, self.h0);
         for _ in 0..prm.post {
             let h0 = self.h0;
             self.levels[k].relax(pr, prm, h0);

@@ -66,11 +66,11 @@ fn validate_settings(s: &EhlSettings) -> Result<(), EhlError> {
             "2^k + 1, 17 to 1025",
         ));
     }
-    if !(pow2(s.coarsest) && s.coarsest >= 9 && s.coarsest <= s.grid) {
+    if !(pow2(s.coarsest) && s.coarsest >= 9) {
         return Err(invalid(
             "settings.coarsest",
             s.coarsest as f64,
-            "2^k + 1, >= 9 and <= grid",
+            "2^k + 1, >= 9 (a value above grid means a single level)",
         ));
     }
     for (f, v) in [
@@ -274,7 +274,7 @@ fn hertz_fill(lv: &mut super::multigrid::Level) {
     }
 }
 
-/// Runs the multigrid iteration. `Err((cycles, residual))` on divergence.
+/// Runs the multigrid iteration. `Err((cycles, lowest residual reached))` on divergence.
 fn iterate(
     pr: &Problem,
     s: &EhlSettings,
@@ -332,8 +332,9 @@ fn iterate(
         let rel = if sw > 0.0 { sr / sw } else { f64::INFINITY };
         fb = (lv.integral() - lv.g).abs() / lv.g;
         let hc = centre(&hier);
+        let best_so_far = history.iter().cloned().fold(f64::NAN, f64::min);
         if !(rel.is_finite() && hier.h0.is_finite() && hc.is_finite()) {
-            return Err((cycles, residual));
+            return Err((cycles, best_so_far));
         }
         residual = rel;
         history.push(rel);
@@ -346,7 +347,7 @@ fn iterate(
         }
         let best = history.iter().cloned().fold(f64::INFINITY, f64::min);
         if history.len() > 3 && rel > 100.0 * best.max(1e-6) {
-            return Err((cycles, residual));
+            return Err((cycles, best));
         }
         // Stagnation: less than a factor 2 gained over the last 6 cycles, far from tolerance.
         let n = history.len();

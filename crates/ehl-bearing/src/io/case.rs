@@ -35,6 +35,8 @@
 //! [equilibrium]                  # optional solver settings
 //! tolerance = 1e-11              # relative force tolerance
 //! max_iterations = 100
+//! min_contact_angle_deg = -5.0   # shoulder limit of the inner contact angle; -90 with
+//!                                # diametral_clearance_mm (deep-groove bearings)
 //! ```
 
 use super::InputError;
@@ -130,6 +132,7 @@ struct RawOperating {
 struct RawEquilibrium {
     tolerance: Option<f64>,
     max_iterations: Option<i64>,
+    min_contact_angle_deg: Option<f64>,
 }
 
 /// Read and validate a case file.
@@ -259,7 +262,21 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
     };
     let operating = operating(raw.operating.as_ref())?;
     let mut settings = EquilibriumSettings::default();
+    if b.diametral_clearance_mm.is_some() {
+        // Given by its clearance: a deep-groove bearing, shoulders on both sides.
+        settings.min_contact_angle = -PI / 2.0;
+    }
     if let Some(e) = &raw.equilibrium {
+        if let Some(a) = e.min_contact_angle_deg {
+            if !(a.is_finite() && (-90.0..=0.0).contains(&a)) {
+                return Err(InputError::field(
+                    "equilibrium.min_contact_angle_deg",
+                    a,
+                    "−90 to 0 degrees",
+                ));
+            }
+            settings.min_contact_angle = a.to_radians();
+        }
         if let Some(t) = e.tolerance {
             if !(t.is_finite() && t > 0.0 && t < 1e-2) {
                 return Err(InputError::field(

@@ -21,7 +21,9 @@ fn contact(c: &ContactState) -> Value {
 /// `{"converged","iterations","displacement":{"x","y","z","theta_y","theta_z"},
 /// "reaction":{"force_x","force_y","force_z","moment_y","moment_z"},"stiffness":[[5×5]],
 /// "balls":[{"azimuth","orbital_speed","spin_speed","inner":CONTACT,"outer":CONTACT}]}`,
-/// plus `"residual"` and per-ball `"pitch_angle"`, `"centrifugal_force"`, `"gyroscopic_moment"`.
+/// plus `"residual"`, `"warnings"` and per-ball `"pitch_angle"`, `"kinematic_angle"`,
+/// `"centrifugal_force"`, `"gyroscopic_moment"`, `"inner_friction"`, `"outer_friction"`.
+/// `"spin_speed"` is the ball's signed roll speed ω_R about its rolling axis, relative to the cage.
 pub fn equilibrium_json(e: &Equilibrium) -> Value {
     let q = &e.displacement;
     let f = &e.reaction;
@@ -32,6 +34,7 @@ pub fn equilibrium_json(e: &Equilibrium) -> Value {
         "displacement": {"x": q[0], "y": q[1], "z": q[2], "theta_y": q[3], "theta_z": q[4]},
         "reaction": {"force_x": f[0], "force_y": f[1], "force_z": f[2], "moment_y": f[3], "moment_z": f[4]},
         "stiffness": e.stiffness,
+        "warnings": e.warnings,
         "balls": e.balls.iter().map(|b| json!({
             "azimuth": b.azimuth,
             "orbital_speed": b.orbital_speed,
@@ -40,6 +43,8 @@ pub fn equilibrium_json(e: &Equilibrium) -> Value {
             "kinematic_angle": b.kinematic_angle,
             "centrifugal_force": b.centrifugal_force,
             "gyroscopic_moment": b.gyroscopic_moment,
+            "inner_friction": b.inner_friction,
+            "outer_friction": b.outer_friction,
             "inner": contact(&b.inner),
             "outer": contact(&b.outer),
         })).collect::<Vec<_>>(),
