@@ -418,6 +418,9 @@ pub fn results_csv(rows: &[ResultRow]) -> String {
 /// - `log_linear`: y = p0 + p1·ln Q (d(Q) when some d ≥ 1.5);
 /// - `power_speed`: y = p0·Q^p1·n^p2 (ΔF(Q, n));
 /// - `linear_speed`: y = p0 + p1·Q + p2·n (ΔF when some ΔF ≤ 0);
+/// - `hertz_minus_film`: y = p0·Q^p1 − p2·Q^p3·n^p4 (the approach δ: a Hertz-like approach minus
+///   a film term, started from the Hertz exponent 2/3 and the Hamrock–Dowson central-film
+///   exponents −0.067 (load) and 0.67 (speed));
 /// - `power_elastic`: y = p0·(Q − ΔF(Q, n))^p1·n^p2 (the approach δ, driven by the load the
 ///   solids carry beyond the lift; evaluated through [`RaceTrends::approach_at`], while
 ///   [`TrendCurve::eval`] takes the elastic load Q − ΔF as its first argument).
@@ -449,6 +452,7 @@ impl TrendCurve {
             "hertz_limit" => 1.5 - at(0) * q.powf(-at(1)),
             "log_linear" => at(0) + at(1) * q.ln(),
             "power_speed" | "power_elastic" => at(0) * q.powf(at(1)) * n.powf(at(2)),
+            "hertz_minus_film" => at(0) * q.powf(at(1)) - at(2) * q.powf(at(3)) * n.powf(at(4)),
             "linear_speed" => at(0) + at(1) * q + at(2) * n,
             _ => f64::NAN,
         }
@@ -458,6 +462,7 @@ impl TrendCurve {
         let need = match self.form.as_str() {
             "power" | "hertz_limit" | "log_linear" => 2,
             "power_speed" | "linear_speed" | "power_elastic" => 3,
+            "hertz_minus_film" => 5,
             f => {
                 return Err(CharacterizeError::Trend(format!(
                     "{what}: unknown form {f:?}"
@@ -803,6 +808,89 @@ fn power_or_linear(
     })
 }
 
+/// δ = p0·Q^p1 − p2·Q^p3·n^p4: linear least squares for (p0, p2) at the exponents (2/3, −0.067,
+/// 0.67), then Levenberg–Marquardt on all five (in ln p0, ln p2) when p0, p2 > 0 and the speeds
+/// vary. None when the linear problem is singular.
+fn hertz_minus_film(q: &[f64], n: &[f64], delta: &[f64]) -> Option<TrendCurve> {
+    let a: Vec<f64> = q.iter().map(|v| v.powf(2.0 / 3.0)).collect();
+    let b: Vec<f64> = q
+        .iter()
+        .zip(n)
+        .map(|(qi, ni)| -qi.powf(-0.067) * ni.powf(0.67))
+        .collect();
+    // Scale the columns to O(1) for the normal equations.
+    let sa = a.iter().fold(0.0_f64, |m, v| m.max(v.abs())).max(1e-300);
+    let sb = b.iter().fold(0.0_f64, |m, v| m.max(v.abs())).max(1e-300);
+    let sy = delta
+        .iter()
+        .fold(0.0_f64, |m, v| m.max(v.abs()))
+        .max(1e-300);
+    let cols = vec![
+        a.iter().map(|v| v / sa).collect::<Vec<_>>(),
+        b.iter().map(|v| v / sb).collect::<Vec<_>>(),
+    ];
+    let y: Vec<f64> = delta.iter().map(|v| v / sy).collect();
+    let c = linear_lsq(&cols, &y)?;
+    let mut params = vec![c[0] * sy / sa, 2.0 / 3.0, c[1] * sy / sb, -0.067, 0.67];
+    let formula = "δ = p0·Q^p1 − p2·Q^p3·n^p4 (δ in m, Q in N, n in rad/s)";
+    if params[0] > 0.0 && params[2] > 0.0 && distinct(n) >= 2 {
+        let problem = HertzFilm {
+            q,
+            n,
+            y: delta,
+            scale: sy,
+        };
+        let x0 = [
+            params[0].ln(),
+            params[1],
+            params[2].ln(),
+            params[3],
+            params[4],
+        ];
+        if let Ok(rep) = levenberg_marquardt(&problem, &x0, &LmConvergence::default()) {
+            if rep.cost < rep.initial_cost && rep.params.iter().all(|v| v.is_finite()) {
+                let x = &rep.params;
+                params = vec![x[0].exp(), x[1], x[2].exp(), x[3], x[4]];
+            }
+        }
+    }
+    Some(quality("hertz_minus_film", formula, params, q, n, delta))
+}
+
+/// Residuals (δ_fit − δ)/scale of δ = e^x0·Q^x1 − e^x2·Q^x3·n^x4.
+struct HertzFilm<'a> {
+    q: &'a [f64],
+    n: &'a [f64],
+    y: &'a [f64],
+    scale: f64,
+}
+
+impl LeastSquaresProblem for HertzFilm<'_> {
+    fn n_params(&self) -> usize {
+        5
+    }
+    fn n_residuals(&self) -> usize {
+        self.y.len()
+    }
+    fn residuals(&self, x: &[f64], r: &mut [f64]) {
+        for (i, ri) in r.iter_mut().enumerate() {
+            let (lq, ln) = (self.q[i].ln(), self.n[i].ln());
+            let h = (x[0] + x[1] * lq).exp();
+            let f = (x[2] + x[3] * lq + x[4] * ln).exp();
+            *ri = (h - f - self.y[i]) / self.scale;
+        }
+    }
+    fn jacobian(&self, x: &[f64], jac: &mut [f64]) {
+        for i in 0..self.y.len() {
+            let (lq, ln) = (self.q[i].ln(), self.n[i].ln());
+            let h = (x[0] + x[1] * lq).exp() / self.scale;
+            let f = (x[2] + x[3] * lq + x[4] * ln).exp() / self.scale;
+            let row = &mut jac[5 * i..5 * i + 5];
+            row.copy_from_slice(&[h, h * lq, -f, -f * lq, -f * ln]);
+        }
+    }
+}
+
 fn fit_race(
     race: &str,
     q: &[f64],
@@ -883,6 +971,11 @@ fn fit_race(
                 formula: "δ = p0·(Q − ΔF(Q, n))^p1·n^p2 (δ in m, Q and ΔF in N, n in rad/s)".into(),
                 ..alt
             };
+        }
+    }
+    if let Some(alt) = hertz_minus_film(q, n, delta) {
+        if alt.rms_residual < approach.rms_residual {
+            approach = alt;
         }
     }
     let range = |v: &[f64]| {
