@@ -239,6 +239,10 @@ pub struct CharacterizeArgs {
     /// Relative key tolerance (M, L, Ry/Rx) for reusing a fitted law; 0 reuses exact matches only.
     #[arg(long, default_value_t = CharacterizeSettings::default().cache_tolerance)]
     pub cache_tolerance: f64,
+    /// Contacts lighter than this fraction of the largest contact load are characterized at that
+    /// floor load.
+    #[arg(long, default_value_t = CharacterizeSettings::default().min_load_fraction)]
+    pub min_load_fraction: f64,
 }
 
 /// Contacts as CSV (the columns of [`ContactRow`]).
@@ -278,6 +282,7 @@ pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
         tolerance: args.tolerance,
         max_iterations: args.max_iterations,
         cache_tolerance: args.cache_tolerance,
+        min_load_fraction: args.min_load_fraction,
         ..CharacterizeSettings::default()
     };
     let multi = progress_container();
