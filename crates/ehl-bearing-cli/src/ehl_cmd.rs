@@ -15,9 +15,6 @@
 //! `viscosity_model` = "roelands" (default) | "barus", `density_model` = "dowson-higginson"
 //! (default) | "incompressible"). Unknown keys are rejected.
 
-// Until main.rs wires `ehl` as a subcommand (integrator), the items below are unused there.
-#![allow(dead_code)]
-
 use anyhow::{bail, Context, Result};
 use ehl_bearing::ehl::{self, EhlSettings, EhlSolution, MoesCase};
 use ehl_bearing::material::{DensityModel, ViscosityModel};
@@ -234,6 +231,3 @@ pub fn run(args: &EhlArgs) -> Result<()> {
     }
     Ok(())
 }
-
-/// Kept for the current `main.rs` skeleton, which references it; remove when `ehl` is wired in.
-pub const PLACEHOLDER: () = ();

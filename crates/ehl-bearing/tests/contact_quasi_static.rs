@@ -67,9 +67,10 @@ fn paper_trends_d_grows_with_load_and_lift_grows_with_speed() {
         .map(|&w| run(w, 10.85).d)
         .collect();
     assert!(d[0] < d[1] && d[1] < d[2] && d[2] < 1.5, "{d:?}");
-    // ΔF grows with speed at fixed load (3000 → 5000 rpm); the rise is many standard errors.
-    let slow = run(300.0, 6.5);
-    let fast = run(300.0, 10.85);
+    // ΔF grows with speed at fixed load (3000 → 5000 rpm); the rise is many standard errors
+    // (docs/contact.md: 19.4 ± 0.5 → 28.0 ± 0.2 N at 100 N on this grid).
+    let slow = run(100.0, 6.5);
+    let fast = run(100.0, 10.85);
     let se = slow.std_errors.delta_f.hypot(fast.std_errors.delta_f);
     assert!(
         fast.delta_f - slow.delta_f > 5.0 * se,
