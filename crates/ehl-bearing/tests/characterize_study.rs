@@ -315,3 +315,74 @@ fn trend_force_element_jacobian_is_close_to_finite_differences() {
     }
     assert!(worst_fd < 1e-3, "{worst_fd}");
 }
+
+#[test]
+fn approach_trend_recovers_a_hertz_minus_film_law() {
+    use ehl_bearing::characterize::ContactRow;
+    // Manufactured rows: δ = 1.0e-7·Q^0.665 − 1.6e-8·Q^(−0.055)·n^0.656 (the form and magnitudes
+    // the EHL study of docs/study.md gives), d = 1.5 − 3·Q^(−0.7), ΔF = 0.1·Q^0.22·n^0.7.
+    let s = study("").unwrap();
+    let truth = [1.0e-7, 0.665, 1.6e-8, -0.055, 0.656];
+    let mut rows = Vec::new();
+    for rpm in [3000.0, 4000.0, 5000.0] {
+        let n: f64 = rpm * std::f64::consts::PI / 30.0;
+        for i in 0..12 {
+            let q = 25.0 * (24.0_f64).powf(i as f64 / 11.0);
+            for race in ["inner", "outer"] {
+                let delta =
+                    truth[0] * q.powf(truth[1]) - truth[2] * q.powf(truth[3]) * n.powf(truth[4]);
+                let d = 1.5 - 3.0 * q.powf(-0.7);
+                let df = 0.1 * q.powf(0.22) * n.powf(0.7);
+                rows.push(ResultRow {
+                    speed_rpm: rpm,
+                    inner_speed_rad_s: n,
+                    load_scale: 1.0,
+                    point_converged: true,
+                    contact: ContactRow {
+                        ball: i,
+                        race: race.into(),
+                        load_n: q,
+                        approach_m: delta,
+                        contact_angle_rad: 0.3,
+                        k: (q - df) / delta.powf(d),
+                        d,
+                        delta_f_n: df,
+                        moes_m: 1.0,
+                        moes_l: 1.0,
+                        ry_over_rx: 10.0,
+                        r_squared: Some(1.0),
+                        rms_residual_n: 0.0,
+                        fit_converged: true,
+                        characterized_load_n: q,
+                        load_floored: false,
+                        source: "characterized".into(),
+                        key_distance: 0.0,
+                        sum_velocity_m_s: 10.0,
+                        rx_m: 3e-3,
+                        ry_m: 0.18,
+                        law_load_at_approach_n: q,
+                        fit_approach_min_m: delta * 0.9,
+                        fit_approach_max_m: delta * 1.1,
+                        outside_fit_range: false,
+                    },
+                });
+            }
+        }
+    }
+    let m = fit_trends(&s, &rows).unwrap();
+    for t in [&m.inner, &m.outer] {
+        assert_eq!(t.approach.form, "hertz_minus_film", "{:?}", t.approach);
+        for (p, want) in t.approach.params.iter().zip(truth) {
+            assert!((p / want - 1.0).abs() < 1e-4, "{:?}", t.approach.params);
+        }
+        assert!(t.approach.max_relative_residual.unwrap() < 1e-6);
+        assert_eq!(t.d.form, "hertz_limit");
+        assert!((t.d.params[0] / 3.0 - 1.0).abs() < 1e-6 && (t.d.params[1] - 0.7).abs() < 1e-6);
+        // K from the trends reproduces the manufactured K.
+        let (q, n): (f64, f64) = (100.0, 400.0);
+        let delta = truth[0] * q.powf(truth[1]) - truth[2] * q.powf(truth[3]) * n.powf(truth[4]);
+        let d = 1.5 - 3.0 * q.powf(-0.7);
+        let k = (q - 0.1 * q.powf(0.22) * n.powf(0.7)) / delta.powf(d);
+        assert!((t.k_at(q, n) / k - 1.0).abs() < 1e-4);
+    }
+}
