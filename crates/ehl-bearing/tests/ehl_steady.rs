@@ -273,6 +273,22 @@ fn non_converged_run_is_flagged() {
     assert!(x.residual > 0.0);
 }
 
+/// Nearly rigid elongated contact (Ry/Rx 61, M 5): the automatic domain follows the rigid
+/// scales and the load is carried (it used to stagnate with 1 % of the load, docs/ehl.md §5.8).
+/// H_c 232.9 on 129², 237.1 on 257²; the band allows for the domain dependence.
+#[test]
+fn nearly_rigid_elongated_contact_converges() {
+    let x = solve_moes(&barus(5.0, 10.0, 61.0), &settings(129)).unwrap();
+    assert!(x.converged, "residual {}", x.residual);
+    assert!(x.force_balance_residual < 1e-5);
+    assert!(x.cycles <= 30, "cycles {}", x.cycles);
+    assert!(
+        (215.0..260.0).contains(&x.h_central_moes),
+        "H_c {}",
+        x.h_central_moes
+    );
+}
+
 /// The seed's most loaded inner contact converges; a warm start from it at 10 % more load gives
 /// the cold-start answer in fewer cycles.
 #[test]

@@ -46,6 +46,9 @@ pub(crate) struct Problem {
     pub x_max: f64,
     /// See `x_min`.
     pub y_half: f64,
+    /// Multiplier of the H0 gain (1, or larger in the nearly rigid regime where the load
+    /// responds only weakly to H0).
+    pub h0_gain_scale: f64,
 }
 
 impl Problem {

@@ -145,6 +145,10 @@ impl Scales {
     }
 }
 
+/// Above this X extent sqrt(2H) of the rigid-isoviscous pressure (in a_x) the automatic domain
+/// follows the rigid scales (only elongated contacts at M ≈ 5 in the documented range).
+const RIGID_SX: f64 = 15.0;
+
 fn setup(c: &EhlContact, s: &EhlSettings) -> Result<(Problem, Scales), EhlError> {
     validate_contact(c)?;
     validate_settings(s)?;
@@ -172,6 +176,7 @@ fn setup(c: &EhlContact, s: &EhlSettings) -> Result<(Problem, Scales), EhlError>
         y_half: s
             .half_width
             .unwrap_or((3.5 - 0.5 * ay / ax).clamp(2.0, 3.0)),
+        h0_gain_scale: 1.0,
     };
     if !(pr.lambda.is_finite() && pr.lambda > 0.0 && m.is_finite() && l.is_finite()) {
         return Err(invalid(
@@ -201,6 +206,23 @@ fn setup(c: &EhlContact, s: &EhlSettings) -> Result<(Problem, Scales), EhlError>
     let auto =
         (elong - (elong - 6.0).max(0.0) * f).max((1.0 + 3.5 * (2.0 * h_est).sqrt()).min(30.0));
     pr.x_min = -s.inlet.unwrap_or(auto);
+    // Nearly rigid, very thick films (elongated contacts at light load, H ≫ 1): the
+    // hydrodynamic pressure of the rigid-isoviscous regime spreads over X ~ sqrt(2H) and
+    // Y ~ sqrt(H/gy), and its inlet tail decays slowly, so a domain on the Hertz scale (or the
+    // 30 a_x inlet cap) truncates it and cannot carry the load at the right film. The domain then
+    // scales with these lengths (30 and 16 of them upstream and sideways: H_c within a few
+    // per cent of a domain twice as large, docs/ehl.md §5.8). The load responds only weakly to
+    // H0 there (W ~ H^(-1/2)), so the H0 gain grows with H.
+    let sx = (2.0 * h_est).sqrt();
+    if s.inlet.is_none() && sx > RIGID_SX {
+        let sy = (h_est / pr.gy).sqrt();
+        pr.x_min = -(1.0 + 30.0 * sx);
+        pr.x_max = pr.x_max.max(0.6 * sx);
+        if s.half_width.is_none() {
+            pr.y_half = pr.y_half.max(16.0 * sy);
+        }
+        pr.h0_gain_scale = h_est / 10.0;
+    }
     Ok((pr, sc))
 }
 
@@ -282,7 +304,8 @@ fn iterate(
     h_est: f64,
     max_cycles: usize,
 ) -> Result<Core, (usize, f64)> {
-    let prm = params(s);
+    let mut prm = params(s);
+    prm.h0_relax *= pr.h0_gain_scale;
     let mut hier = Hierarchy::new(pr, s.grid, s.coarsest);
     let nl = hier.levels.len();
     let top = nl - 1;
