@@ -129,7 +129,8 @@ fn norm2(v: &[f64]) -> f64 {
     v.iter().map(|a| a * a).sum::<f64>().sqrt()
 }
 
-fn check_finite(what: &'static str, v: &[f64]) -> Result<(), FitError> {
+/// `FitError::NonFinite` naming `what` and the first non-finite entry of `v`.
+pub(super) fn check_finite(what: &'static str, v: &[f64]) -> Result<(), FitError> {
     match v.iter().position(|a| !a.is_finite()) {
         Some(index) => Err(FitError::NonFinite {
             what,

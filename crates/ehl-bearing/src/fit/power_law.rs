@@ -14,7 +14,9 @@
 
 use super::law::FittedLaw;
 use super::linalg::least_squares;
-use super::lm::{covariance, levenberg_marquardt, LeastSquaresProblem, LmConvergence, LmStop};
+use super::lm::{
+    check_finite, covariance, levenberg_marquardt, LeastSquaresProblem, LmConvergence, LmStop,
+};
 use super::FitError;
 use serde::Serialize;
 
@@ -202,17 +204,6 @@ impl LeastSquaresProblem for ScaledPowerLaw {
     }
 }
 
-fn first_non_finite(what: &'static str, v: &[f64]) -> Result<(), FitError> {
-    match v.iter().position(|a| !a.is_finite()) {
-        Some(index) => Err(FitError::NonFinite {
-            what,
-            index,
-            value: v[index],
-        }),
-        None => Ok(()),
-    }
-}
-
 fn validate_options(opts: &FitOptions) -> Result<(), FitError> {
     let [lo, hi] = opts.d_start_range;
     if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi >= lo) || opts.d_grid_points < 2 {
@@ -255,10 +246,10 @@ fn fit_impl(
             required: p + 1,
         });
     }
-    first_non_finite("approach δ", delta)?;
-    first_non_finite("force Q", q)?;
+    check_finite("approach δ", delta)?;
+    check_finite("force Q", q)?;
     if let Some(v) = delta_dot {
-        first_non_finite("approach rate δ̇", v)?;
+        check_finite("approach rate δ̇", v)?;
     }
     if let Some(index) = delta.iter().position(|&x| x <= 0.0) {
         return Err(FitError::NonPositiveApproach {
