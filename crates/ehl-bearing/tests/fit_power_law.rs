@@ -413,3 +413,27 @@ proptest! {
         }
     }
 }
+
+/// Found by `random_valid_shaped_input_never_panics` (proptest, shrunk): data unlike a contact law
+/// drive d so far that K = K̃/δ_ref^d overflows; the fit must then not claim convergence.
+#[test]
+fn overflowing_k_is_not_reported_as_converged() {
+    let delta = [
+        8.453005958585252e-5,
+        9.652075826769571e-5,
+        9.246593524745456e-5,
+        7.808656675587289e-5,
+    ];
+    let q = [
+        5714.513320382155,
+        -9291.719919536019,
+        4500.987944614861,
+        3939.3151297079685,
+    ];
+    if let Ok(f) = fit_power_law(&delta, &q, &FitOptions::default()) {
+        assert!(
+            !f.converged || (f.k.is_finite() && f.d.is_finite() && f.delta_f.is_finite()),
+            "{f:?}"
+        );
+    }
+}

@@ -95,7 +95,8 @@ pub struct PowerLawFit {
     /// Levenberg–Marquardt iterations.
     pub iterations: usize,
     /// Whether Levenberg–Marquardt met a convergence test. `false` is reported, never hidden:
-    /// see `stop` and `rms_residual`, or use [`PowerLawFit::require_converged`].
+    /// see `stop` and `rms_residual`, or use [`PowerLawFit::require_converged`]. Also false when
+    /// K, d, ΔF or c is not finite (e.g. K overflowing for an extreme d), whatever `stop` says.
     pub converged: bool,
     /// Why Levenberg–Marquardt stopped.
     pub stop: LmStop,
@@ -407,7 +408,13 @@ fn fit_impl(
         n_points: n,
         n_params: p,
         iterations: report.iterations,
-        converged: report.converged,
+        // The optimizer works on scaled parameters; K = K̃/δ_ref^d can still overflow for the
+        // extreme d that data unlike a contact law produce. Such a fit is not a usable law.
+        converged: report.converged
+            && k.is_finite()
+            && d.is_finite()
+            && delta_f.is_finite()
+            && c.map_or(true, f64::is_finite),
         stop: report.stop,
     })
 }
