@@ -2,7 +2,10 @@
 //! characterize one lubricated contact by the law Q = K·δ^d + ΔF.
 
 use anyhow::{bail, Context, Result};
-use ehl_bearing::contact::{characterize_quasi_static, ContactFit, QuasiStaticSettings};
+use ehl_bearing::contact::{
+    characterize_harmonic, characterize_quasi_static, ContactFit, ExcitationFrequency,
+    HarmonicSettings, QuasiStaticSettings,
+};
 use ehl_bearing::ehl;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -12,7 +15,7 @@ use std::path::PathBuf;
 pub enum Method {
     /// A family of steady EHL solutions over w0·(1 ± ε).
     QuasiStatic,
-    /// Transient EHL with the ball's equation of motion under w0·(1 + ε·sin Ωt) (not available yet).
+    /// Transient EHL with the ball's equation of motion under w0·(1 + ε·sin Ωt).
     Harmonic,
 }
 
@@ -34,10 +37,34 @@ pub struct ContactArgs {
     /// Grid points per side of the EHL solutions (2^k + 1; default 129).
     #[arg(long)]
     pub grid: Option<usize>,
+    /// Harmonic method: excitation frequency Ω as a fraction of the contact's linearized natural
+    /// frequency (default 0.1).
+    #[arg(long, conflicts_with = "frequency_rad_s")]
+    pub frequency_fraction: Option<f64>,
+    /// Harmonic method: excitation frequency Ω in rad/s.
+    #[arg(long)]
+    pub frequency_rad_s: Option<f64>,
+    /// Harmonic method: periods before recording (default 2).
+    #[arg(long)]
+    pub settling_periods: Option<usize>,
+    /// Harmonic method: periods recorded and fitted (default 1).
+    #[arg(long)]
+    pub recorded_periods: Option<usize>,
+    /// Harmonic method: time steps per period (default 64).
+    #[arg(long)]
+    pub steps_per_period: Option<usize>,
+    /// Harmonic method: mass on the contact in kg (default: the ball's mass from the contact
+    /// file's ball_mass_kg or ball_diameter_mm).
+    #[arg(long)]
+    pub mass_kg: Option<f64>,
+    /// Harmonic method: fit Q = K·δ^d + ΔF without the damping term c·δ̇.
+    #[arg(long)]
+    pub no_damping_term: bool,
     /// Print JSON (SI units) instead of a table.
     #[arg(long)]
     pub json: bool,
-    /// Write samples.csv, fit.json and the plot force_approach.{png,svg} into this directory.
+    /// Write samples.csv, fit.json and the plot force_approach.{png,svg} into this directory;
+    /// for the harmonic method also history.csv and time_history.{png,svg}.
     #[arg(short = 'o', long = "output", value_name = "DIR")]
     pub output: Option<PathBuf>,
 }
@@ -78,6 +105,35 @@ fn table(f: &ContactFit) -> String {
         "Q = K·δ^d + ΔF:  K = {:.5e} N/m^d (±{:.1e}),  d = {:.4} (±{:.4}),  ΔF = {:.3} N (±{:.3})",
         f.k, f.std_errors.k, f.d, f.std_errors.d, f.delta_f, f.std_errors.delta_f
     );
+    if let Some(c) = f.c {
+        let _ = writeln!(
+            s,
+            "damping term: c = {:.4e} N·s/m (±{:.1e})",
+            c,
+            f.std_errors.c.unwrap_or(f64::NAN)
+        );
+    }
+    if f.method == "harmonic" {
+        let e = &f.excitation;
+        let g = |k: &str| e[k].as_f64().unwrap_or(f64::NAN);
+        let _ = writeln!(
+            s,
+            "excitation: ε = {}, Ω = {:.5e} rad/s = {:.3}·ω_n (ω_n = {:.5e} rad/s; dry Hertz {:.5e}), \
+             m = {:.4e} kg, {} settling + {} recorded periods × {} steps; periodicity {:.1e}; \
+             {} steps not converged",
+            g("amplitude"),
+            g("frequency_rad_s"),
+            g("frequency_over_natural"),
+            g("natural_frequency_rad_s"),
+            g("natural_frequency_hertz_rad_s"),
+            g("mass_kg"),
+            e["settling_periods"],
+            e["recorded_periods"],
+            e["steps_per_period"],
+            g("periodicity"),
+            e["steps_not_converged"],
+        );
+    }
     let _ = writeln!(
         s,
         "fit: R² = {:.8}, RMS residual {:.3e} N; δ range {:.4}–{:.4} µm; approach at w0 {:.4} µm",
@@ -130,14 +186,29 @@ fn plot_fit(f: &ContactFit, c: &ehl::EhlContact, dir: &std::path::Path) -> Resul
     let (a, b) = ((lo - 0.6 * span).max(0.3 * lo), hi + 0.3 * span);
     let xs: Vec<f64> = (0..=200).map(|i| a + (b - a) * i as f64 / 200.0).collect();
     let hertz = ehl_bearing::hertz::HertzGeometry::new(c.rx, c.ry, c.e_reduced)?;
-    let series = vec![
+    let data = if f.method == "harmonic" {
+        let rec = &f.history[f.settling_steps..];
+        Series::markers(
+            "transient EHL, film force ∬p dA (recorded periods)",
+            rec.iter().map(|s| s.approach * um).collect(),
+            rec.iter().map(|s| s.film_force).collect(),
+        )
+    } else {
         Series::markers(
             "EHL steady solutions",
             f.samples.iter().map(|s| s.approach * um).collect(),
             f.samples.iter().map(|s| s.load).collect(),
-        ),
+        )
+    };
+    let series = vec![
+        data,
         Series::line(
-            format!("fit K·δ^d + ΔF, d = {:.4}, ΔF = {:.2} N", f.d, f.delta_f),
+            format!(
+                "fit K·δ^d + ΔF{}, d = {:.4}, ΔF = {:.2} N",
+                if f.c.is_some() { " (δ̇ = 0)" } else { "" },
+                f.d,
+                f.delta_f
+            ),
             xs.iter().map(|x| x * um).collect(),
             xs.iter().map(|&x| f.law.force(x).0).collect(),
         ),
@@ -159,29 +230,155 @@ fn plot_fit(f: &ContactFit, c: &ehl::EhlContact, dir: &std::path::Path) -> Resul
     )
 }
 
-/// Run `contact`.
-pub fn run(args: &ContactArgs) -> Result<()> {
-    let text = std::fs::read_to_string(&args.contact)
-        .with_context(|| format!("reading {}", args.contact.display()))?;
-    let c = ehl::input::parse_contact_toml(&text)
-        .with_context(|| format!("in {}", args.contact.display()))?;
-    if args.method == Method::Harmonic {
-        bail!(
-            "method harmonic is not available yet: the transient EHL solver with the ball's equation \
-             of motion is not implemented; use --method quasi-static"
+/// δ(t) above Q(t) (film force and external load) of the harmonic method.
+fn plot_history(f: &ContactFit, dir: &std::path::Path) -> Result<()> {
+    use crate::plot::{stacked_charts, Series};
+    let t: Vec<f64> = f.history.iter().map(|s| s.time * 1e3).collect();
+    let panels = vec![
+        (
+            "approach δ (µm)".to_string(),
+            vec![Series::line(
+                "δ(t)",
+                t.clone(),
+                f.history.iter().map(|s| s.approach * 1e6).collect(),
+            )],
+        ),
+        (
+            "force (N)".to_string(),
+            vec![
+                Series::line(
+                    "film force ∬p dA",
+                    t.clone(),
+                    f.history.iter().map(|s| s.film_force).collect(),
+                ),
+                Series::line(
+                    "external load w(t)",
+                    t,
+                    f.history.iter().map(|s| s.load).collect(),
+                ),
+            ],
+        ),
+    ];
+    stacked_charts(
+        &dir.join("time_history"),
+        &format!(
+            "Harmonic excitation, {} settling + {} recorded periods (M = {:.0}, L = {:.1})",
+            f.excitation["settling_periods"], f.excitation["recorded_periods"], f.moes_m, f.moes_l
+        ),
+        "time t (ms)",
+        &panels,
+    )
+}
+
+/// The time history as CSV, SI units, one row per step.
+fn history_csv(f: &ContactFit) -> String {
+    let mut csv = String::from(
+        "time_s,load_n,approach_m,approach_rate_m_s,film_force_n,h_central_m,h_min_m,p_max_pa,\
+         residual,force_residual,cycles,converged,recorded\n",
+    );
+    for (i, x) in f.history.iter().enumerate() {
+        let _ = writeln!(
+            csv,
+            "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{}",
+            x.time,
+            x.load,
+            x.approach,
+            x.velocity,
+            x.film_force,
+            x.h_central,
+            x.h_min,
+            x.p_max,
+            x.residual,
+            x.force_residual,
+            x.cycles,
+            x.converged,
+            i >= f.settling_steps
         );
     }
-    let mut s = QuasiStaticSettings::default();
+    csv
+}
+
+fn harmonic_settings(
+    args: &ContactArgs,
+    file_mass: Option<f64>,
+) -> Result<(HarmonicSettings, f64)> {
+    let mut s = HarmonicSettings::default();
     if let Some(a) = args.amplitude {
         s.amplitude = a;
-    }
-    if let Some(p) = args.points {
-        s.points = p;
     }
     if let Some(g) = args.grid {
         s.ehl.grid = g;
     }
-    let fit = characterize_quasi_static(&c, &s)?;
+    if let Some(f) = args.frequency_fraction {
+        s.frequency = ExcitationFrequency::FractionOfNatural(f);
+    }
+    if let Some(w) = args.frequency_rad_s {
+        s.frequency = ExcitationFrequency::RadPerSecond(w);
+    }
+    if let Some(n) = args.settling_periods {
+        s.settling_periods = n;
+    }
+    if let Some(n) = args.recorded_periods {
+        s.recorded_periods = n;
+    }
+    if let Some(n) = args.steps_per_period {
+        s.steps_per_period = n;
+    }
+    s.damping_term = !args.no_damping_term;
+    s.mass = args.mass_kg;
+    let mass = match (args.mass_kg, file_mass) {
+        (Some(m), _) | (None, Some(m)) => m,
+        (None, None) => bail!(
+            "the harmonic method needs the ball's mass: give ball_mass_kg or ball_diameter_mm in \
+             {}, or --mass-kg",
+            args.contact.display()
+        ),
+    };
+    Ok((s, mass))
+}
+
+/// Run `contact`.
+pub fn run(args: &ContactArgs) -> Result<()> {
+    let text = std::fs::read_to_string(&args.contact)
+        .with_context(|| format!("reading {}", args.contact.display()))?;
+    let file = ehl::input::parse_contact_file(&text)
+        .with_context(|| format!("in {}", args.contact.display()))?;
+    let c = file.contact;
+    let fit = match args.method {
+        Method::Harmonic => {
+            if args.points.is_some() {
+                bail!("--points applies to the quasi-static method only");
+            }
+            let (s, mass) = harmonic_settings(args, file.ball_mass)?;
+            characterize_harmonic(&c, mass, &s)?
+        }
+        Method::QuasiStatic => {
+            let harmonic_only = args.frequency_fraction.is_some()
+                || args.frequency_rad_s.is_some()
+                || args.settling_periods.is_some()
+                || args.recorded_periods.is_some()
+                || args.steps_per_period.is_some()
+                || args.mass_kg.is_some()
+                || args.no_damping_term;
+            if harmonic_only {
+                bail!(
+                    "--frequency-*, --*-periods, --steps-per-period, --mass-kg and \
+                     --no-damping-term apply to --method harmonic only"
+                );
+            }
+            let mut s = QuasiStaticSettings::default();
+            if let Some(a) = args.amplitude {
+                s.amplitude = a;
+            }
+            if let Some(p) = args.points {
+                s.points = p;
+            }
+            if let Some(g) = args.grid {
+                s.ehl.grid = g;
+            }
+            characterize_quasi_static(&c, &s)?
+        }
+    };
     if let Some(dir) = &args.output {
         std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
         let mut csv = String::from(
@@ -207,6 +404,10 @@ pub fn run(args: &ContactArgs) -> Result<()> {
             serde_json::to_string_pretty(&fit_json(&fit))?,
         )?;
         plot_fit(&fit, &c, dir)?;
+        if !fit.history.is_empty() {
+            std::fs::write(dir.join("history.csv"), history_csv(&fit))?;
+            plot_history(&fit, dir)?;
+        }
     }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&fit_json(&fit))?);

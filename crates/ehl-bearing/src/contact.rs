@@ -4,11 +4,18 @@
 //! The **quasi-static method** solves a family of steady EHL problems at loads
 //! w_k = w0·(1 + ε·(2k/(n−1) − 1)), k = 0…n−1, each warm-started from its neighbour, and fits the
 //! law to the (approach, load) pairs with Levenberg–Marquardt ([`crate::fit`]). It is the limit of
-//! the harmonic method (transient EHL under w0·(1 + ε·sin Ωt)) for slow excitation, where the
-//! squeeze term vanishes. The harmonic method is not implemented yet.
+//! the harmonic method for slow excitation, where the squeeze term vanishes.
+//!
+//! The **harmonic method** runs the transient EHL solver ([`crate::ehl::TransientSolver`]) with
+//! the ball's equation of motion m·δ̈ = w(t) − ∬p dA under w(t) = w0·(1 + ε·sin Ωt), from the steady
+//! solution at w0, for some settling periods, records the (δ, δ̇, ∬p dA) history over the
+//! recorded periods, and fits Q = K·δ^d + ΔF (+ c·δ̇) to it. See `docs/contact.md`.
 
-use crate::ehl::{solve_steady, solve_steady_from, EhlContact, EhlSettings, EhlSolution};
-use crate::fit::{fit_power_law, FitOptions, FittedLaw, PowerLawStdErrors};
+use crate::ehl::{
+    solve_steady, solve_steady_from, EhlContact, EhlSettings, EhlSolution, TransientSolver,
+    TransientStep,
+};
+use crate::fit::{fit_power_law, fit_power_law_damped, FitOptions, FittedLaw, PowerLawStdErrors};
 use crate::Error;
 use serde::Serialize;
 use std::time::Instant;
@@ -96,8 +103,15 @@ pub struct ContactFit {
     pub converged: bool,
     /// Wall time, s.
     pub seconds: f64,
-    /// The steady solutions the law was fitted to.
+    /// The steady solutions the law was fitted to (quasi-static method), or the steady start
+    /// and the steady solutions at w0·(1 ± 5 %) that give the linearized natural frequency
+    /// (harmonic method).
     pub samples: Vec<ContactSample>,
+    /// Time history of the harmonic method, every step (empty for the quasi-static method).
+    #[serde(skip)]
+    pub history: Vec<TransientStep>,
+    /// Number of leading steps of `history` in the settling periods (not fitted).
+    pub settling_steps: usize,
     /// The fitted law, ready for the bearing model.
     #[serde(skip)]
     pub law: FittedLaw,
@@ -213,6 +227,315 @@ pub fn characterize_quasi_static(
         converged: fit.converged && samples.iter().all(|x| x.converged),
         seconds: t0.elapsed().as_secs_f64(),
         samples,
+        history: Vec::new(),
+        settling_steps: 0,
+        law,
+    })
+}
+
+/// Excitation frequency Ω of the harmonic method.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ExcitationFrequency {
+    /// Ω as a fraction of the contact's linearized natural frequency ω_n = √(k/m), with k the
+    /// secant stiffness of steady EHL solutions at w0·(1 ± 5 %) (dimensionless, > 0).
+    FractionOfNatural(f64),
+    /// Ω in rad/s (> 0).
+    RadPerSecond(f64),
+}
+
+/// Settings of the harmonic method. Every result carries them (`ContactFit::excitation`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct HarmonicSettings {
+    /// Relative load amplitude ε of w(t) = w0·(1 + ε·sin Ωt) (dimensionless, in (0, 0.9];
+    /// default 0.2, the quasi-static method's span, so that the two fit the same range).
+    pub amplitude: f64,
+    /// Excitation frequency (default 0.1·ω_n: rotor-dynamic frequencies lie far below the
+    /// contact resonance — ω_n/2π ≈ 40 kHz for the seed's contacts — and at 0.1·ω_n the ball's
+    /// inertia force is ≈ 1 % of the load variation while the squeeze film already shows).
+    pub frequency: ExcitationFrequency,
+    /// Periods run before recording, to let the start transient decay (default 2; the
+    /// `periodicity` reported compares the last settling period with the recorded one).
+    pub settling_periods: usize,
+    /// Periods recorded and fitted (default 1).
+    pub recorded_periods: usize,
+    /// Time steps per excitation period (default 64; docs/contact.md shows the effect of 32 and
+    /// 128).
+    pub steps_per_period: usize,
+    /// Mass on the contact, kg (`None`, the default: the ball's mass given by the caller).
+    pub mass: Option<f64>,
+    /// Fit the extended law Q = K·δ^d + ΔF + c·δ̇ (default true); false fits Q = K·δ^d + ΔF.
+    pub damping_term: bool,
+    /// Largest number of FAS cycles per time step (default 20).
+    pub max_cycles_per_step: usize,
+    /// Per-step convergence: relative change of h_c and H0 over the last cycle (default 1e-4;
+    /// the steady default 1e-5 changes δ by < 2e-5 and the film force by < 1e-5 relative on the
+    /// seed contact at 1.5× the cost — docs/contact.md).
+    pub step_tol_film: f64,
+    /// EHL settings of the steady start and of every step (default: 129 × 129, as the
+    /// quasi-static method).
+    pub ehl: EhlSettings,
+}
+
+impl Default for HarmonicSettings {
+    fn default() -> Self {
+        HarmonicSettings {
+            amplitude: 0.2,
+            frequency: ExcitationFrequency::FractionOfNatural(0.1),
+            settling_periods: 2,
+            recorded_periods: 1,
+            steps_per_period: 64,
+            mass: None,
+            damping_term: true,
+            max_cycles_per_step: 20,
+            step_tol_film: 1e-4,
+            ehl: EhlSettings {
+                grid: 129,
+                ..EhlSettings::default()
+            },
+        }
+    }
+}
+
+fn invalid(msg: String) -> Error {
+    crate::fit::FitError::Invalid(msg).into()
+}
+
+impl HarmonicSettings {
+    /// Checks every setting; the error names the setting, its value and the valid range.
+    pub fn validate(&self) -> Result<(), Error> {
+        if !(self.amplitude.is_finite() && self.amplitude > 0.0 && self.amplitude <= 0.9) {
+            return Err(invalid(format!(
+                "amplitude = {}: expected 0 < ε ≤ 0.9",
+                self.amplitude
+            )));
+        }
+        match self.frequency {
+            ExcitationFrequency::FractionOfNatural(f)
+                if !(f.is_finite() && f > 0.0 && f <= 10.0) =>
+            {
+                return Err(invalid(format!(
+                    "frequency fraction of ω_n = {f}: expected 0 < Ω/ω_n ≤ 10"
+                )))
+            }
+            ExcitationFrequency::RadPerSecond(w) if !(w.is_finite() && w > 0.0) => {
+                return Err(invalid(format!(
+                    "frequency = {w} rad/s: expected finite and > 0"
+                )))
+            }
+            _ => {}
+        }
+        if self.settling_periods > 100 {
+            return Err(invalid(format!(
+                "settling_periods = {}: expected 0 to 100",
+                self.settling_periods
+            )));
+        }
+        if !(1..=100).contains(&self.recorded_periods) {
+            return Err(invalid(format!(
+                "recorded_periods = {}: expected 1 to 100",
+                self.recorded_periods
+            )));
+        }
+        if !(8..=4096).contains(&self.steps_per_period) {
+            return Err(invalid(format!(
+                "steps_per_period = {}: expected 8 to 4096",
+                self.steps_per_period
+            )));
+        }
+        if let Some(m) = self.mass {
+            if !(m.is_finite() && m > 0.0) {
+                return Err(invalid(format!("mass = {m} kg: expected finite and > 0")));
+            }
+        }
+        if !(1..=1000).contains(&self.max_cycles_per_step) {
+            return Err(invalid(format!(
+                "max_cycles_per_step = {}: expected 1 to 1000",
+                self.max_cycles_per_step
+            )));
+        }
+        if !(self.step_tol_film.is_finite() && self.step_tol_film > 0.0) {
+            return Err(invalid(format!(
+                "step_tol_film = {}: expected finite and > 0",
+                self.step_tol_film
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// Mass of a solid ball, kg, from its diameter (m) and density (kg/m³).
+pub fn ball_mass(diameter: f64, density: f64) -> f64 {
+    density * std::f64::consts::PI / 6.0 * diameter.powi(3)
+}
+
+/// Characterize a contact by the harmonic method (see the module documentation). `ball_mass` is
+/// the mass of the ball in kg (used unless `s.mass` overrides it).
+///
+/// Errors: invalid settings or contact; a steady start that does not converge; a step that
+/// diverges; approaches ≤ 0 in the recorded history (hydrodynamic contact). Steps that stop at
+/// the cycle limit are counted in `excitation.steps_not_converged` and make the result
+/// `converged: false`.
+pub fn characterize_harmonic(
+    c: &EhlContact,
+    ball_mass: f64,
+    s: &HarmonicSettings,
+) -> Result<ContactFit, Error> {
+    let t0 = Instant::now();
+    s.validate()?;
+    let mass = s.mass.unwrap_or(ball_mass);
+    if !(mass.is_finite() && mass > 0.0) {
+        return Err(invalid(format!(
+            "ball mass = {mass} kg: expected finite and > 0"
+        )));
+    }
+    // Steady start at w0 and the linearized stiffness from w0·(1 ± 5 %).
+    let centre = solve_steady(c, &s.ehl)?;
+    if !centre.converged {
+        return Err(crate::ehl::EhlError::NotConverged {
+            stage: "steady start of the harmonic method",
+            residual: centre.residual,
+            force_residual: centre.force_balance_residual,
+        }
+        .into());
+    }
+    let side = |f: f64| {
+        solve_steady_from(
+            &EhlContact {
+                load: c.load * f,
+                ..*c
+            },
+            &s.ehl,
+            &centre,
+        )
+    };
+    let (lo, hi) = (side(0.95)?, side(1.05)?);
+    let k_lin = 0.1 * c.load / (hi.approach - lo.approach);
+    if !(k_lin.is_finite() && k_lin > 0.0) {
+        return Err(invalid(format!(
+            "the EHL approach does not grow with the load around w0 = {} N (secant stiffness \
+             {k_lin:e} N/m): the contact runs in the hydrodynamic regime",
+            c.load
+        )));
+    }
+    let omega_n = (k_lin / mass).sqrt();
+    let omega_n_hertz = (1.5 * c.load / (mass * centre.approach_hertz)).sqrt();
+    let omega = match s.frequency {
+        ExcitationFrequency::FractionOfNatural(f) => f * omega_n,
+        ExcitationFrequency::RadPerSecond(w) => w,
+    };
+    let period = 2.0 * std::f64::consts::PI / omega;
+    let n_per = s.steps_per_period;
+    let dt = period / n_per as f64;
+    // Start on the quasi-static response: δ̇(0) = ε·w0·Ω/k.
+    let v0 = s.amplitude * c.load * omega / k_lin;
+    let samples = vec![
+        sample(&lo, 0.95 * c.load),
+        sample(&centre, c.load),
+        sample(&hi, 1.05 * c.load),
+    ];
+    let step_settings = EhlSettings {
+        tol_film: s.step_tol_film,
+        ..s.ehl
+    };
+    let mut solver = TransientSolver::from_steady(
+        c,
+        &step_settings,
+        centre.clone(),
+        mass,
+        dt,
+        v0,
+        s.max_cycles_per_step,
+    )?;
+    let settling = s.settling_periods * n_per;
+    let total = settling + s.recorded_periods * n_per;
+    let mut history = Vec::with_capacity(total);
+    for k in 1..=total {
+        let t = k as f64 * dt;
+        let w = c.load * (1.0 + s.amplitude * (omega * t).sin());
+        history.push(solver.step(w)?);
+    }
+    let rec = &history[settling..];
+    if let Some(bad) = rec.iter().find(|x| x.approach <= 0.0) {
+        return Err(invalid(format!(
+            "the EHL approach is {:.3e} m (≤ 0) at t = {:.3e} s (load {:.4} N): the contact runs \
+             in the hydrodynamic regime, where Q = K·δ^d + ΔF is not defined; raise the load or \
+             lower the amplitude",
+            bad.approach, bad.time, bad.load
+        )));
+    }
+    let delta: Vec<f64> = rec.iter().map(|x| x.approach).collect();
+    let rate: Vec<f64> = rec.iter().map(|x| x.velocity).collect();
+    let force: Vec<f64> = rec.iter().map(|x| x.film_force).collect();
+    let fit = if s.damping_term {
+        fit_power_law_damped(&delta, &rate, &force, &FitOptions::default())?
+    } else {
+        fit_power_law(&delta, &force, &FitOptions::default())?
+    };
+    let law = fit.law()?;
+    // Periodicity: the last settling period against the first recorded one, relative to the
+    // recorded peak-to-peak approach.
+    let (dmin, dmax) = delta
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
+    let periodicity = if settling >= n_per {
+        (0..n_per)
+            .map(|i| {
+                (history[settling + i].approach - history[settling - n_per + i].approach).abs()
+            })
+            .fold(0.0, f64::max)
+            / (dmax - dmin)
+    } else {
+        f64::NAN
+    };
+    let not_converged = history.iter().filter(|x| !x.converged).count();
+    let max_res = history.iter().map(|x| x.residual).fold(0.0, f64::max);
+    let cycles: usize = history.iter().map(|x| x.cycles).sum();
+    Ok(ContactFit {
+        method: "harmonic".into(),
+        k: fit.k,
+        d: fit.d,
+        delta_f: fit.delta_f,
+        c: fit.c,
+        std_errors: fit.std_errors,
+        r_squared: fit.r_squared,
+        rms_residual: fit.rms_residual,
+        delta_range: fit.delta_range,
+        approach: centre.approach,
+        load: c.load,
+        moes_m: centre.moes_m,
+        moes_l: centre.moes_l,
+        ry_over_rx: centre.ry_over_rx,
+        excitation: serde_json::json!({
+            "method": "harmonic",
+            "amplitude": s.amplitude,
+            "frequency_rad_s": omega,
+            "frequency_over_natural": omega / omega_n,
+            "natural_frequency_rad_s": omega_n,
+            "natural_frequency_hertz_rad_s": omega_n_hertz,
+            "linearized_stiffness_n_m": k_lin,
+            "mass_kg": mass,
+            "settling_periods": s.settling_periods,
+            "recorded_periods": s.recorded_periods,
+            "steps_per_period": n_per,
+            "time_step_s": dt,
+            "time_step_over_transit": solver.dt_dimensionless(),
+            "damping_term": s.damping_term,
+            "grid": s.ehl.grid,
+            "step_tol_film": s.step_tol_film,
+            "max_cycles_per_step": s.max_cycles_per_step,
+            "steps_not_converged": not_converged,
+            "max_step_residual": max_res,
+            "cycles_per_step": cycles as f64 / total as f64,
+            "periodicity": periodicity,
+        }),
+        converged: fit.converged && not_converged == 0,
+        seconds: t0.elapsed().as_secs_f64(),
+        samples,
+        history,
+        settling_steps: settling,
         law,
     })
 }

@@ -6,8 +6,10 @@
 //! default AISI 52100: 208 GPa, 0.3, 7850 kg/m³), and an optional `[lubricant]` table
 //! (`viscosity_pa_s` default 0.04, `pressure_viscosity_1_pa` default 2.2e-8, `density_kg_m3`
 //! default 870, `viscosity_model` = "roelands" (default) | "barus", `density_model` =
-//! "dowson-higginson" (default) | "incompressible"). Unknown keys are rejected; invalid values
-//! give an error naming the key, the value and the valid range.
+//! "dowson-higginson" (default) | "incompressible"). For the harmonic method (contact dynamics)
+//! the ball's mass comes from `ball_mass_kg` (kg) or from `ball_diameter_mm` (mm) and the ball
+//! material's density (both optional; not both). Unknown keys are rejected; invalid values give
+//! an error naming the key, the value and the valid range.
 
 use super::{EhlContact, EhlError};
 use crate::material::{reduced_modulus, DensityModel, Lubricant, Solid, ViscosityModel};
@@ -48,6 +50,18 @@ struct ContactToml {
     ball_material: Option<MaterialToml>,
     ring_material: Option<MaterialToml>,
     lubricant: Option<LubricantToml>,
+    ball_mass_kg: Option<f64>,
+    ball_diameter_mm: Option<f64>,
+}
+
+/// A parsed contact file: the contact and, if the file gives it, the ball's mass.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactFile {
+    /// The contact, SI units.
+    pub contact: EhlContact,
+    /// Mass of the ball, kg (from `ball_mass_kg`, or from `ball_diameter_mm` and the ball
+    /// material's density); `None` when the file gives neither.
+    pub ball_mass: Option<f64>,
 }
 
 fn positive(field: &str, v: f64) -> Result<f64, EhlError> {
@@ -118,8 +132,13 @@ fn lubricant(l: &Option<LubricantToml>) -> Result<Lubricant, EhlError> {
     })
 }
 
-/// Parses and validates a contact file's text.
+/// Parses and validates a contact file's text (the contact only; see [`parse_contact_file`]).
 pub fn parse_contact_toml(text: &str) -> Result<EhlContact, EhlError> {
+    parse_contact_file(text).map(|f| f.contact)
+}
+
+/// Parses and validates a contact file's text, with the ball's mass if the file gives it.
+pub fn parse_contact_file(text: &str) -> Result<ContactFile, EhlError> {
     let t: ContactToml =
         toml::from_str(text).map_err(|e| EhlError::File(format!("contact file: {e}")))?;
     let load = positive("load_n", t.load_n)?;
@@ -139,12 +158,25 @@ pub fn parse_contact_toml(text: &str) -> Result<EhlContact, EhlError> {
         (Some(e), None, None) => positive("reduced_modulus_gpa", e)? * 1e9,
         (None, b, r) => reduced_modulus(&solid("ball_material", b)?, &solid("ring_material", r)?),
     };
-    Ok(EhlContact {
-        load,
-        rx,
-        ry,
-        sum_velocity: us,
-        e_reduced,
-        lubricant: lubricant(&t.lubricant)?,
+    let ball_mass = match (t.ball_mass_kg, t.ball_diameter_mm) {
+        (Some(_), Some(_)) => fail!("give either ball_mass_kg or ball_diameter_mm, not both"),
+        (Some(m), None) => Some(positive("ball_mass_kg", m)?),
+        (None, Some(d)) => {
+            let d = positive("ball_diameter_mm", d)? * 1e-3;
+            let rho = solid("ball_material", &t.ball_material)?.density;
+            Some(rho * std::f64::consts::PI / 6.0 * d * d * d)
+        }
+        (None, None) => None,
+    };
+    Ok(ContactFile {
+        contact: EhlContact {
+            load,
+            rx,
+            ry,
+            sum_velocity: us,
+            e_reduced,
+            lubricant: lubricant(&t.lubricant)?,
+        },
+        ball_mass,
     })
 }

@@ -18,12 +18,14 @@ pub mod formulas;
 pub mod input;
 mod multigrid;
 mod steady;
+mod transient;
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 pub use crate::material::{DensityModel, ViscosityModel};
 pub use steady::{solve_moes, solve_steady, solve_steady_from};
+pub use transient::{TransientSolver, TransientStep};
 
 /// Errors of the EHL solver.
 #[derive(Debug, Error, Clone, PartialEq)]
@@ -57,6 +59,19 @@ pub enum EhlError {
         ratio: f64,
         /// Lowest relative residual reached before the divergence (NaN if none).
         residual: f64,
+    },
+    /// A stage that must converge before the next can start did not.
+    #[error(
+        "EHL {stage} did not converge (relative residual {residual:e}, force-balance residual \
+         {force_residual:e})"
+    )]
+    NotConverged {
+        /// What did not converge.
+        stage: &'static str,
+        /// Relative Reynolds residual reached.
+        residual: f64,
+        /// Relative force-balance residual reached.
+        force_residual: f64,
     },
 }
 

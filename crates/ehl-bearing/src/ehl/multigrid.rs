@@ -49,6 +49,13 @@ pub(crate) struct Problem {
     /// Multiplier of the H0 gain (1, or larger in the nearly rigid regime where the load
     /// responds only weakly to H0).
     pub h0_gain_scale: f64,
+    /// Transient problems: coefficient β0/ΔT of the implicit squeeze term β0·ρ̄H/ΔT at the new
+    /// time level (BDF2: β0 = 3/2; ΔT in units a_x/u_m); 0 for a steady problem. The known
+    /// history part of ∂(ρ̄H)/∂T enters through the finest level's right-hand side.
+    pub squeeze: f64,
+    /// Transient problems: slope γ of the force target in H0, ∬P = g + γ·H0 (the ball's
+    /// inertia under an implicit time discretization); 0 for a steady problem.
+    pub load_slope: f64,
 }
 
 impl Problem {
@@ -150,6 +157,17 @@ impl Level {
         }
     }
 
+    /// Sets the right-hand side of the discrete Reynolds equation (finest level of a transient
+    /// problem: the history part of the squeeze term). Zero for a steady problem.
+    pub fn set_source(&mut self, f: &[f64]) {
+        self.f.copy_from_slice(f);
+    }
+
+    /// ρ̄·H at every node (for the time history of a transient problem).
+    pub fn rho_h(&self) -> Vec<f64> {
+        self.rho.iter().zip(&self.h).map(|(r, h)| r * h).collect()
+    }
+
     /// ∬P dX dY (trapezoid; boundary values are zero).
     pub fn integral(&self) -> f64 {
         self.p.iter().sum::<f64>() * self.hx * self.hy
@@ -205,7 +223,8 @@ impl Level {
             }
         }
         wedge /= self.hx;
-        (poi - wedge, wedge.abs())
+        let squeeze = pr.squeeze * self.rho[idx] * self.h[idx];
+        (poi - wedge - squeeze, wedge.abs())
     }
 
     /// Residual field f − L(P) (zero on the boundary and where P ≤ 0), written to `self.delta`;
@@ -230,7 +249,7 @@ impl Level {
                     let d = 0.5 * (2.0 * e[idx] + e[idx - 1] + e[idx + 1]) / (self.hx * self.hx)
                         + 0.5 * pr.kappa2 * (2.0 * e[idx] + e[idx - nx] + e[idx + nx])
                             / (self.hy * self.hy)
-                        + 1.5 * self.rho[idx] * self.kloc[0][0] / self.hx;
+                        + (1.5 / self.hx + pr.squeeze) * self.rho[idx] * self.kloc[0][0];
                     let c = if v > 0.0 { v.min(self.p[idx] * d) } else { -v };
                     sr += c;
                     sw += w;
@@ -274,7 +293,7 @@ impl Level {
                 let es = 0.5 * (e[idx] + e[idx - nx]);
                 let en = 0.5 * (e[idx] + e[idx + nx]);
                 let ap = (ew + ee) / hx2 + ky * (es + en);
-                let aw = self.rho[idx] * k0 / self.hx;
+                let aw = self.rho[idx] * k0 * (1.0 / self.hx + pr.squeeze);
                 jd[i] = ap < prm.jd_threshold * aw;
                 // Deep in the Poiseuille-dominated inlet the line solve is stable undamped (ω = 1);
                 // damping there leaves interpolation errors of the coarse-grid correction alive.
@@ -302,7 +321,7 @@ impl Level {
                 let kmax = (i + BAND).min(nx - 2);
                 let ww = Self::wedge_w(i);
                 let rr = [
-                    ww[0] * self.rho[idx] / self.hx,
+                    (ww[0] / self.hx + pr.squeeze) * self.rho[idx],
                     ww[1] * self.rho[idx - 1] / self.hx,
                     if i >= 2 {
                         ww[2] * self.rho[idx - 2] / self.hx
@@ -488,8 +507,10 @@ impl Hierarchy {
                 let h0 = self.h0;
                 let lv = &mut self.levels[0];
                 lv.relax(pr, prm, h0);
-                let err = lv.g - lv.integral();
-                self.h0 -= prm.h0_relax * err;
+                // Force target g + γ·H0 (γ = 0 when steady); Newton-like step with the
+                // contact's stiffness estimated as 1/h0_relax.
+                let err = lv.g + pr.load_slope * self.h0 - lv.integral();
+                self.h0 -= prm.h0_relax * err / (1.0 + prm.h0_relax * pr.load_slope);
                 let h0 = self.h0;
                 self.levels[0].update_film(pr, h0);
             }

@@ -57,7 +57,7 @@ fn validate_contact(c: &EhlContact) -> Result<(), EhlError> {
     Ok(())
 }
 
-fn validate_settings(s: &EhlSettings) -> Result<(), EhlError> {
+pub(crate) fn validate_settings(s: &EhlSettings) -> Result<(), EhlError> {
     let pow2 = |n: usize| n >= 2 && (n - 1).is_power_of_two();
     if !(pow2(s.grid) && (17..=1025).contains(&s.grid)) {
         return Err(invalid(
@@ -120,27 +120,27 @@ fn validate_settings(s: &EhlSettings) -> Result<(), EhlError> {
 
 /// Dimensional scales of one contact.
 #[derive(Debug, Clone, Copy)]
-struct Scales {
-    ax: f64,
-    ay: f64,
-    ph: f64,
-    rx: f64,
+pub(crate) struct Scales {
+    pub(crate) ax: f64,
+    pub(crate) ay: f64,
+    pub(crate) ph: f64,
+    pub(crate) rx: f64,
     /// Hertz deflection, m.
-    delta_hertz: f64,
-    m: f64,
-    l: f64,
-    ratio: f64,
+    pub(crate) delta_hertz: f64,
+    pub(crate) m: f64,
+    pub(crate) l: f64,
+    pub(crate) ratio: f64,
     /// U = η0 u_s/(E′Rx).
-    u: f64,
+    pub(crate) u: f64,
 }
 
 impl Scales {
     /// h (m) from H.
-    fn h(&self, hh: f64) -> f64 {
+    pub(crate) fn h(&self, hh: f64) -> f64 {
         hh * self.ax * self.ax / self.rx
     }
     /// Moes H from dimensionless H.
-    fn moes(&self, hh: f64) -> f64 {
+    pub(crate) fn moes(&self, hh: f64) -> f64 {
         self.h(hh) / self.rx / self.u.sqrt()
     }
 }
@@ -149,7 +149,7 @@ impl Scales {
 /// follows the rigid scales (only elongated contacts at M ≈ 5 in the documented range).
 const RIGID_SX: f64 = 15.0;
 
-fn setup(c: &EhlContact, s: &EhlSettings) -> Result<(Problem, Scales), EhlError> {
+pub(crate) fn setup(c: &EhlContact, s: &EhlSettings) -> Result<(Problem, Scales), EhlError> {
     validate_contact(c)?;
     validate_settings(s)?;
     let g = HertzGeometry::new(c.rx, c.ry, c.e_reduced)
@@ -177,6 +177,8 @@ fn setup(c: &EhlContact, s: &EhlSettings) -> Result<(Problem, Scales), EhlError>
             .half_width
             .unwrap_or((3.5 - 0.5 * ay / ax).clamp(2.0, 3.0)),
         h0_gain_scale: 1.0,
+        squeeze: 0.0,
+        load_slope: 0.0,
     };
     if !(pr.lambda.is_finite() && pr.lambda > 0.0 && m.is_finite() && l.is_finite()) {
         return Err(invalid(
@@ -237,7 +239,7 @@ struct Core {
 }
 
 /// Bilinear value of a nodal field at (x0, y0) on a uniform grid.
-fn bilinear(f: &[f64], x: &[f64], y: &[f64], x0: f64, y0: f64) -> f64 {
+pub(crate) fn bilinear(f: &[f64], x: &[f64], y: &[f64], x0: f64, y0: f64) -> f64 {
     let nx = x.len();
     let ny = y.len();
     let hx = x[1] - x[0];
@@ -255,7 +257,7 @@ fn bilinear(f: &[f64], x: &[f64], y: &[f64], x0: f64, y0: f64) -> f64 {
         + tx * ty * v(i + 1, j + 1)
 }
 
-fn params(s: &EhlSettings) -> MgParams {
+pub(crate) fn params(s: &EhlSettings) -> MgParams {
     MgParams {
         pre: s.pre_sweeps,
         post: s.post_sweeps,
