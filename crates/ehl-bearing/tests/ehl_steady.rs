@@ -334,3 +334,58 @@ fn contact_file_parsing() {
     let e = input::parse_contact_toml(&bad).unwrap_err().to_string();
     assert!(e.contains("load_n") && e.contains("-5"), "{e}");
 }
+
+#[test]
+fn contact_file_gives_the_ball_mass_for_the_harmonic_method() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/contact_7006_inner.toml"
+    ))
+    .unwrap();
+    // ball_diameter_mm = 7 with the ball material's 7850 kg/m³: ρ·π/6·D³.
+    let f = input::parse_contact_file(&text).unwrap();
+    let m = 7850.0 * std::f64::consts::PI / 6.0 * 7e-3f64.powi(3);
+    assert!((f.ball_mass.unwrap() / m - 1.0).abs() < 1e-12);
+    let no_d: String = text
+        .lines()
+        .filter(|l| !l.starts_with("ball_diameter_mm"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert_eq!(input::parse_contact_file(&no_d).unwrap().ball_mass, None);
+    let given = format!("ball_mass_kg = 0.002\n{no_d}");
+    assert_eq!(
+        input::parse_contact_file(&given).unwrap().ball_mass,
+        Some(0.002)
+    );
+    let both = format!("ball_mass_kg = 0.002\n{text}");
+    let e = input::parse_contact_file(&both).unwrap_err().to_string();
+    assert!(
+        e.contains("ball_mass_kg") && e.contains("ball_diameter_mm"),
+        "{e}"
+    );
+    for (key, v) in [("ball_mass_kg", "-1.0"), ("ball_diameter_mm", "nan")] {
+        let bad = format!("{key} = {v}\n{no_d}");
+        let e = input::parse_contact_file(&bad).unwrap_err().to_string();
+        assert!(
+            e.contains(key) && e.to_lowercase().contains(&v.replace(".0", "")),
+            "{e}"
+        );
+    }
+}
+
+proptest::proptest! {
+    /// Any float in the ball-mass keys gives a contact or an error, never a panic.
+    #[test]
+    fn ball_mass_keys_never_panic(m in proptest::num::f64::ANY, d in proptest::num::f64::ANY, which in 0..3u8) {
+        let base = "load_n = 600.0\nrx_mm = 2.9\nry_mm = 178.5\nsum_velocity_m_s = 10.85\n";
+        let text = match which {
+            0 => format!("{base}ball_mass_kg = {m:?}\n"),
+            1 => format!("{base}ball_diameter_mm = {d:?}\n"),
+            _ => format!("{base}ball_mass_kg = {m:?}\nball_diameter_mm = {d:?}\n"),
+        };
+        if let Ok(f) = input::parse_contact_file(&text) {
+            let mass = f.ball_mass.unwrap();
+            proptest::prop_assert!(mass.is_finite() && mass > 0.0);
+        }
+    }
+}

@@ -164,7 +164,15 @@ pub fn parse_contact_file(text: &str) -> Result<ContactFile, EhlError> {
         (None, Some(d)) => {
             let d = positive("ball_diameter_mm", d)? * 1e-3;
             let rho = solid("ball_material", &t.ball_material)?.density;
-            Some(rho * std::f64::consts::PI / 6.0 * d * d * d)
+            let m = rho * std::f64::consts::PI / 6.0 * d * d * d;
+            if !(m.is_finite() && m > 0.0) {
+                fail!(
+                    "ball_diameter_mm = {} is invalid: the ball mass ρ·π/6·D³ = {m} kg must be \
+                     finite and > 0 (give a physically sized ball, e.g. 1 to 100 mm)",
+                    d * 1e3
+                );
+            }
+            Some(m)
         }
         (None, None) => None,
     };

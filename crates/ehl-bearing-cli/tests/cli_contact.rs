@@ -1,0 +1,149 @@
+//! `contact --method harmonic`: JSON keys, time history CSV, plots, and the errors a user meets.
+//! Coarse grid (33²) and 16 steps per period keep it fast; the figures are in docs/contact.md.
+
+use assert_cmd::Command;
+
+const SEED: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../examples/contact_7006_inner.toml"
+);
+
+fn fast_harmonic() -> Vec<&'static str> {
+    vec![
+        "contact",
+        SEED,
+        "--method",
+        "harmonic",
+        "--grid",
+        "33",
+        "--steps-per-period",
+        "16",
+        "--settling-periods",
+        "1",
+    ]
+}
+
+#[test]
+fn harmonic_json_history_and_plots() {
+    let dir = std::env::temp_dir().join(format!("ehlb-contact-h-{}", std::process::id()));
+    let out = Command::cargo_bin("ehl-bearing")
+        .unwrap()
+        .args(fast_harmonic())
+        .arg("--json")
+        .arg("-o")
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for k in [
+        "method",
+        "K",
+        "d",
+        "delta_f",
+        "c",
+        "std_errors",
+        "r_squared",
+        "rms_residual",
+        "delta_range",
+        "excitation",
+        "converged",
+        "seconds",
+    ] {
+        assert!(v.get(k).is_some(), "missing {k}");
+    }
+    assert_eq!(v["method"], "harmonic");
+    assert!(
+        v["c"].as_f64().unwrap() > 0.0,
+        "squeeze damping is positive"
+    );
+    let e = &v["excitation"];
+    assert_eq!(e["steps_per_period"], 16);
+    assert_eq!(e["settling_periods"], 1);
+    // 7 mm AISI 52100 ball: 7850·π/6·(7e-3)³ kg.
+    let m = 7850.0 * std::f64::consts::PI / 6.0 * 7e-3f64.powi(3);
+    assert!((e["mass_kg"].as_f64().unwrap() / m - 1.0).abs() < 1e-12);
+    assert!((e["frequency_over_natural"].as_f64().unwrap() - 0.1).abs() < 1e-12);
+    let [lo, hi] = [&v["delta_range"][0], &v["delta_range"][1]].map(|x| x.as_f64().unwrap());
+    assert!(lo > 0.0 && hi > lo);
+
+    let csv = std::fs::read_to_string(dir.join("history.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert!(lines
+        .next()
+        .unwrap()
+        .starts_with("time_s,load_n,approach_m,approach_rate_m_s,film_force_n,"));
+    let rows: Vec<Vec<String>> = lines
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    assert_eq!(rows.len(), 2 * 16);
+    assert_eq!(rows.iter().filter(|r| r[12] == "true").count(), 16);
+    for stem in ["time_history", "force_approach"] {
+        for ext in ["png", "svg"] {
+            let p = dir.join(format!("{stem}.{ext}"));
+            assert!(
+                std::fs::metadata(&p).unwrap().len() > 1000,
+                "{}",
+                p.display()
+            );
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn harmonic_without_a_ball_mass_is_an_error_naming_the_keys() {
+    let text = std::fs::read_to_string(SEED).unwrap();
+    let text: String = text
+        .lines()
+        .filter(|l| !l.starts_with("ball_diameter_mm"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let f = std::env::temp_dir().join(format!("ehlb-nomass-{}.toml", std::process::id()));
+    std::fs::write(&f, text).unwrap();
+    let out = Command::cargo_bin("ehl-bearing")
+        .unwrap()
+        .args(["contact", "--method", "harmonic"])
+        .arg(&f)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("ball_mass_kg") && err.contains("--mass-kg"),
+        "{err}"
+    );
+    let _ = std::fs::remove_file(&f);
+}
+
+#[test]
+fn harmonic_options_are_refused_for_the_quasi_static_method() {
+    let out = Command::cargo_bin("ehl-bearing")
+        .unwrap()
+        .args(["contact", SEED, "--steps-per-period", "16"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--method harmonic"));
+}
+
+#[test]
+fn invalid_harmonic_setting_names_the_setting() {
+    let mut args = fast_harmonic();
+    args.push("--frequency-fraction=-0.5");
+    let out = Command::cargo_bin("ehl-bearing")
+        .unwrap()
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("frequency fraction") && err.contains("-0.5"),
+        "{err}"
+    );
+}
