@@ -1,21 +1,31 @@
-//! One seed contact characterized by the quasi-static method at the default settings
-//! (7 steady EHL solutions over w0·(1 ± 0.2) on 129 × 129, LM fit): the 7006's most loaded inner
-//! contact at 5000 rpm (600 N, Rx = 2.9487 mm, Ry = 178.5 mm, u_s = 10.85 m/s; M ≈ 2360, L ≈ 25).
+//! One seed contact characterized at the default settings: the 7006's most loaded inner contact
+//! at 5000 rpm (600 N, Rx = 2.9487 mm, Ry = 178.5 mm, u_s = 10.85 m/s; M ≈ 2360, L ≈ 25; 7 mm
+//! steel ball).
+//! - quasi-static: 7 steady EHL solutions over w0·(1 ± 0.2) on 129 × 129, LM fit;
+//! - harmonic: steady start and ±5 % solutions (ω_n), then 2 settling + 1 recorded periods of
+//!   64 transient steps at Ω = 0.1·ω_n on 129 × 129, LM fit with the damping term.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use ehl_bearing::contact::{characterize_quasi_static, QuasiStaticSettings};
+use ehl_bearing::contact::{
+    ball_mass, characterize_harmonic, characterize_quasi_static, HarmonicSettings,
+    QuasiStaticSettings,
+};
 use ehl_bearing::ehl::EhlContact;
 use ehl_bearing::material::{reduced_modulus, Lubricant, Solid};
 
-fn quasi_static(c: &mut Criterion) {
-    let contact = EhlContact {
+fn seed_contact() -> EhlContact {
+    EhlContact {
         load: 600.0,
         rx: 2.9487e-3,
         ry: 178.5e-3,
         sum_velocity: 10.85,
         e_reduced: reduced_modulus(&Solid::AISI_52100, &Solid::AISI_52100),
         lubricant: Lubricant::DEFAULT_MINERAL_OIL,
-    };
+    }
+}
+
+fn quasi_static(c: &mut Criterion) {
+    let contact = seed_contact();
     let s = QuasiStaticSettings::default();
     let mut g = c.benchmark_group("contact");
     g.sample_size(10);
@@ -25,5 +35,18 @@ fn quasi_static(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, quasi_static);
+fn harmonic(c: &mut Criterion) {
+    let contact = seed_contact();
+    let s = HarmonicSettings::default();
+    let m = ball_mass(7e-3, Solid::AISI_52100.density);
+    let mut g = c.benchmark_group("contact");
+    g.sample_size(10);
+    g.measurement_time(std::time::Duration::from_secs(150));
+    g.bench_function("harmonic_7006_inner_600N_5000rpm", |b| {
+        b.iter(|| characterize_harmonic(black_box(&contact), m, &s).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, quasi_static, harmonic);
 criterion_main!(benches);
