@@ -113,11 +113,14 @@ pub fn characterizer(
             let mut q = QuasiStaticCharacterizer::default();
             q.settings.amplitude = get_f64("amplitude", q.settings.amplitude)?;
             if let Some(v) = opts.get("points") {
-                q.settings.points = v
-                    .as_u64()
-                    .filter(|n| (4..=101).contains(n))
-                    .with_context(|| format!("method_options.points = {v}: expected an integer from 4 to 101"))?
-                    as usize;
+                q.settings.points =
+                    v.as_u64()
+                        .filter(|n| (4..=101).contains(n))
+                        .with_context(|| {
+                            format!(
+                                "method_options.points = {v}: expected an integer from 4 to 101"
+                            )
+                        })? as usize;
             }
             if let Some(v) = opts.get("grid") {
                 q.settings.ehl.grid = v
@@ -128,10 +131,50 @@ pub fn characterizer(
             }
             Ok(Box::new(q))
         }
-        "harmonic" => bail!(
-            "method {method} is not available yet (the transient EHL characterization is not in this build); use --method quasi-static or hertz"
+        "harmonic" => {
+            check_keys(&[
+                "amplitude",
+                "grid",
+                "frequency_fraction",
+                "settling_periods",
+                "recorded_periods",
+                "steps_per_period",
+            ])?;
+            let mut h = ehl_bearing::contact::HarmonicCharacterizer::default();
+            h.settings.amplitude = get_f64("amplitude", h.settings.amplitude)?;
+            if let Some(v) = opts.get("frequency_fraction") {
+                let f = v.as_f64().with_context(|| {
+                    format!("method_options.frequency_fraction = {v}: expected a number")
+                })?;
+                h.settings.frequency =
+                    ehl_bearing::contact::ExcitationFrequency::FractionOfNatural(f);
+            }
+            let count = |key: &str, lo: u64, hi: u64, default: usize| -> anyhow::Result<usize> {
+                match opts.get(key) {
+                    None => Ok(default),
+                    Some(v) => Ok(v.as_u64().filter(|n| (lo..=hi).contains(n)).with_context(
+                        || {
+                            format!(
+                                "method_options.{key} = {v}: expected an integer from {lo} to {hi}"
+                            )
+                        },
+                    )? as usize),
+                }
+            };
+            h.settings.ehl.grid = count("grid", 9, 4097, h.settings.ehl.grid)?;
+            h.settings.settling_periods =
+                count("settling_periods", 0, 100, h.settings.settling_periods)?;
+            h.settings.recorded_periods =
+                count("recorded_periods", 1, 100, h.settings.recorded_periods)?;
+            h.settings.steps_per_period =
+                count("steps_per_period", 8, 4096, h.settings.steps_per_period)?;
+            h.settings.validate()?;
+            Ok(Box::new(h))
+        }
+        other => bail!(
+            "unknown method {other:?}: expected one of {}",
+            METHODS.join(", ")
         ),
-        other => bail!("unknown method {other:?}: expected one of {}", METHODS.join(", ")),
     }
 }
 

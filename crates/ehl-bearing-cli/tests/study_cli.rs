@@ -75,11 +75,8 @@ fn characterize_table_and_output_folder() {
 }
 
 #[test]
-fn unavailable_and_unknown_methods_are_clear_errors() {
-    for (method, msg) in [
-        ("harmonic", "method harmonic is not available yet"),
-        ("magic", "unknown method"),
-    ] {
+fn unknown_methods_are_clear_errors() {
+    for (method, msg) in [("magic", "unknown method")] {
         let o = bin()
             .args(["characterize", SEED, "--method", method])
             .output()
@@ -111,6 +108,28 @@ fn study_rejects_bad_files_with_the_key_named() {
             .unwrap();
         assert!(!o.status.success());
         assert!(String::from_utf8_lossy(&o.stderr).contains(key), "{key}");
+    }
+    // The harmonic method's options are checked before any EHL run.
+    for (extra, key) in [
+        (
+            "[method_options]\nsteps_per_period = 2\n",
+            "method_options.steps_per_period",
+        ),
+        ("[method_options]\npoints = 7\n", "method_options.points"),
+    ] {
+        let study = study_file(tmp.path(), "harmonic", "[3000]", "[1.0]", extra);
+        let o = bin()
+            .args([
+                "study",
+                study.to_str().unwrap(),
+                "-o",
+                tmp.path().join("h").to_str().unwrap(),
+            ])
+            .output()
+            .unwrap();
+        assert!(!o.status.success());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(key), "{key}: {err}");
     }
     let study = study_file(tmp.path(), "hertz", "[3000, -5]", "[1.0]", "");
     let o = bin()

@@ -539,3 +539,59 @@ pub fn characterize_harmonic(
         law,
     })
 }
+
+/// The harmonic method ([`characterize_harmonic`]) as a
+/// [`ContactCharacterizer`](crate::characterize::ContactCharacterizer) for the coupled loop: each
+/// contact is excited with its own ball mass ([`ContactConditions::ball_mass`](crate::characterize::ContactConditions)).
+/// The fitted law's damping term (if any) is kept in the law but plays no part in the quasi-static
+/// bearing equilibrium (δ̇ = 0 there).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct HarmonicCharacterizer {
+    /// Settings of the method.
+    pub settings: HarmonicSettings,
+}
+
+impl crate::characterize::ContactCharacterizer for HarmonicCharacterizer {
+    fn characterize(
+        &self,
+        c: &crate::characterize::ContactConditions,
+    ) -> Result<crate::characterize::CharacterizedContact, Error> {
+        use crate::ContactLaw;
+        // The contact and the mass are validated by characterize_harmonic (EHL input checks).
+        let contact = EhlContact {
+            load: c.load,
+            rx: c.rx,
+            ry: c.ry,
+            sum_velocity: c.sum_velocity,
+            e_reduced: c.e_reduced,
+            lubricant: c.lubricant,
+        };
+        let fit = characterize_harmonic(&contact, c.ball_mass, &self.settings)?;
+        let approach = fit.law.approach_at(c.load).unwrap_or(fit.approach);
+        Ok(crate::characterize::CharacterizedContact {
+            law: fit.law,
+            k: fit.k,
+            d: fit.d,
+            delta_f: fit.delta_f,
+            load: c.load,
+            approach,
+            moes_m: fit.moes_m,
+            moes_l: fit.moes_l,
+            ry_over_rx: fit.ry_over_rx,
+            r_squared: fit.r_squared,
+            rms_residual: fit.rms_residual,
+            converged: fit.converged,
+            method: "harmonic".to_string(),
+            seconds: fit.seconds,
+            samples: fit.history.len() - fit.settling_steps,
+        })
+    }
+
+    fn settings_json(&self) -> serde_json::Value {
+        serde_json::to_value(self.settings).unwrap_or(serde_json::Value::Null)
+    }
+
+    fn name(&self) -> &str {
+        "harmonic"
+    }
+}
