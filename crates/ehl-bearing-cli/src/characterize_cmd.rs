@@ -152,13 +152,15 @@ pub fn characterizer(
             let count = |key: &str, lo: u64, hi: u64, default: usize| -> anyhow::Result<usize> {
                 match opts.get(key) {
                     None => Ok(default),
-                    Some(v) => Ok(v.as_u64().filter(|n| (lo..=hi).contains(n)).with_context(
-                        || {
-                            format!(
+                    Some(v) => {
+                        Ok(v.as_u64()
+                            .filter(|n| (lo..=hi).contains(n))
+                            .with_context(|| {
+                                format!(
                                 "method_options.{key} = {v}: expected an integer from {lo} to {hi}"
                             )
-                        },
-                    )? as usize),
+                            })? as usize)
+                    }
                 }
             };
             h.settings.ehl.grid = count("grid", 9, 4097, h.settings.ehl.grid)?;

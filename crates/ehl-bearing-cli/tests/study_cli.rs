@@ -76,14 +76,12 @@ fn characterize_table_and_output_folder() {
 
 #[test]
 fn unknown_methods_are_clear_errors() {
-    for (method, msg) in [("magic", "unknown method")] {
-        let o = bin()
-            .args(["characterize", SEED, "--method", method])
-            .output()
-            .unwrap();
-        assert!(!o.status.success());
-        assert!(String::from_utf8_lossy(&o.stderr).contains(msg), "{method}");
-    }
+    let o = bin()
+        .args(["characterize", SEED, "--method", "magic"])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("unknown method"));
 }
 
 #[test]
