@@ -293,7 +293,7 @@ fn range_sweep() {
         grid,
         ..Default::default()
     };
-    let (mut ok, mut total) = (0, 0);
+    let (mut ok, mut total, mut negative) = (0, 0, 0);
     for barus in [false, true] {
         for r in [1.0, 12.0, 61.0, 100.0] {
             for l in [2.0, 10.0, 25.0] {
@@ -308,11 +308,15 @@ fn range_sweep() {
                         Ok(x) => {
                             if x.converged {
                                 ok += 1;
+                                if x.h_min < 0.0 {
+                                    negative += 1;
+                                }
                             }
                             println!(
-                                "barus {barus} R {r} L {l} M {m}: conv {} cycles {} starts {} cont {} t {:.2}s H_c {:.4} H_min {:.4}",
+                                "barus {barus} R {r} L {l} M {m}: conv {} cycles {} starts {} cont {} t {:.2}s H_c {:.4} H_min {:.4}{}",
                                 x.converged, x.cycles, x.attempts, x.continuation_steps, x.seconds,
-                                x.h_central_moes, x.h_min_moes
+                                x.h_central_moes, x.h_min_moes,
+                                if x.h_min < 0.0 { " (negative nodal film: grid too coarse)" } else { "" }
                             );
                         }
                         Err(e) => println!("barus {barus} R {r} L {l} M {m}: ERROR {e}"),
@@ -321,5 +325,5 @@ fn range_sweep() {
             }
         }
     }
-    println!("converged {ok} of {total}");
+    println!("converged {ok} of {total} ({negative} of them with a negative nodal film)");
 }

@@ -293,7 +293,8 @@ pub struct EhlSolution {
     /// Continuation steps in load used (0 when the direct start converged).
     pub continuation_steps: usize,
     /// Starts tried: 1 = the given settings; 2–5 = more conservative relaxation after a
-    /// divergence or stagnation; 6 = load continuation with the most conservative settings.
+    /// divergence or stagnation; 6 = the given settings with strongly under-relaxed
+    /// Gauss–Seidel lines (ω_GS ≤ 0.1); 7 = load continuation with the settings of start 5.
     pub attempts: usize,
     /// Fields on the finest grid.
     pub fields: EhlFields,

@@ -358,7 +358,10 @@ fn iterate(
         fb = (lv.integral() - lv.g).abs() / lv.g;
         let hc = centre(&hier);
         let best_so_far = history.iter().cloned().fold(f64::NAN, f64::min);
-        if !(rel.is_finite() && hier.h0.is_finite() && hc.is_finite()) {
+        // A film a million times the estimate is a blown-up iterate (seen with Barus at
+        // αp ~ 50–100), even when its relative residual is still finite.
+        let absurd = hc.abs().max(hier.h0.abs()) > 1e6 * h_est.max(1.0);
+        if !(rel.is_finite() && hier.h0.is_finite() && hc.is_finite()) || absurd {
             return Err((cycles, best_so_far));
         }
         residual = rel;
@@ -473,7 +476,7 @@ pub fn solve_steady(c: &EhlContact, s: &EhlSettings) -> Result<EhlSolution, EhlE
             Err((cyc, _)) => cycles += cyc,
         }
     }
-    let conservative = ladder[ladder.len() - 1];
+    let conservative = ladder[CONSERVATIVE];
     match continuation(c, &conservative, &sc, cycles, t0) {
         Ok(r) if r.converged => Ok(r),
         other => match best {
@@ -487,10 +490,21 @@ pub fn solve_steady(c: &EhlContact, s: &EhlSettings) -> Result<EhlSolution, EhlE
     }
 }
 
+/// Number of settings in [`fallback_ladder`].
+const LADDER: usize = 6;
+/// Index in [`fallback_ladder`] of the settings used for load continuation.
+const CONSERVATIVE: usize = 4;
+
 /// The settings tried in turn when a start diverges or stagnates: as given; a smaller h0 gain;
 /// a wider Jacobi-distributive zone; both with smaller distributive steps; all more conservative
-/// still (also used for load continuation).
-fn fallback_ladder(s: &EhlSettings) -> [EhlSettings; 5] {
+/// still (`CONSERVATIVE`, also used for load continuation); and the given settings with strongly
+/// under-relaxed Gauss–Seidel lines (ω_GS ≤ 0.1). The last one is for nearly isoviscous, highly
+/// loaded elongated contacts (L ≈ 2, M ≳ 500, Ry/Rx ≳ 60): there the Poiseuille term dominates
+/// the line diagonal in the whole Hertzian zone (Gauss–Seidel everywhere), but the elastic
+/// coupling that a line solve leaves out (beyond its band, and of the other lines, whose film is
+/// updated only after the sweep) is not small, and the relaxation at ω_GS = 0.3–0.4 oscillates
+/// without converging even on a single grid (docs/ehl.md §5.8).
+fn fallback_ladder(s: &EhlSettings) -> [EhlSettings; LADDER] {
     let a = EhlSettings {
         h0_gain: s.h0_gain * 0.4,
         ..*s
@@ -512,7 +526,11 @@ fn fallback_ladder(s: &EhlSettings) -> [EhlSettings; 5] {
         omega_gs: s.omega_gs.min(0.3),
         ..*s
     };
-    [*s, a, b, c, d]
+    let e = EhlSettings {
+        omega_gs: s.omega_gs.min(0.1),
+        ..*s
+    };
+    [*s, a, b, c, d, e]
 }
 
 /// Load continuation: solve at M_k = M_start·2^k (dimensionless pressure carried over), up to M.
@@ -554,7 +572,7 @@ fn continuation(
                 last_res = core.residual;
                 if last {
                     let mut r = finish(c, &sck, core, cycles_total, steps, t0);
-                    r.attempts = 6;
+                    r.attempts = LADDER + 1;
                     return Ok(r);
                 }
                 p_prev = Some(core.hier.levels.last().expect("level").p.clone());
