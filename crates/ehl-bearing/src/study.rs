@@ -88,6 +88,8 @@ struct RawCharacterize {
     max_iterations: Option<i64>,
     cache_tolerance: Option<f64>,
     min_load_fraction: Option<f64>,
+    load_reuse_tolerance: Option<f64>,
+    predict_loads: Option<bool>,
 }
 
 /// Methods a study file may name.
@@ -117,6 +119,8 @@ pub fn read_study(path: &Path) -> Result<Study, InputError> {
 /// max_iterations = 20                   # 1 to 1000
 /// cache_tolerance = 1e-3                # 0 to 0.1
 /// min_load_fraction = 0.01              # 0 < f < 1
+/// load_reuse_tolerance = 0.01           # 0 to 0.5; reuse a law while the load moved less than this
+/// predict_loads = true                  # start from predicted lubricated loads (quasi-static)
 ///
 /// [method_options]                      # optional, passed to the method (e.g. hertz: samples, amplitude)
 /// ```
@@ -231,6 +235,12 @@ pub fn parse_study(text: &str, origin: &str, base_dir: &Path) -> Result<Study, I
         }
         if let Some(v) = c.min_load_fraction {
             settings.min_load_fraction = v;
+        }
+        if let Some(v) = c.load_reuse_tolerance {
+            settings.load_reuse_tolerance = v;
+        }
+        if let Some(v) = c.predict_loads {
+            settings.predict_loads = v;
         }
     }
     if let Err(CharacterizeError::Setting {
