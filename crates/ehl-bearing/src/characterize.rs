@@ -218,7 +218,7 @@ pub struct CharacterizedContact {
     /// Largest absolute residual |Q_law(δ_k) − Q_k| over the fitted samples, N: the estimate of
     /// the law's force error anywhere inside its fitted range (between the samples the EHL
     /// force–approach curve is smooth), whether the contact operates at the characterization load
-    /// or elsewhere in the range (a reused law, `docs/study.md` §3).
+    /// or elsewhere in the range (a reused law, `docs/study.md` §3.2).
     pub max_residual: f64,
     /// Standard errors of (K in N/m^d, d, ΔF in N) from the fit's linearized covariance (K's is
     /// large relative to K: K and d are strongly correlated).
@@ -271,7 +271,7 @@ pub trait LoadPredictor: Sync + Send {
 /// Hertz approach minus a film term that varies only weakly with the load (≈ Q^−0.06,
 /// `docs/study.md` §6), so this law predicts the contact's load near w0 closely: on the seed
 /// case the loads of the predicted equilibrium are within 0.7 % of the converged lubricated
-/// ones (dry Hertz: up to 26 %), `docs/study.md` §3. Never used for results.
+/// ones (dry Hertz: up to 26 %), `docs/study.md` §3.3. Never used for results.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct PredictedLaw {
     /// Hertz load–deflection constant K_H, N/m^1.5.
@@ -642,7 +642,7 @@ pub struct CharacterizeSettings {
     /// load range (dimensionless, default 0.01; 0 disables it, then only `cache_tolerance`
     /// applies). The reused law's force error is its fit residual; its K, d, ΔF are those
     /// characterized at the other load: at 1 % they differ from a re-centred characterization by
-    /// less than one standard error of the fit (measured, `docs/study.md` §3).
+    /// less than one standard error of the fit (measured, `docs/study.md` §3.2).
     pub load_reuse_tolerance: f64,
     /// Start the loop from loads predicted with the method's [`ContactCharacterizer::predictor`]
     /// laws instead of the dry Hertz loads, when the method offers a predictor (default true).
