@@ -234,7 +234,7 @@ pub fn progress_container() -> MultiProgress {
 pub fn contact_progress(multi: &MultiProgress) -> (ProgressBar, impl Fn(Progress) + Sync) {
     let bar = multi.add(ProgressBar::new(0));
     if let Ok(style) =
-        ProgressStyle::with_template("  iteration {prefix:>2} {bar:30} {pos}/{len} contacts {msg}")
+        ProgressStyle::with_template("  {prefix:>12} {bar:30} {pos}/{len} contacts {msg}")
     {
         bar.set_style(style);
     }
@@ -244,7 +244,11 @@ pub fn contact_progress(multi: &MultiProgress) -> (ProgressBar, impl Fn(Progress
             iteration,
             contacts,
         } => {
-            b.set_prefix(iteration.to_string());
+            b.set_prefix(if iteration == 0 {
+                "prediction".to_string()
+            } else {
+                format!("iteration {iteration}")
+            });
             b.set_length(contacts as u64);
             b.set_position(0);
         }
@@ -288,6 +292,15 @@ pub struct CharacterizeArgs {
     /// floor load.
     #[arg(long, default_value_t = CharacterizeSettings::default().min_load_fraction)]
     pub min_load_fraction: f64,
+    /// Reuse a law of an earlier iteration while the contact's load differs by at most this
+    /// relative amount from its characterization load (and lies in its fitted range); 0 re-centres
+    /// every law on the new loads.
+    #[arg(long, default_value_t = CharacterizeSettings::default().load_reuse_tolerance)]
+    pub load_reuse_tolerance: f64,
+    /// Start from the dry Hertz loads instead of the loads predicted by the method (quasi-static:
+    /// one loosely converged EHL solution per contact).
+    #[arg(long)]
+    pub no_load_prediction: bool,
 }
 
 /// Contacts as CSV (the columns of [`ContactRow`]).
@@ -328,6 +341,8 @@ pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
         max_iterations: args.max_iterations,
         cache_tolerance: args.cache_tolerance,
         min_load_fraction: args.min_load_fraction,
+        load_reuse_tolerance: args.load_reuse_tolerance,
+        predict_loads: !args.no_load_prediction,
         ..CharacterizeSettings::default()
     };
     let multi = progress_container();
@@ -395,31 +410,73 @@ pub fn table(case: &Case, c: &BearingCharacterization) -> String {
     );
     let _ = writeln!(
         s,
-        "\n{:>4} {:>12} {:>12} {:>10} {:>11} {:>8}",
-        "iter", "max ΔQ/Q", "characterized", "reused", "key dist", "time s"
+        "final laws: used up to {:.2} % from their characterization load; largest fit residual {:.2e} of the load (force error bound in the fitted range)",
+        100.0 * c.max_load_offset,
+        c.max_relative_residual
+    );
+    if let Some(p) = &c.prediction {
+        let _ = writeln!(
+            s,
+            "load prediction: {} contacts ({} not converged, {} failed), loads moved up to {:.3e} from dry{}; {:.3} s",
+            p.contacts,
+            p.not_converged,
+            p.failed,
+            p.max_load_change,
+            p.error
+                .as_ref()
+                .map(|e| format!("; equilibrium failed, started from dry: {e}"))
+                .unwrap_or_default(),
+            p.seconds
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\n{:>4} {:>12} {:>12} {:>10} {:>11} {:>11} {:>11} {:>8}",
+        "iter",
+        "max ΔQ/Q",
+        "characterized",
+        "reused",
+        "key dist",
+        "load offset",
+        "residual/w0",
+        "time s"
     );
     for h in &c.history {
         let _ = writeln!(
             s,
-            "{:>4} {:>12.3e} {:>12} {:>10} {:>11.2e} {:>8.3}",
+            "{:>4} {:>12.3e} {:>12} {:>10} {:>11.2e} {:>11.2e} {:>11.2e} {:>8.3}",
             h.iteration,
             h.max_load_change,
             h.characterized,
             h.reused,
             h.max_key_distance,
+            h.max_load_offset,
+            h.max_relative_residual,
             h.seconds
         );
     }
     let _ = writeln!(
         s,
-        "\n{:>4} {:>5} {:>9} {:>8} {:>7} {:>11} {:>8} {:>9} {:>9} {:>6} {:>7} {:>13}",
-        "ball", "race", "Q N", "δ µm", "α °", "K N/m^d", "d", "ΔF N", "M", "L", "Ry/Rx", "source"
+        "\n{:>4} {:>5} {:>9} {:>8} {:>7} {:>11} {:>8} {:>9} {:>9} {:>6} {:>7} {:>8} {:>13}",
+        "ball",
+        "race",
+        "Q N",
+        "δ µm",
+        "α °",
+        "K N/m^d",
+        "d",
+        "ΔF N",
+        "M",
+        "L",
+        "Ry/Rx",
+        "Q/w0−1",
+        "source"
     );
     for r in &c.contacts {
         let cc = &r.characterized;
         let _ = writeln!(
             s,
-            "{:>4} {:>5} {:>9.3} {:>8.4} {:>7.3} {:>11.4e} {:>8.5} {:>9.3e} {:>9.2} {:>6.2} {:>7.2} {:>13}{}",
+            "{:>4} {:>5} {:>9.3} {:>8.4} {:>7.3} {:>11.4e} {:>8.5} {:>9.3e} {:>9.2} {:>6.2} {:>7.2} {:>8.1e} {:>13}{}",
             r.ball,
             format!("{:?}", r.race).to_lowercase(),
             r.state.load,
@@ -431,6 +488,7 @@ pub fn table(case: &Case, c: &BearingCharacterization) -> String {
             cc.moes_m,
             cc.moes_l,
             cc.ry_over_rx,
+            r.load_offset,
             format!("{:?}", r.source).to_lowercase(),
             if cc.law.outside_fit_range(r.state.deflection) { " (outside fit range)" } else { "" }
         );

@@ -210,7 +210,7 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     // How well the trend force element reproduces each point's reactions.
     let element = trends.clone().map(TrendForceElement::new).transpose()?;
     let mut summary = String::from(
-        "speed_rpm,load_scale,converged,iterations,max_load_change,max_key_distance,x_m,y_m,z_m,theta_y_rad,theta_z_rad,dry_x_m,dry_y_m,dry_z_m,k_xx_n_m,k_yy_n_m,k_zz_n_m,dry_k_xx_n_m,dry_k_yy_n_m,dry_k_zz_n_m,trend_reaction_error\n",
+        "speed_rpm,load_scale,converged,iterations,max_load_change,max_key_distance,max_load_offset,max_relative_residual,characterizations,x_m,y_m,z_m,theta_y_rad,theta_z_rad,dry_x_m,dry_y_m,dry_z_m,k_xx_n_m,k_yy_n_m,k_zz_n_m,dry_k_xx_n_m,dry_k_yy_n_m,dry_k_zz_n_m,trend_reaction_error\n",
     );
     let mut worst = 0.0_f64;
     for v in &values {
@@ -222,7 +222,7 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
                 v["spec"]["load_scale"].to_string(),
                 "error".to_string(),
             ];
-            cells.resize(21, String::new());
+            cells.resize(24, String::new());
             summary.push_str(&cells.join(","));
             summary.push('\n');
             continue;
@@ -248,6 +248,9 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
                 v["iterations"].to_string(),
                 v["max_load_change"].to_string(),
                 v["max_key_distance"].to_string(),
+                v["max_load_offset"].to_string(),
+                v["max_relative_residual"].to_string(),
+                characterizations(v),
                 d("displacement", "x"),
                 d("displacement", "y"),
                 d("displacement", "z"),
@@ -290,9 +293,24 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Contact characterizations a point needed (the sum over its iterations), as a CSV cell.
+fn characterizations(point: &Value) -> String {
+    point["history"]
+        .as_array()
+        .map(|h| {
+            h.iter()
+                .filter_map(|r| r["characterized"].as_u64())
+                .sum::<u64>()
+                .to_string()
+        })
+        .unwrap_or_default()
+}
+
 /// Plots of K, d and ΔF against the contact load (the paper's Fig. 2): one figure per parameter,
 /// inner and outer raceways in separate panels sharing the load axis, one marker series per speed
-/// and the trend curves as lines (K and d: one curve; ΔF: one per speed).
+/// and the trend curves as lines (K and d: one curve; ΔF: one per speed). The markers sit at the
+/// load each law was characterized at (within the load reuse tolerance of the equilibrium load),
+/// the abscissa of the trend curves.
 fn plots(dir: &Path, rows: &[ResultRow], trends: Option<&TrendModel>) -> anyhow::Result<()> {
     let mut speeds: Vec<f64> = Vec::new();
     for r in rows {
@@ -321,7 +339,7 @@ fn plots(dir: &Path, rows: &[ResultRow], trends: Option<&TrendModel>) -> anyhow:
                     .filter(|r| {
                         r.speed_rpm == n && r.contact.race == race && !r.contact.load_floored
                     })
-                    .map(|r| (r.contact.load_n, get(r)))
+                    .map(|r| (r.contact.characterized_load_n, get(r)))
                     .collect();
                 pts.sort_by(|a, b| a.0.total_cmp(&b.0));
                 let (x, y): (Vec<f64>, Vec<f64>) = pts.into_iter().unzip();

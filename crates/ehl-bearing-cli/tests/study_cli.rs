@@ -199,6 +199,24 @@ fn study_writes_long_csv_and_loadable_trends() {
         let e: f64 = line.split(',').nth(col).unwrap().parse().unwrap();
         assert!(e < 1e-3, "{line}");
     }
+    // Each point reports how far from their characterization loads its laws are used and how
+    // many characterizations it needed.
+    let header: Vec<&str> = points.lines().next().unwrap().split(',').collect();
+    let at = |name: &str| header.iter().position(|c| *c == name).unwrap();
+    let (off, res, n) = (
+        at("max_load_offset"),
+        at("max_relative_residual"),
+        at("characterizations"),
+    );
+    for line in points.lines().skip(1) {
+        let cells: Vec<&str> = line.split(',').collect();
+        let offset: f64 = cells[off].parse().unwrap();
+        let residual: f64 = cells[res].parse().unwrap();
+        let count: usize = cells[n].parse().unwrap();
+        assert!((0.0..=0.01 + 1e-3).contains(&offset), "{line}");
+        assert!((0.0..1e-3).contains(&residual), "{line}");
+        assert!(count >= 22, "{line}");
+    }
     let trends = std::fs::read_to_string(out.join("trends.json")).unwrap();
     let model = ehl_bearing::study::TrendModel::from_json(&trends).unwrap();
     assert_eq!(model.inner.d.form, "hertz_limit");

@@ -13,14 +13,22 @@
 //!   parallel (rayon); the result does not depend on the number of threads (bitwise).
 //! - Fitted laws are cached by their dimensionless inputs (Moes M, L, Ry/Rx; exact match of the
 //!   method settings, E′, lubricant and ball mass) and reused, rescaled to the new contact's
-//!   dimensions, within a relative key tolerance; the largest key distance used is reported.
+//!   dimensions, within a relative key tolerance; the largest key distance used is reported. A law
+//!   from an earlier iteration is also reused while the contact's load stays within
+//!   [`CharacterizeSettings::load_reuse_tolerance`] of the load it was characterized at and
+//!   inside its fitted load range (its force error there is the fit residual, reported).
+//! - A method may offer a cheap load predictor ([`ContactCharacterizer::predictor`]; for the
+//!   quasi-static method one loosely converged steady EHL solution per contact, [`PredictedLaw`])
+//!   that moves the loop's start from the dry loads to near the lubricated ones, so that the
+//!   first characterization is already centred within the reuse tolerance of the final loads.
 //!
-//! The loop, the cache and its error bound are described in `docs/study.md`.
+//! The loop, the cache and its error bounds are described in `docs/study.md`.
 
 use crate::bearing::{
     solve_equilibrium, BearingError, ContactLaws, ContactState, Equilibrium, Race,
 };
 use crate::contact_law::ContactLaw;
+use crate::ehl::{solve_steady, EhlContact, EhlSettings};
 use crate::fit::{fit_power_law, FitOptions, FittedLaw, RangeStatus};
 use crate::hertz::HertzGeometry;
 use crate::io::Case;
@@ -207,6 +215,14 @@ pub struct CharacterizedContact {
     pub r_squared: f64,
     /// Root-mean-square residual of the fit, N.
     pub rms_residual: f64,
+    /// Largest absolute residual |Q_law(δ_k) − Q_k| over the fitted samples, N: the estimate of
+    /// the law's force error anywhere inside its fitted range (between the samples the EHL
+    /// force–approach curve is smooth), whether the contact operates at the characterization load
+    /// or elsewhere in the range (a reused law, `docs/study.md` §3.2).
+    pub max_residual: f64,
+    /// Standard errors of (K in N/m^d, d, ΔF in N) from the fit's linearized covariance (K's is
+    /// large relative to K: K and d are strongly correlated).
+    pub std_errors: [f64; 3],
     /// Whether the characterization (solver and fit) converged.
     pub converged: bool,
     /// Name of the method.
@@ -228,6 +244,89 @@ pub trait ContactCharacterizer: Sync + Send {
     fn settings_json(&self) -> Value;
     /// Name of the method, e.g. `hertz`.
     fn name(&self) -> &str;
+    /// The method's load predictor, if it has one (default: none, the loop starts from the dry
+    /// Hertz loads).
+    fn predictor(&self) -> Option<&dyn LoadPredictor> {
+        None
+    }
+}
+
+/// A cheap approximate law of a contact near a load, used by the loop (with
+/// [`CharacterizeSettings::predict_loads`]) to predict the lubricated loads before the first
+/// characterization. It only moves the point where the first characterization is centred; the
+/// result is still the loop's fixed point with the characterized laws. Must be deterministic.
+pub trait LoadPredictor: Sync + Send {
+    /// The predictor law of contact `c` near `c.load`.
+    fn predict(&self, c: &ContactConditions) -> Result<PredictedLaw, crate::Error>;
+}
+
+/// A load predictor law: dry Hertz shifted by an effective film h,
+///
+/// ```text
+/// Q(δ) = K_H·(δ + h)^1.5   for δ > −h,   0 otherwise
+/// ```
+///
+/// with K_H the contact's Hertz constant (N/m^1.5) and h = δ_H(w0) − δ_EHL(w0) (m) from one steady
+/// EHL solution at the load w0, so Q(δ_EHL(w0)) = w0 exactly. The lubricated approach is the
+/// Hertz approach minus a film term that varies only weakly with the load (≈ Q^−0.06,
+/// `docs/study.md` §6), so this law predicts the contact's load near w0 closely: on the seed
+/// case the loads of the predicted equilibrium are within 0.7 % of the converged lubricated
+/// ones (dry Hertz: up to 26 %), `docs/study.md` §3.3. Never used for results.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PredictedLaw {
+    /// Hertz load–deflection constant K_H, N/m^1.5.
+    pub stiffness: f64,
+    /// Effective film h, m (the shift of the approach against dry Hertz).
+    pub film: f64,
+    /// Whether the solution behind it met its (loosened) convergence criteria.
+    pub converged: bool,
+}
+
+impl PredictedLaw {
+    /// A predictor law; errors if K_H is not positive or h is not finite.
+    pub fn new(stiffness: f64, film: f64, converged: bool) -> Result<Self, CharacterizeError> {
+        if !(stiffness.is_finite() && stiffness > 0.0 && film.is_finite()) {
+            return Err(CharacterizeError::setting(
+                "predicted law",
+                format!("K_H = {stiffness} N/m^1.5, h = {film} m"),
+                "a positive Hertz constant and a finite film",
+            ));
+        }
+        Ok(PredictedLaw {
+            stiffness,
+            film,
+            converged,
+        })
+    }
+}
+
+impl ContactLaw for PredictedLaw {
+    fn force(&self, approach: f64) -> (f64, f64) {
+        let x = approach + self.film;
+        if x > 0.0 {
+            let s = x.sqrt();
+            (self.stiffness * x * s, 1.5 * self.stiffness * s)
+        } else {
+            (0.0, 0.0)
+        }
+    }
+
+    fn approach_at(&self, load: f64) -> Option<f64> {
+        if load >= 0.0 && load.is_finite() {
+            Some((load / self.stiffness).powf(2.0 / 3.0) - self.film)
+        } else {
+            None
+        }
+    }
+}
+
+/// Largest absolute residual of `law` over the samples (δ_k, Q_k), N.
+fn max_abs_residual(law: &FittedLaw, delta: &[f64], q: &[f64]) -> f64 {
+    delta
+        .iter()
+        .zip(q)
+        .map(|(&d, &w)| (law.force(d).0 - w).abs())
+        .fold(0.0_f64, f64::max)
 }
 
 /// Sample loads w0·(1 + ε·(2i/(n−1) − 1)), i = 0..n−1.
@@ -283,6 +382,8 @@ fn fit_samples(
         ry_over_rx: c.ry_over_rx(),
         r_squared: fit.r_squared,
         rms_residual: fit.rms_residual,
+        max_residual: max_abs_residual(&law, delta, q),
+        std_errors: [fit.std_errors.k, fit.std_errors.d, fit.std_errors.delta_f],
         converged: fit.converged,
         method: method.to_string(),
         seconds: start.elapsed().as_secs_f64(),
@@ -446,6 +547,8 @@ impl ContactCharacterizer for QuasiStaticCharacterizer {
         };
         let fit = crate::contact::characterize_quasi_static(&contact, &self.settings)?;
         let approach = fit.law.approach_at(c.load).unwrap_or(fit.approach);
+        let (delta, q): (Vec<f64>, Vec<f64>) =
+            fit.samples.iter().map(|x| (x.approach, x.load)).unzip();
         Ok(CharacterizedContact {
             law: fit.law,
             k: fit.k,
@@ -458,6 +561,8 @@ impl ContactCharacterizer for QuasiStaticCharacterizer {
             ry_over_rx: fit.ry_over_rx,
             r_squared: fit.r_squared,
             rms_residual: fit.rms_residual,
+            max_residual: max_abs_residual(&fit.law, &delta, &q),
+            std_errors: [fit.std_errors.k, fit.std_errors.d, fit.std_errors.delta_f],
             converged: fit.converged,
             method: self.name().to_string(),
             seconds: fit.seconds,
@@ -472,7 +577,55 @@ impl ContactCharacterizer for QuasiStaticCharacterizer {
     fn name(&self) -> &str {
         "quasi-static"
     }
+
+    fn predictor(&self) -> Option<&dyn LoadPredictor> {
+        Some(self)
+    }
 }
+
+impl LoadPredictor for QuasiStaticCharacterizer {
+    /// One steady EHL solution at `c.load` with the method's grid and domain, converged to
+    /// [`PREDICTOR_TOLERANCE`] (100–1000× looser than the family's solutions: a third of the
+    /// cycles, and the predicted loads hardly change — within 0.64 % of the converged ones at
+    /// 5000 rpm on the seed case, 0.62 % with the family's tolerances), turned into a
+    /// [`PredictedLaw`].
+    fn predict(&self, c: &ContactConditions) -> Result<PredictedLaw, crate::Error> {
+        predict_steady(c, &self.settings.ehl)
+    }
+}
+
+/// The load predictor shared by the EHL methods: one steady EHL solution at `c.load` with the
+/// grid and domain of `ehl` but its tolerances loosened to [`PREDICTOR_TOLERANCE`], turned into a
+/// [`PredictedLaw`] (dry Hertz shifted by h = δ_Hertz(w0) − δ_EHL(w0), m).
+pub fn predict_steady(
+    c: &ContactConditions,
+    ehl: &EhlSettings,
+) -> Result<PredictedLaw, crate::Error> {
+    c.validate()?;
+    let h = HertzGeometry::new(c.rx, c.ry, c.e_reduced)?;
+    let e = ehl;
+    let settings = EhlSettings {
+        tol_residual: e.tol_residual.max(PREDICTOR_TOLERANCE),
+        tol_force: e.tol_force.max(PREDICTOR_TOLERANCE),
+        tol_film: e.tol_film.max(PREDICTOR_TOLERANCE),
+        ..*e
+    };
+    let contact = EhlContact {
+        load: c.load,
+        rx: c.rx,
+        ry: c.ry,
+        sum_velocity: c.sum_velocity,
+        e_reduced: c.e_reduced,
+        lubricant: c.lubricant,
+    };
+    let sol = solve_steady(&contact, &settings)?;
+    let film = h.contact(c.load).deflection - sol.approach;
+    Ok(PredictedLaw::new(h.stiffness, film, sol.converged)?)
+}
+
+/// Convergence tolerance of the predictor's steady EHL solution (relative Reynolds residual,
+/// force balance and film change; dimensionless).
+pub const PREDICTOR_TOLERANCE: f64 = 1e-2;
 
 /// Settings of [`characterize_bearing`].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -493,6 +646,17 @@ pub struct CharacterizeSettings {
     /// Return [`CharacterizeError::NotConverged`] instead of a result with `converged: false`
     /// when the iteration limit is hit (default false).
     pub error_if_not_converged: bool,
+    /// Load reuse: a law from an earlier iteration is reused for a contact whose L and Ry/Rx are
+    /// within `cache_tolerance` of the law's and whose Moes M (at equal L: its load) differs by at
+    /// most this relative (logarithmic) distance, provided the load lies inside the law's fitted
+    /// load range (dimensionless, default 0.01; 0 disables it, then only `cache_tolerance`
+    /// applies). The reused law's force error is its fit residual; its K, d, ΔF are those
+    /// characterized at the other load: at 1 % they differ from a re-centred characterization by
+    /// less than one standard error of the fit (measured, `docs/study.md` §3.2).
+    pub load_reuse_tolerance: f64,
+    /// Start the loop from loads predicted with the method's [`ContactCharacterizer::predictor`]
+    /// laws instead of the dry Hertz loads, when the method offers a predictor (default true).
+    pub predict_loads: bool,
 }
 
 impl Default for CharacterizeSettings {
@@ -503,6 +667,8 @@ impl Default for CharacterizeSettings {
             cache_tolerance: 1e-3,
             min_load_fraction: 0.01,
             error_if_not_converged: false,
+            load_reuse_tolerance: 0.01,
+            predict_loads: true,
         }
     }
 }
@@ -544,6 +710,16 @@ impl CharacterizeSettings {
                 "a fraction with 0 < f < 1",
             ));
         }
+        if !(self.load_reuse_tolerance.is_finite()
+            && self.load_reuse_tolerance >= 0.0
+            && self.load_reuse_tolerance <= 0.5)
+        {
+            return Err(CharacterizeError::setting(
+                "load_reuse_tolerance",
+                self.load_reuse_tolerance,
+                "a relative load tolerance from 0 to 0.5",
+            ));
+        }
         Ok(())
     }
 }
@@ -582,6 +758,9 @@ pub struct ContactResult {
     /// The law evaluated at the equilibrium approach, N (equals `state.load` to the equilibrium
     /// tolerance: the consistency check).
     pub law_load_at_approach: f64,
+    /// Relative offset of the equilibrium load from the load the law was characterized at,
+    /// Q/w0 − 1 (dimensionless; for a floored contact, from the floor).
+    pub load_offset: f64,
     /// Where the equilibrium approach lies relative to the law's fitted range.
     pub range_status: RangeStatus,
 }
@@ -599,9 +778,36 @@ pub struct IterationRecord {
     pub reused: usize,
     /// Largest relative key distance of a reused law in this iteration (0 if none).
     pub max_key_distance: f64,
+    /// Largest relative offset |w/w0 − 1| between a contact's load in this iteration and the
+    /// load its reused law was characterized at (0 if none reused), dimensionless.
+    pub max_load_offset: f64,
+    /// Largest fit residual of the laws of this iteration relative to the load they were
+    /// characterized at (max_residual/w0; the force error bound inside the fitted range),
+    /// dimensionless.
+    pub max_relative_residual: f64,
     /// Newton iterations of the equilibrium with the fitted laws.
     pub equilibrium_iterations: usize,
     /// Wall-clock time of the iteration, s.
+    pub seconds: f64,
+}
+
+/// The load prediction that started the loop ([`CharacterizeSettings::predict_loads`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PredictionRecord {
+    /// Contacts predicted.
+    pub contacts: usize,
+    /// Predictor solutions that stopped short of their tolerance (used all the same: the
+    /// prediction only moves where the first characterization is centred).
+    pub not_converged: usize,
+    /// Contacts whose predictor failed and kept their dry Hertz law for the prediction.
+    pub failed: usize,
+    /// Largest relative change of the contact loads from the dry to the predicted equilibrium.
+    pub max_load_change: f64,
+    /// Newton iterations of the predicted equilibrium (0 if it failed).
+    pub equilibrium_iterations: usize,
+    /// Why the predicted equilibrium failed, if it did (the loop then starts from the dry one).
+    pub error: Option<String>,
+    /// Wall-clock time of the prediction, s.
     pub seconds: f64,
 }
 
@@ -630,6 +836,14 @@ pub struct BearingCharacterization {
     pub settings: CharacterizeSettings,
     /// Largest relative key distance of any reused law in the final iteration (dimensionless).
     pub max_key_distance: f64,
+    /// Largest |load_offset| of the final contacts that were not floored: how far from its
+    /// characterization load a final law is used (dimensionless).
+    pub max_load_offset: f64,
+    /// Largest max_residual/w0 of the final laws (dimensionless): the relative force error bound
+    /// of the laws inside their fitted ranges.
+    pub max_relative_residual: f64,
+    /// The load prediction the loop started from (None: started from the dry loads).
+    pub prediction: Option<PredictionRecord>,
     /// Total wall-clock time, s.
     pub seconds: f64,
 }
@@ -664,24 +878,58 @@ struct CacheEntry {
     key: [f64; 3],
     conditions: ContactConditions,
     result: CharacterizedContact,
+    /// Fitted range of the law in the load parameter W = Q/(E′Rx²), [W(δ_min), W(δ_max)].
+    w_range: [f64; 2],
+}
+
+impl CacheEntry {
+    fn new(key: [f64; 3], conditions: ContactConditions, result: CharacterizedContact) -> Self {
+        let [lo, hi] = result.law.fit_range();
+        let scale = conditions.e_reduced * conditions.rx * conditions.rx;
+        let w_range = [
+            result.law.force(lo).0 / scale,
+            result.law.force(hi).0 / scale,
+        ];
+        CacheEntry {
+            key,
+            conditions,
+            result,
+            w_range,
+        }
+    }
+}
+
+/// Load parameter W = Q/(E′Rx²) of a contact.
+fn load_parameter(c: &ContactConditions) -> f64 {
+    c.load / (c.e_reduced * c.rx * c.rx)
+}
+
+/// Componentwise relative distances |ln(a/b)| of two keys (∞ where a component is not finite
+/// and positive).
+fn key_components(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    let mut d = [0.0; 3];
+    for k in 0..3 {
+        d[k] = if a[k].is_finite() && b[k].is_finite() && a[k] > 0.0 && b[k] > 0.0 {
+            (a[k] / b[k]).ln().abs()
+        } else {
+            f64::INFINITY
+        };
+    }
+    d
 }
 
 /// Relative distance between two keys: max over components of |ln(a/b)| (∞ if a component is not
 /// finite and positive).
 fn key_distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    let mut d = 0.0_f64;
-    for k in 0..3 {
-        if !(a[k].is_finite() && b[k].is_finite() && a[k] > 0.0 && b[k] > 0.0) {
-            return f64::INFINITY;
-        }
-        d = d.max((a[k] / b[k]).ln().abs());
-    }
-    d
+    let [m, l, r] = key_components(a, b);
+    m.max(l).max(r)
 }
 
-/// Rescale a characterized contact to new conditions with (nearly) the same dimensionless key:
+/// Rescale a characterized contact to new conditions with (nearly) the same L and Ry/Rx:
 /// Q/(E′Rx²) as a function of δ/Rx is kept, so K′ = K·(E′′/E′)·(Rx′/Rx)^(2−d),
-/// ΔF′ = ΔF·(E′′/E′)·(Rx′/Rx)², δ-range × Rx′/Rx.
+/// ΔF′ = ΔF·(E′′/E′)·(Rx′/Rx)², δ-range × Rx′/Rx, and the characterization load and the
+/// residuals × (E′′/E′)·(Rx′/Rx)² (the result describes where the law was characterized, at the
+/// new contact's scale; its load may differ from `to.load` by the load reuse tolerance).
 fn rescale(
     from: &CacheEntry,
     to: &ContactConditions,
@@ -696,22 +944,29 @@ fn rescale(
     if let Some(c) = src.law.c() {
         law = law.with_damping(c)?;
     }
-    let approach = law.approach_at(to.load).ok_or_else(|| {
-        CharacterizeError::Trend(format!("rescaled law does not reach {} N", to.load))
-    })?;
-    let moes = to.moes();
+    let load = src.load * e * r * r;
+    let approach = law
+        .approach_at(load)
+        .ok_or_else(|| CharacterizeError::Trend(format!("rescaled law does not reach {load} N")))?;
+    let moes = ContactConditions { load, ..*to }.moes();
     Ok(CharacterizedContact {
         law,
         k,
         d: src.d,
         delta_f,
-        load: to.load,
+        load,
         approach,
         moes_m: moes.m,
         moes_l: moes.l,
         ry_over_rx: to.ry_over_rx(),
         r_squared: src.r_squared,
         rms_residual: src.rms_residual * e * r * r,
+        max_residual: src.max_residual * e * r * r,
+        std_errors: [
+            src.std_errors[0] * e * r.powf(2.0 - src.d),
+            src.std_errors[1],
+            src.std_errors[2] * e * r * r,
+        ],
         converged: src.converged,
         method: src.method.clone(),
         seconds: 0.0,
@@ -802,6 +1057,7 @@ pub fn characterize_bearing(
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Progress {
     /// An iteration starts and will characterize `contacts` contacts (the others are reused).
+    /// Iteration 0 is the load prediction (`contacts` predictor solutions).
     IterationStarted {
         /// Iteration number (1-based).
         iteration: usize,
@@ -829,15 +1085,21 @@ pub fn characterize_bearing_with_progress(
     let dry_laws = ContactLaws::hertz(&case.bearing).map_err(CharacterizeError::DryEquilibrium)?;
     let dry = solve_equilibrium(&case.bearing, &dry_laws, &case.operating, &case.settings)
         .map_err(CharacterizeError::DryEquilibrium)?;
+    let (start, prediction) = if settings.predict_loads {
+        predicted_start(case, ch, settings, &dry_laws, &dry, progress)
+    } else {
+        (None, None)
+    };
     // The cache lives for one call: method, settings, E′, lubricant and ball mass (the exact part
     // of the key) are the same for every entry, so only (M, L, Ry/Rx) are compared.
     let mut cache: Vec<CacheEntry> = Vec::new();
-    let mut eq = dry.clone();
+    let mut eq = start.unwrap_or_else(|| dry.clone());
     let mut history = Vec::new();
     let mut converged = false;
     let mut change = f64::INFINITY;
     let mut contacts: Vec<(CharacterizedContact, bool, LawSource, f64)> = Vec::new();
     let tol = settings.cache_tolerance;
+    let load_tol = settings.load_reuse_tolerance;
     for iteration in 1..=settings.max_iterations {
         let ti = Instant::now();
         let conds = conditions_of(case, &eq, settings.min_load_fraction);
@@ -851,10 +1113,17 @@ pub fn characterize_bearing_with_progress(
         let mut plan = Vec::with_capacity(conds.len());
         let mut runs: Vec<usize> = Vec::new();
         for (i, key) in keys.iter().enumerate() {
+            // A law of an earlier iteration: L and Ry/Rx within the key tolerance, and M within
+            // the key tolerance or — the load reuse — within the load tolerance with the load
+            // inside the law's fitted range. Closest key first, earliest entry on ties.
+            let w = load_parameter(&conds[i].0);
             let mut best: Option<(usize, f64)> = None;
             for (e, entry) in cache.iter().enumerate() {
-                let d = key_distance(key, &entry.key);
-                if d <= tol && best.map_or(true, |(_, bd)| d < bd) {
+                let [dm, dl, dr] = key_components(key, &entry.key);
+                let in_range = w >= entry.w_range[0] && w <= entry.w_range[1];
+                let ok = dl <= tol && dr <= tol && (dm <= tol || (dm <= load_tol && in_range));
+                let d = dm.max(dl).max(dr);
+                if ok && best.map_or(true, |(_, bd)| d < bd) {
                     best = Some((e, d));
                 }
             }
@@ -906,6 +1175,8 @@ pub fn characterize_bearing_with_progress(
         }
         let mut new_contacts = Vec::with_capacity(conds.len());
         let mut max_dist = 0.0_f64;
+        let mut max_offset = 0.0_f64;
+        let mut max_residual = 0.0_f64;
         let wrap = |i: usize, e: crate::Error| CharacterizeError::Contact {
             ball: i / 2,
             race: conds[i].0.race,
@@ -926,11 +1197,11 @@ pub fn characterize_bearing_with_progress(
                     d,
                 ),
                 Plan::Duplicate(r, d) => {
-                    let entry = CacheEntry {
-                        key: keys[r],
-                        conditions: conds[r].0,
-                        result: fresh[r].clone().expect("characterized above"),
-                    };
+                    let entry = CacheEntry::new(
+                        keys[r],
+                        conds[r].0,
+                        fresh[r].clone().expect("characterized above"),
+                    );
                     (
                         rescale(&entry, &conds[i].0).map_err(|e| wrap(i, e))?,
                         LawSource::Deduplicated,
@@ -939,14 +1210,18 @@ pub fn characterize_bearing_with_progress(
                 }
             };
             max_dist = max_dist.max(dist);
+            if source != LawSource::Characterized {
+                max_offset = max_offset.max((conds[i].0.load / cc.load - 1.0).abs());
+            }
+            max_residual = max_residual.max(cc.max_residual / cc.load);
             new_contacts.push((cc, conds[i].1, source, dist));
         }
         for &i in &runs {
-            cache.push(CacheEntry {
-                key: keys[i],
-                conditions: conds[i].0,
-                result: fresh[i].take().expect("characterized above"),
-            });
+            cache.push(CacheEntry::new(
+                keys[i],
+                conds[i].0,
+                fresh[i].take().expect("characterized above"),
+            ));
         }
         let laws = laws_of(&new_contacts);
         let next = solve_equilibrium(&case.bearing, &laws, &case.operating, &case.settings)
@@ -962,6 +1237,8 @@ pub fn characterize_bearing_with_progress(
             characterized: runs.len(),
             reused: conds.len() - runs.len(),
             max_key_distance: max_dist,
+            max_load_offset: max_offset,
+            max_relative_residual: max_residual,
             equilibrium_iterations: next.iterations,
             seconds: ti.elapsed().as_secs_f64(),
         });
@@ -984,6 +1261,7 @@ pub fn characterize_bearing_with_progress(
     }
     let max_key_distance = history.last().map_or(0.0, |h| h.max_key_distance);
     let mut results = Vec::with_capacity(contacts.len());
+    let (mut max_load_offset, mut max_relative_residual) = (0.0_f64, 0.0_f64);
     for (i, (cc, floored, source, dist)) in contacts.into_iter().enumerate() {
         let b = &eq.balls[i / 2];
         let (race, state) = if i % 2 == 0 {
@@ -991,11 +1269,17 @@ pub fn characterize_bearing_with_progress(
         } else {
             (Race::Outer, b.outer)
         };
+        let load_offset = state.load / cc.load - 1.0;
+        if !floored {
+            max_load_offset = max_load_offset.max(load_offset.abs());
+        }
+        max_relative_residual = max_relative_residual.max(cc.max_residual / cc.load);
         results.push(ContactResult {
             ball: i / 2,
             race,
             law_load_at_approach: cc.law.force(state.deflection).0,
             range_status: cc.law.range_status(state.deflection),
+            load_offset,
             characterized: cc,
             load_floored: floored,
             source,
@@ -1015,8 +1299,98 @@ pub fn characterize_bearing_with_progress(
         method_settings: ch.settings_json(),
         settings: *settings,
         max_key_distance,
+        max_load_offset,
+        max_relative_residual,
+        prediction,
         seconds: t0.elapsed().as_secs_f64(),
     })
+}
+
+/// The equilibrium with the method's predictor laws at the dry loads, or None if the method has
+/// no predictor. Progress is reported as iteration 0. A contact whose predictor fails keeps its
+/// dry Hertz law; if the predicted equilibrium fails the loop starts from the dry one. Both are
+/// counted in the record: they cost time (the first characterization is centred less well), not
+/// accuracy.
+fn predicted_start(
+    case: &Case,
+    ch: &dyn ContactCharacterizer,
+    settings: &CharacterizeSettings,
+    dry_laws: &ContactLaws,
+    dry: &Equilibrium,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> (Option<Equilibrium>, Option<PredictionRecord>) {
+    let t0 = Instant::now();
+    let Some(predictor) = ch.predictor() else {
+        return (None, None);
+    };
+    let conds = conditions_of(case, dry, settings.min_load_fraction);
+    progress(Progress::IterationStarted {
+        iteration: 0,
+        contacts: conds.len(),
+    });
+    let predicted: Vec<Result<PredictedLaw, crate::Error>> = conds
+        .par_iter()
+        .map(|(c, _)| {
+            let r = predictor.predict(c);
+            progress(Progress::ContactDone { iteration: 0 });
+            r
+        })
+        .collect();
+    let mut laws = ContactLaws {
+        inner: Vec::new(),
+        outer: Vec::new(),
+    };
+    let (mut failed, mut not_converged) = (0, 0);
+    for (i, p) in predicted.into_iter().enumerate() {
+        let dry_law = if i % 2 == 0 {
+            &dry_laws.inner[i / 2]
+        } else {
+            &dry_laws.outer[i / 2]
+        };
+        let law: Arc<dyn ContactLaw> = match p {
+            Ok(l) => {
+                if !l.converged {
+                    not_converged += 1;
+                }
+                Arc::new(l)
+            }
+            Err(_) => {
+                failed += 1;
+                dry_law.clone()
+            }
+        };
+        if i % 2 == 0 {
+            laws.inner.push(law);
+        } else {
+            laws.outer.push(law);
+        }
+    }
+    let mut record = PredictionRecord {
+        contacts: conds.len(),
+        not_converged,
+        failed,
+        max_load_change: 0.0,
+        equilibrium_iterations: 0,
+        error: None,
+        seconds: 0.0,
+    };
+    let eq = match solve_equilibrium(&case.bearing, &laws, &case.operating, &case.settings) {
+        Ok(eq) => {
+            record.max_load_change = max_relative_load_change(
+                &contact_loads(dry),
+                &contact_loads(&eq),
+                settings.min_load_fraction,
+            );
+            record.equilibrium_iterations = eq.iterations;
+            Some(eq)
+        }
+        Err(e) => {
+            record.error = Some(e.to_string());
+            None
+        }
+    };
+    record.seconds = t0.elapsed().as_secs_f64();
+    (eq, Some(record))
 }
 
 fn laws_of(contacts: &[(CharacterizedContact, bool, LawSource, f64)]) -> ContactLaws {
@@ -1052,6 +1426,12 @@ pub struct ContactRow {
     pub d: f64,
     /// Lift at zero approach ΔF, N.
     pub delta_f_n: f64,
+    /// Standard error of K from the fit, N/m^d (null if undefined).
+    pub k_std_error: Option<f64>,
+    /// Standard error of d (null if undefined).
+    pub d_std_error: Option<f64>,
+    /// Standard error of ΔF, N (null if undefined).
+    pub delta_f_std_error_n: Option<f64>,
     /// Moes M at the characterization load.
     pub moes_m: f64,
     /// Moes L.
@@ -1062,6 +1442,9 @@ pub struct ContactRow {
     pub r_squared: Option<f64>,
     /// RMS residual of the contact's fit, N.
     pub rms_residual_n: f64,
+    /// Largest absolute residual of the contact's fit, N (its force error bound inside the
+    /// fitted range).
+    pub fit_max_residual_n: f64,
     /// Whether the characterization converged.
     pub fit_converged: bool,
     /// Load the law was characterized at, N.
@@ -1072,6 +1455,8 @@ pub struct ContactRow {
     pub source: String,
     /// Relative key distance of a reused law.
     pub key_distance: f64,
+    /// Relative offset of the equilibrium load from the characterization load, Q/w0 − 1.
+    pub load_offset: f64,
     /// Sum velocity, m/s.
     pub sum_velocity_m_s: f64,
     /// Rx, m.
@@ -1113,11 +1498,15 @@ impl ContactRow {
             k: cc.k,
             d: cc.d,
             delta_f_n: cc.delta_f,
+            k_std_error: finite_or_none(cc.std_errors[0]),
+            d_std_error: finite_or_none(cc.std_errors[1]),
+            delta_f_std_error_n: finite_or_none(cc.std_errors[2]),
             moes_m: cc.moes_m,
             moes_l: cc.moes_l,
             ry_over_rx: cc.ry_over_rx,
             r_squared: finite_or_none(cc.r_squared),
             rms_residual_n: cc.rms_residual,
+            fit_max_residual_n: cc.max_residual,
             fit_converged: cc.converged,
             characterized_load_n: cc.load,
             load_floored: c.load_floored,
@@ -1127,6 +1516,7 @@ impl ContactRow {
                 LawSource::Deduplicated => "deduplicated".into(),
             },
             key_distance: c.key_distance,
+            load_offset: c.load_offset,
             sum_velocity_m_s: c.state.sum_velocity,
             rx_m: c.state.rx,
             ry_m: c.state.ry,
@@ -1139,9 +1529,12 @@ impl ContactRow {
 }
 
 /// The characterization as JSON in SI units: `converged`, `iterations`, `max_load_change`,
-/// `max_key_distance`, `method`, `method_settings`, `settings`, `history` (per iteration:
+/// `max_key_distance`, `max_load_offset`, `max_relative_residual`, `method`, `method_settings`,
+/// `settings`, `prediction` (null, or `contacts`, `not_converged`, `failed`, `max_load_change`,
+/// `equilibrium_iterations`, `error`, and `seconds` if `timing`), `history` (per iteration:
 /// `iteration`, `max_load_change`, `characterized`, `reused`, `max_key_distance`,
-/// `equilibrium_iterations`, and `seconds` if `timing`), `displacement` and `dry_displacement`
+/// `max_load_offset`, `max_relative_residual`, `equilibrium_iterations`, and `seconds` if
+/// `timing`), `displacement` and `dry_displacement`
 /// (x, y, z in m; θy, θz in rad), `reaction` (N, N·m), `stiffness_dry` and `stiffness_ehl`
 /// (5×5, N/m, N, N·m/rad), `contacts` ([`ContactRow`]s) and `seconds` if `timing`. Without
 /// timing the output is reproducible bit for bit.
@@ -1156,6 +1549,8 @@ pub fn characterization_json(c: &BearingCharacterization, timing: bool) -> Value
                 "characterized": h.characterized,
                 "reused": h.reused,
                 "max_key_distance": h.max_key_distance,
+                "max_load_offset": h.max_load_offset,
+                "max_relative_residual": h.max_relative_residual,
                 "equilibrium_iterations": h.equilibrium_iterations,
             });
             if timing {
@@ -1166,15 +1561,32 @@ pub fn characterization_json(c: &BearingCharacterization, timing: bool) -> Value
         .collect();
     let dof =
         |q: &[f64; 5]| json!({"x": q[0], "y": q[1], "z": q[2], "theta_y": q[3], "theta_z": q[4]});
+    let prediction = c.prediction.as_ref().map(|p| {
+        let mut v = json!({
+            "contacts": p.contacts,
+            "not_converged": p.not_converged,
+            "failed": p.failed,
+            "max_load_change": p.max_load_change,
+            "equilibrium_iterations": p.equilibrium_iterations,
+            "error": p.error,
+        });
+        if timing {
+            v["seconds"] = json!(p.seconds);
+        }
+        v
+    });
     let f = &c.equilibrium.reaction;
     let mut v = json!({
         "converged": c.converged,
         "iterations": c.iterations,
         "max_load_change": c.max_load_change,
         "max_key_distance": c.max_key_distance,
+        "max_load_offset": c.max_load_offset,
+        "max_relative_residual": c.max_relative_residual,
         "method": c.method,
         "method_settings": c.method_settings,
         "settings": c.settings,
+        "prediction": prediction,
         "history": history,
         "displacement": dof(&c.equilibrium.displacement),
         "dry_displacement": dof(&c.dry.displacement),

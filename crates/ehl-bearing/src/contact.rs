@@ -568,6 +568,12 @@ impl crate::characterize::ContactCharacterizer for HarmonicCharacterizer {
         };
         let fit = characterize_harmonic(&contact, c.ball_mass, &self.settings)?;
         let approach = fit.law.approach_at(c.load).unwrap_or(fit.approach);
+        // Largest force residual of the fit over the recorded steps, damping term included (N).
+        let damping = fit.c.unwrap_or(0.0);
+        let max_residual = fit.history[fit.settling_steps..]
+            .iter()
+            .map(|x| (fit.law.force(x.approach).0 + damping * x.velocity - x.film_force).abs())
+            .fold(0.0_f64, f64::max);
         Ok(crate::characterize::CharacterizedContact {
             law: fit.law,
             k: fit.k,
@@ -580,6 +586,8 @@ impl crate::characterize::ContactCharacterizer for HarmonicCharacterizer {
             ry_over_rx: fit.ry_over_rx,
             r_squared: fit.r_squared,
             rms_residual: fit.rms_residual,
+            max_residual,
+            std_errors: [fit.std_errors.k, fit.std_errors.d, fit.std_errors.delta_f],
             converged: fit.converged,
             method: "harmonic".to_string(),
             seconds: fit.seconds,
@@ -593,5 +601,20 @@ impl crate::characterize::ContactCharacterizer for HarmonicCharacterizer {
 
     fn name(&self) -> &str {
         "harmonic"
+    }
+
+    fn predictor(&self) -> Option<&dyn crate::characterize::LoadPredictor> {
+        Some(self)
+    }
+}
+
+impl crate::characterize::LoadPredictor for HarmonicCharacterizer {
+    /// The steady predictor of the quasi-static method
+    /// ([`predict_steady`](crate::characterize::predict_steady)) with this method's grid and domain.
+    fn predict(
+        &self,
+        c: &crate::characterize::ContactConditions,
+    ) -> Result<crate::characterize::PredictedLaw, Error> {
+        crate::characterize::predict_steady(c, &self.settings.ehl)
     }
 }

@@ -88,6 +88,8 @@ struct RawCharacterize {
     max_iterations: Option<i64>,
     cache_tolerance: Option<f64>,
     min_load_fraction: Option<f64>,
+    load_reuse_tolerance: Option<f64>,
+    predict_loads: Option<bool>,
 }
 
 /// Methods a study file may name.
@@ -117,6 +119,8 @@ pub fn read_study(path: &Path) -> Result<Study, InputError> {
 /// max_iterations = 20                   # 1 to 1000
 /// cache_tolerance = 1e-3                # 0 to 0.1
 /// min_load_fraction = 0.01              # 0 < f < 1
+/// load_reuse_tolerance = 0.01           # 0 to 0.5; reuse a law while the load moved less than this
+/// predict_loads = true                  # start from predicted lubricated loads (quasi-static)
 ///
 /// [method_options]                      # optional, passed to the method (e.g. hertz: samples, amplitude)
 /// ```
@@ -231,6 +235,12 @@ pub fn parse_study(text: &str, origin: &str, base_dir: &Path) -> Result<Study, I
         }
         if let Some(v) = c.min_load_fraction {
             settings.min_load_fraction = v;
+        }
+        if let Some(v) = c.load_reuse_tolerance {
+            settings.load_reuse_tolerance = v;
+        }
+        if let Some(v) = c.predict_loads {
+            settings.predict_loads = v;
         }
     }
     if let Err(CharacterizeError::Setting {
@@ -891,8 +901,13 @@ impl LeastSquaresProblem for HertzFilm<'_> {
     }
 }
 
+/// The trends of one raceway. `qc`: the loads the laws were characterized at (abscissa of K, d,
+/// ΔF); `q`: the equilibrium loads (abscissa of δ and of the validity range); they differ by at
+/// most the loop's load reuse tolerance.
+#[allow(clippy::too_many_arguments)]
 fn fit_race(
     race: &str,
+    qc: &[f64],
     q: &[f64],
     n: &[f64],
     k: &[f64],
@@ -900,14 +915,15 @@ fn fit_race(
     df: &[f64],
     delta: &[f64],
 ) -> Result<RaceTrends, CharacterizeError> {
-    if q.len() < 3 || distinct(q) < 3 {
+    if q.len() < 3 || distinct(q) < 3 || distinct(qc) < 3 {
         return Err(CharacterizeError::Trend(format!(
             "{race}: {} usable contacts with {} distinct loads; at least 3 are needed",
             q.len(),
             distinct(q)
         )));
     }
-    let lnq: Vec<f64> = q.iter().map(|v| v.ln()).collect();
+    // K, d and ΔF are functions of the load the law was characterized at.
+    let lnq: Vec<f64> = qc.iter().map(|v| v.ln()).collect();
     // K(Q) = a·Q^b by least squares on ln K (relative errors).
     if k.iter().any(|v| v.is_nan() || *v <= 0.0) {
         return Err(trend_err(race, "K (non-positive stiffness)"));
@@ -918,7 +934,7 @@ fn fit_race(
         "power",
         "K = p0·Q^p1 (K in N/m^d, Q in N)",
         vec![c0.exp(), s[0]],
-        q,
+        qc,
         n,
         k,
     );
@@ -939,7 +955,7 @@ fn fit_race(
             "hertz_limit",
             "d = 1.5 − p0·Q^(−p1) (Q in N)",
             vec![la.exp(), b],
-            q,
+            qc,
             n,
             d,
         )
@@ -949,14 +965,15 @@ fn fit_race(
             "log_linear",
             "d = p0 + p1·ln Q (Q in N)",
             vec![c0, s[0]],
-            q,
+            qc,
             n,
             d,
         )
     };
     // ΔF(Q, n) and δ(Q, n): δ as a power law of the elastic load Q − ΔF when that is positive
-    // everywhere and fits better than a power law of Q.
-    let df_curve = power_or_linear(race, "ΔF", "N", q, n, df)?;
+    // everywhere and fits better than a power law of Q. δ is the equilibrium approach at the
+    // equilibrium load.
+    let df_curve = power_or_linear(race, "ΔF", "N", qc, n, df)?;
     let mut approach = power_or_linear(race, "δ", "m", q, n, delta)?;
     let qe: Vec<f64> = q
         .iter()
@@ -995,11 +1012,14 @@ fn fit_race(
 }
 
 /// Fit the trend curves of a study to its rows. Contacts whose load was floored (lightly loaded)
-/// or whose fit did not converge are left out. The speed n is the inner-ring speed relative to
+/// or whose fit did not converge are left out. K, d and ΔF are fitted against the load each law
+/// was characterized at (`characterized_load_n`), the approach δ against the equilibrium load
+/// (`load_n`); the two differ by at most the loop's load reuse tolerance. The speed n is the inner-ring speed relative to
 /// the outer ring, rad/s.
 pub fn fit_trends(study: &Study, rows: &[ResultRow]) -> Result<TrendModel, CharacterizeError> {
     let outer_speed = study.case.operating.outer_speed;
     let pick = |race: &str| {
+        let mut qc = Vec::new();
         let mut q = Vec::new();
         let mut n = Vec::new();
         let mut k = Vec::new();
@@ -1009,6 +1029,7 @@ pub fn fit_trends(study: &Study, rows: &[ResultRow]) -> Result<TrendModel, Chara
         for r in rows {
             let c = &r.contact;
             if c.race == race && !c.load_floored && c.fit_converged && c.load_n > 0.0 {
+                qc.push(c.characterized_load_n);
                 q.push(c.load_n);
                 n.push((r.inner_speed_rad_s - outer_speed).abs());
                 k.push(c.k);
@@ -1017,10 +1038,10 @@ pub fn fit_trends(study: &Study, rows: &[ResultRow]) -> Result<TrendModel, Chara
                 delta.push(c.approach_m);
             }
         }
-        (q, n, k, d, df, delta)
+        (qc, q, n, k, d, df, delta)
     };
-    let (qi, ni, ki, di, dfi, ai) = pick("inner");
-    let (qo, no, ko, d_o, dfo, ao) = pick("outer");
+    let (qci, qi, ni, ki, di, dfi, ai) = pick("inner");
+    let (qco, qo, no, ko, d_o, dfo, ao) = pick("outer");
     let g = &study.case.bearing.geometry;
     Ok(TrendModel {
         version: 1,
@@ -1038,8 +1059,8 @@ pub fn fit_trends(study: &Study, rows: &[ResultRow]) -> Result<TrendModel, Chara
         },
         lubricant: study.case.lubricant,
         race_control: study.case.operating.race_control,
-        inner: fit_race("inner", &qi, &ni, &ki, &di, &dfi, &ai)?,
-        outer: fit_race("outer", &qo, &no, &ko, &d_o, &dfo, &ao)?,
+        inner: fit_race("inner", &qci, &qi, &ni, &ki, &di, &dfi, &ai)?,
+        outer: fit_race("outer", &qco, &qo, &no, &ko, &d_o, &dfo, &ao)?,
     })
 }
 
