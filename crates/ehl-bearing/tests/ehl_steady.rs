@@ -313,6 +313,44 @@ fn isoviscous_elongated_high_load_converges() {
     );
 }
 
+/// Barus at large αp_h (circular, M 20, L 25: αp_h = 24.7, a piezoviscous pressure peak of about
+/// 4·p_h): every direct start diverges within a few cycles and so does load continuation; the
+/// continuation in α from L/4 (start 8, ω_GS ≤ 0.1 and a coarsest grid of 65² on the warm-started
+/// steps) converges (docs/ehl.md §5.8).
+#[test]
+fn barus_large_alpha_converges_by_alpha_continuation() {
+    let x = solve_moes(&barus(20.0, 25.0, 1.0), &settings(129)).unwrap();
+    println!(
+        "cycles {} steps {} t {:.2}s H_c {:.4} H_min {:.4} p_max/p_h {:.3} fb {:.1e}",
+        x.cycles,
+        x.continuation_steps,
+        x.seconds,
+        x.h_central_moes,
+        x.h_min_moes,
+        x.p_max / x.p_hertz,
+        x.force_balance_residual
+    );
+    assert!(x.converged, "residual {}", x.residual);
+    assert_eq!(x.attempts, 8);
+    assert!(x.residual < 1e-4);
+    assert!(x.force_balance_residual < 1e-5);
+    // Force balance from the returned pressure field: ∬p dx dy = w = (2π/3)·p_h·a_x·a_y.
+    let f = &x.fields;
+    let (dx, dy) = (f.x[1] - f.x[0], f.y[1] - f.y[0]);
+    let w = 2.0 * std::f64::consts::PI / 3.0 * x.p_hertz * f.a_x * f.a_y;
+    let integral: f64 = f.p.iter().sum::<f64>() * dx * dy;
+    assert!(rel(integral, w).abs() < 1e-4, "{integral} vs {w}");
+    assert!(f.p.iter().all(|p| *p >= 0.0));
+    // A positive film, in the range of the NVM fit (8.12) and of the 257² solution (8.41).
+    assert!(x.h_min > 0.0 && x.h_central > x.h_min);
+    assert!(
+        rel(x.h_central_moes, 8.41).abs() < 0.05,
+        "H_c {}",
+        x.h_central_moes
+    );
+    assert!((3.0..6.0).contains(&(x.p_max / x.p_hertz)));
+}
+
 /// The seed's most loaded inner contact converges; a warm start from it at 10 % more load gives
 /// the cold-start answer in fewer cycles.
 #[test]

@@ -62,8 +62,8 @@ fn explore() {
     match solve_moes(&c, &s) {
         Ok(r) => {
             println!(
-                "M {} L {} R {} conv {} cyc {} t {:.3}s Hc {:.5} Hmin {:.5} NVM {:.5} pmax/ph {:.4} delta/dH {:.4} fb {:.2e} steps {} inlet {:.2} hw {:.2}",
-                r.moes_m, r.moes_l, r.ry_over_rx, r.converged, r.cycles, r.seconds, r.h_central_moes,
+                "M {} L {} R {} conv {} start {} cyc {} t {:.3}s Hc {:.5} Hmin {:.5} NVM {:.5} pmax/ph {:.4} delta/dH {:.4} fb {:.2e} steps {} inlet {:.2} hw {:.2}",
+                r.moes_m, r.moes_l, r.ry_over_rx, r.converged, r.attempts, r.cycles, r.seconds, r.h_central_moes,
                 r.h_min_moes, nijenbanning_central(r.moes_m, r.moes_l, 1.0 / r.ry_over_rx),
                 r.p_max / r.p_hertz, r.approach / r.approach_hertz, r.force_balance_residual, r.continuation_steps,
                 -r.fields.x[0] / r.fields.a_x, r.fields.y[r.fields.y.len() - 1] / r.fields.a_y

@@ -290,11 +290,13 @@ pub struct EhlSolution {
     pub seconds: f64,
     /// Relative residual after each finest-grid cycle.
     pub residual_history: Vec<f64>,
-    /// Continuation steps in load used (0 when the direct start converged).
+    /// Continuation steps used, in load (`attempts` = 7) or in α (`attempts` = 8); 0 when a
+    /// direct start converged.
     pub continuation_steps: usize,
     /// Starts tried: 1 = the given settings; 2–5 = more conservative relaxation after a
     /// divergence or stagnation; 6 = the given settings with strongly under-relaxed
-    /// Gauss–Seidel lines (ω_GS ≤ 0.1); 7 = load continuation with the settings of start 5.
+    /// Gauss–Seidel lines (ω_GS ≤ 0.1); 7 = load continuation with the settings of start 5;
+    /// 8 = continuation in the pressure–viscosity coefficient α from α/4 (docs/ehl.md §5.8).
     pub attempts: usize,
     /// Fields on the finest grid.
     pub fields: EhlFields,

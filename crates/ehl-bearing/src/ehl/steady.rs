@@ -477,16 +477,174 @@ pub fn solve_steady(c: &EhlContact, s: &EhlSettings) -> Result<EhlSolution, EhlE
         }
     }
     let conservative = ladder[CONSERVATIVE];
-    match continuation(c, &conservative, &sc, cycles, t0) {
-        Ok(r) if r.converged => Ok(r),
-        other => match best {
-            Some((core, attempt)) => {
-                let mut r = finish(c, &sc, core, cycles, 0, t0);
-                r.attempts = attempt;
+    let load_cont = continuation(c, &conservative, &sc, cycles, t0);
+    if matches!(&load_cont, Ok(r) if r.converged) {
+        return load_cont;
+    }
+    let spent = match &load_cont {
+        Ok(r) => r.cycles,
+        Err(EhlError::Diverged { cycles, .. }) => *cycles,
+        Err(_) => cycles,
+    };
+    let (spent, alpha_res) = match alpha_continuation(c, &pr, &sc, &ladder, spent, t0) {
+        Ok(r) => return Ok(r),
+        Err((n, res)) => (n, res),
+    };
+    match best {
+        Some((core, attempt)) => {
+            let mut r = finish(c, &sc, core, spent, 0, t0);
+            r.attempts = attempt;
+            Ok(r)
+        }
+        None => match load_cont {
+            Ok(mut r) => {
+                r.cycles = spent;
                 Ok(r)
             }
-            None => other,
+            Err(EhlError::Diverged {
+                m,
+                l,
+                ratio,
+                residual,
+                ..
+            }) => Err(EhlError::Diverged {
+                cycles: spent,
+                m,
+                l,
+                ratio,
+                residual: residual.min(alpha_res),
+            }),
+            Err(e) => Err(e),
         },
+    }
+}
+
+/// Smallest pressure–viscosity coefficient of the α-continuation, as a fraction of the case's.
+const ALPHA_FROM: f64 = 0.25;
+/// Largest step of the α-continuation (ratio of successive α). A step that diverges is halved
+/// (in log α) down to `ALPHA_MIN_STEP`; one that succeeds lets the next grow by half again.
+const ALPHA_STEP: f64 = 1.2;
+/// See `ALPHA_STEP`.
+const ALPHA_MIN_STEP: f64 = 1.002;
+/// Cycles on an intermediate step of the α-continuation (the last one gets `max_cycles`).
+const ALPHA_STEP_CYCLES: usize = 8;
+/// Largest ω_GS of the α-continuation's warm-started steps.
+const ALPHA_OMEGA_GS: f64 = 0.1;
+/// Smallest coarsest grid of the α-continuation's warm-started steps.
+const ALPHA_COARSEST: usize = 65;
+
+/// The case with the pressure–viscosity coefficient scaled by `f` (same Hertz scales, grid and
+/// domain; only L, i.e. αp_h, changes).
+fn with_alpha(pr: &Problem, sc: &Scales, f: f64) -> (Problem, Scales) {
+    let prk = Problem {
+        lub: crate::material::Lubricant {
+            pressure_viscosity: pr.lub.pressure_viscosity * f,
+            ..pr.lub
+        },
+        ..pr.clone()
+    };
+    (prk, Scales { l: sc.l * f, ..*sc })
+}
+
+/// Continuation in the pressure–viscosity coefficient α, i.e. in L at fixed M (tried last, after
+/// the starts of [`fallback_ladder`] and load continuation have failed; meant for Barus at large
+/// αp_h, docs/ehl.md §5.8). The case is solved at α·`ALPHA_FROM` from a Hertzian start (the
+/// starts of the ladder in turn), then α is raised geometrically to its value, each step
+/// warm-started from the previous pressure and H0 on the same grid and domain, with ω_GS ≤
+/// `ALPHA_OMEGA_GS` and a coarsest grid of at least `ALPHA_COARSEST` points (with larger ω_GS,
+/// or the 33² coarsest grid, the warm starts diverge within 2–5 cycles at αp_max ≳ 60–90).
+/// Intermediate steps get `ALPHA_STEP_CYCLES` cycles and need not converge; the last one must.
+/// `Err((cycles, lowest residual reached at the case's α))` if it cannot be completed.
+fn alpha_continuation(
+    c: &EhlContact,
+    pr: &Problem,
+    sc: &Scales,
+    ladder: &[EhlSettings; LADDER],
+    mut cycles_total: usize,
+    t0: Instant,
+) -> Result<EhlSolution, (usize, f64)> {
+    let mut lowest = f64::NAN;
+    if pr.lub.pressure_viscosity <= 0.0 {
+        return Err((cycles_total, lowest));
+    }
+    let (pr0, sc0) = with_alpha(pr, sc, ALPHA_FROM);
+    let h_est0 = h_estimate(&sc0);
+    let mut state = None;
+    for sk in ladder.iter() {
+        match iterate(&pr0, sk, Start::Hertz, h_est0, sk.max_cycles) {
+            Ok(core) => {
+                cycles_total += core.cycles;
+                if core.converged {
+                    let lv = core.hier.levels.last().expect("at least one level");
+                    state = Some((lv.p.clone(), core.hier.h0));
+                    break;
+                }
+            }
+            Err((n, _)) => cycles_total += n,
+        }
+    }
+    let Some(mut state) = state else {
+        return Err((cycles_total, lowest));
+    };
+    let warm = EhlSettings {
+        omega_gs: ladder[0].omega_gs.min(ALPHA_OMEGA_GS),
+        coarsest: ladder[0].coarsest.max(ALPHA_COARSEST),
+        ..ladder[0]
+    };
+    let mut done = ALPHA_FROM;
+    let mut q = ALPHA_STEP;
+    let mut steps = 1;
+    loop {
+        let mut f = done * q;
+        if f > 1.0 - 1e-9 {
+            f = 1.0;
+        }
+        let last = f == 1.0;
+        let (prk, sck) = with_alpha(pr, sc, f);
+        let start = Start::Given {
+            p: state.0.clone(),
+            h0: Some(state.1),
+        };
+        let maxc = if last {
+            warm.max_cycles
+        } else {
+            ALPHA_STEP_CYCLES.min(warm.max_cycles)
+        };
+        steps += 1;
+        let ok = match iterate(&prk, &warm, start, h_estimate(&sck), maxc) {
+            Ok(core) => {
+                cycles_total += core.cycles;
+                if last {
+                    lowest = lowest.min(core.residual);
+                    if core.converged {
+                        let mut r = finish(c, sc, core, cycles_total, steps, t0);
+                        r.attempts = LADDER + 2;
+                        return Ok(r);
+                    }
+                    false
+                } else {
+                    let lv = core.hier.levels.last().expect("at least one level");
+                    state = (lv.p.clone(), core.hier.h0);
+                    true
+                }
+            }
+            Err((n, res)) => {
+                cycles_total += n;
+                if last {
+                    lowest = lowest.min(res);
+                }
+                false
+            }
+        };
+        if ok {
+            done = f;
+            q = q.powf(1.5).min(ALPHA_STEP);
+        } else {
+            q = (f / done).sqrt();
+            if q < ALPHA_MIN_STEP {
+                return Err((cycles_total, lowest));
+            }
+        }
     }
 }
 
