@@ -44,6 +44,13 @@ fn example_study_file_parses() {
     assert_eq!(s.settings.tolerance, 1e-3);
     assert_eq!(s.settings.load_reuse_tolerance, 0.01);
     assert!(s.settings.predict_loads);
+    // The harmonic seed study (docs/study.md §3.4): the three speeds at scale 1, lighter excitation.
+    let h = ehl_bearing::study::read_study(&examples().join("study_7006_harmonic.toml")).unwrap();
+    assert_eq!(h.method, "harmonic");
+    assert_eq!(h.inner_speeds_rpm, vec![3000.0, 4000.0, 5000.0]);
+    assert_eq!(h.points().len(), 3);
+    assert_eq!(h.method_options["steps_per_period"], 32);
+    assert_eq!(h.method_options["settling_periods"], 1);
     let t = study("[characterize]\nload_reuse_tolerance = 0.0\npredict_loads = false\n").unwrap();
     assert_eq!(t.settings.load_reuse_tolerance, 0.0);
     assert!(!t.settings.predict_loads);
