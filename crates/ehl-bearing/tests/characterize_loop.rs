@@ -47,6 +47,28 @@ fn assert_consistent(r: &BearingCharacterization) {
     }
 }
 
+/// The approach of a fresh steady EHL solution at contact `c`'s final load and conditions.
+fn fresh_ehl_approach(
+    case: &Case,
+    c: &ehl_bearing::characterize::ContactResult,
+    settings: &ehl_bearing::ehl::EhlSettings,
+) -> f64 {
+    let sol = ehl_bearing::ehl::solve_steady(
+        &ehl_bearing::ehl::EhlContact {
+            load: c.state.load,
+            rx: c.state.rx,
+            ry: c.state.ry,
+            sum_velocity: c.state.sum_velocity,
+            e_reduced: case.bearing.reduced_modulus(),
+            lubricant: case.lubricant,
+        },
+        settings,
+    )
+    .unwrap();
+    assert!(sol.converged, "ball {} {:?}", c.ball, c.race);
+    sol.approach
+}
+
 #[test]
 fn hertz_characterizer_reproduces_the_dry_equilibrium() {
     let r = run(
@@ -549,7 +571,6 @@ fn a_law_is_reused_at_another_load_only_inside_its_fitted_load_range() {
 fn quasi_static_loop_with_predicted_start_and_reused_laws_matches_fresh_ehl_solutions() {
     use ehl_bearing::characterize::QuasiStaticCharacterizer;
     use ehl_bearing::contact::QuasiStaticSettings;
-    use ehl_bearing::ehl::{solve_steady, EhlContact};
     // The seed case at 5000 rpm with the EHL quasi-static method on a 65² grid (to keep the test
     // short; the defaults use 129²).
     let case = seed();
@@ -585,20 +606,8 @@ fn quasi_static_loop_with_predicted_start_and_reused_laws_matches_fresh_ehl_solu
     let mut worst = 0.0_f64;
     for c in &r.contacts {
         let q = c.state.load;
-        let sol = solve_steady(
-            &EhlContact {
-                load: q,
-                rx: c.state.rx,
-                ry: c.state.ry,
-                sum_velocity: c.state.sum_velocity,
-                e_reduced: case.bearing.reduced_modulus(),
-                lubricant: case.lubricant,
-            },
-            &settings.ehl,
-        )
-        .unwrap();
-        assert!(sol.converged);
-        let err = (c.characterized.law.force(sol.approach).0 - q).abs();
+        let approach = fresh_ehl_approach(&case, c, &settings.ehl);
+        let err = (c.characterized.law.force(approach).0 - q).abs();
         let bound = c.characterized.max_residual;
         worst = worst.max(err / bound);
         assert!(
@@ -611,7 +620,7 @@ fn quasi_static_loop_with_predicted_start_and_reused_laws_matches_fresh_ehl_solu
             .bearing
             .hertz(c.race, c.state.contact_angle)
             .unwrap()
-            .load_at(sol.approach);
+            .load_at(approach);
         assert!((hertz - q).abs() > 20.0 * bound, "{hertz} vs {q}");
     }
     eprintln!("largest |Q_law(δ_EHL) − Q| / max residual: {worst:.3}");
@@ -620,7 +629,6 @@ fn quasi_static_loop_with_predicted_start_and_reused_laws_matches_fresh_ehl_solu
 #[test]
 fn harmonic_loop_converges_and_its_laws_carry_the_steady_film_forces() {
     use ehl_bearing::contact::HarmonicCharacterizer;
-    use ehl_bearing::ehl::{solve_steady, EhlContact};
     // The seed case at 5000 rpm with the harmonic method (transient EHL, docs/contact.md) on a
     // 65² grid with 16 steps per period and one settling period, to keep the test short (the
     // seed study uses 129², 32 and 1: docs/study.md §3.4; ≈ 35 s of CPU, the heaviest test of
@@ -662,20 +670,8 @@ fn harmonic_loop_converges_and_its_laws_carry_the_steady_film_forces() {
             ml.std_errors
         );
         assert!(ml.std_errors[1] < 0.05, "se(d) = {}", ml.std_errors[1]);
-        let sol = solve_steady(
-            &EhlContact {
-                load: q,
-                rx: c.state.rx,
-                ry: c.state.ry,
-                sum_velocity: c.state.sum_velocity,
-                e_reduced: case.bearing.reduced_modulus(),
-                lubricant: case.lubricant,
-            },
-            &ch.settings.ehl,
-        )
-        .unwrap();
-        assert!(sol.converged);
-        let rel = (ml.law.force(sol.approach).0 - q).abs() / q;
+        let approach = fresh_ehl_approach(&case, c, &ch.settings.ehl);
+        let rel = (ml.law.force(approach).0 - q).abs() / q;
         worst = worst.max(rel);
         assert!(
             rel <= 0.01,
@@ -685,4 +681,42 @@ fn harmonic_loop_converges_and_its_laws_carry_the_steady_film_forces() {
         );
     }
     eprintln!("largest |Q_law(δ_EHL) − Q| / Q: {worst:.2e}");
+}
+
+/// The coupled loop on the seed case at the paper's three speeds with the quasi-static method at
+/// its defaults (129²): converged at every speed, the final laws consistent with the equilibrium
+/// and with fresh steady EHL solutions at the final loads (the bound of
+/// `quasi_static_loop_with_predicted_start_and_reused_laws_matches_fresh_ehl_solutions`).
+/// ≈ 50 s on 2 cores:
+/// `cargo test --release -p ehl-bearing --test characterize_loop -- --ignored seed_case_converges`
+#[test]
+#[ignore]
+fn seed_case_converges_at_all_three_speeds() {
+    use ehl_bearing::characterize::QuasiStaticCharacterizer;
+    let ch = QuasiStaticCharacterizer::default();
+    let s = CharacterizeSettings::default();
+    for rpm in [3000.0, 4000.0, 5000.0] {
+        let mut case = seed();
+        case.operating.inner_speed = rpm * std::f64::consts::PI / 30.0;
+        let r = characterize_bearing(&case, &ch, &s).unwrap();
+        assert!(r.converged, "{rpm} rpm: {:?}", r.history);
+        assert!(r.history.last().unwrap().max_load_change < s.tolerance);
+        assert_consistent(&r);
+        let mut worst = 0.0_f64;
+        for c in &r.contacts {
+            let approach = fresh_ehl_approach(&case, c, &ch.settings.ehl);
+            let err = (c.characterized.law.force(approach).0 - c.state.load).abs();
+            worst = worst.max(err / c.characterized.max_residual);
+            assert!(
+                err <= 1.5 * c.characterized.max_residual,
+                "{rpm} rpm, ball {} {:?}",
+                c.ball,
+                c.race
+            );
+        }
+        eprintln!(
+            "{rpm} rpm: {} iterations, largest |Q_law(δ_EHL) − Q| / max residual {worst:.3}",
+            r.history.len()
+        );
+    }
 }
