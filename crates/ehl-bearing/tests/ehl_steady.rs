@@ -351,6 +351,40 @@ fn barus_large_alpha_converges_by_alpha_continuation() {
     assert!((3.0..6.0).contains(&(x.p_max / x.p_hertz)));
 }
 
+/// Barus, Ry/Rx 100, M 2000, L 25 on 257² (αp_h = 37, a pressure spike one node wide): every
+/// multigrid start, load continuation and the α-continuation end in a period-2 limit cycle at a
+/// relative residual of ≈ 1.2e-3; the last resort (start 9: the α-continuation's best iterate
+/// relaxed on the finest grid alone) converges (docs/ehl.md §5.8). ≈ 22 s, hence ignored:
+/// `cargo test --release -p ehl-bearing --test ehl_steady -- --ignored barus_spike_single_grid`.
+/// (On 129² the same case converges in start 1; no faster case reaching start 9 was found.)
+#[test]
+#[ignore]
+fn barus_spike_single_grid_polish_converges() {
+    let x = solve_moes(&barus(2000.0, 25.0, 100.0), &settings(257)).unwrap();
+    println!(
+        "cycles {} steps {} t {:.2}s H_c {:.4} H_min {:.4} p_max/p_h {:.3} res {:.2e} fb {:.1e}",
+        x.cycles,
+        x.continuation_steps,
+        x.seconds,
+        x.h_central_moes,
+        x.h_min_moes,
+        x.p_max / x.p_hertz,
+        x.residual,
+        x.force_balance_residual
+    );
+    assert!(x.converged, "residual {}", x.residual);
+    assert_eq!(x.attempts, 9);
+    assert!(x.residual < 1e-4);
+    assert!(x.force_balance_residual < 1e-5);
+    assert!(x.h_min > 0.0 && x.h_central > x.h_min);
+    // 9.89 on 257² (9.61 on 129², start 1).
+    assert!(
+        rel(x.h_central_moes, 9.89).abs() < 0.01,
+        "H_c {}",
+        x.h_central_moes
+    );
+}
+
 /// The seed's most loaded inner contact converges; a warm start from it at 10 % more load gives
 /// the cold-start answer in fewer cycles.
 #[test]

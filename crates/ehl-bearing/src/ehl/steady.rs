@@ -488,7 +488,19 @@ pub fn solve_steady(c: &EhlContact, s: &EhlSettings) -> Result<EhlSolution, EhlE
     };
     let (spent, alpha_res) = match alpha_continuation(c, &pr, &sc, &ladder, spent, t0) {
         Ok(r) => return Ok(r),
-        Err((n, res)) => (n, res),
+        Err(AlphaFailure {
+            cycles,
+            lowest,
+            best: None,
+        }) => (cycles, lowest),
+        Err(AlphaFailure {
+            cycles,
+            lowest,
+            best: Some((p, h0, steps)),
+        }) => match polish(c, &pr, &sc, &ladder[0], p, h0, cycles, steps, t0) {
+            Ok(r) => return Ok(r),
+            Err((n, res)) => (n, lowest.min(res)),
+        },
     };
     match best {
         Some((core, attempt)) => {
@@ -533,6 +545,56 @@ const ALPHA_OMEGA_GS: f64 = 0.1;
 /// Smallest coarsest grid of the α-continuation's warm-started steps.
 const ALPHA_COARSEST: usize = 65;
 
+/// An α-continuation that could not be completed: cycles spent, lowest residual reached at the
+/// case's α, and the unconverged (finite) iterate of its last step with the lowest residual
+/// (pressure, H0, continuation steps so far), if any.
+struct AlphaFailure {
+    cycles: usize,
+    lowest: f64,
+    best: Option<(Vec<f64>, f64, usize)>,
+}
+
+/// Last resort after a failed α-continuation (`attempts` = 9): the lowest-residual iterate of its
+/// last step, at the case's α, iterated on the finest grid alone (no coarse-grid correction),
+/// with ω_GS ≤ `ALPHA_OMEGA_GS`, to the full tolerances (`max_cycles` cycles of `coarse_sweeps`
+/// relaxations each). For Barus at αp_h ≈ 37 on an elongated
+/// contact (Ry/Rx 100, M 2000, 257²) the pressure spike is one node wide and the multigrid
+/// cycles end in a period-2 limit cycle at a relative residual of ≈ 1.2e-3 (the spike height
+/// alternates by ~30 %), whatever the coarsest grid down to 65²; the single-grid relaxation
+/// converges (docs/ehl.md §5.8). `Err((cycles, lowest residual))` if it does not.
+#[allow(clippy::too_many_arguments)]
+fn polish(
+    c: &EhlContact,
+    pr: &Problem,
+    sc: &Scales,
+    s: &EhlSettings,
+    p: Vec<f64>,
+    h0: f64,
+    cycles_total: usize,
+    steps: usize,
+    t0: Instant,
+) -> Result<EhlSolution, (usize, f64)> {
+    let single = EhlSettings {
+        omega_gs: s.omega_gs.min(ALPHA_OMEGA_GS),
+        coarsest: s.grid,
+        ..*s
+    };
+    let start = Start::Given { p, h0: Some(h0) };
+    match iterate(pr, &single, start, h_estimate(sc), s.max_cycles) {
+        Ok(core) => {
+            let n = cycles_total + core.cycles;
+            if core.converged {
+                let mut r = finish(c, sc, core, n, steps + 1, t0);
+                r.attempts = LADDER + 3;
+                Ok(r)
+            } else {
+                Err((n, core.residual))
+            }
+        }
+        Err((n, res)) => Err((cycles_total + n, res)),
+    }
+}
+
 /// The case with the pressure–viscosity coefficient scaled by `f` (same Hertz scales, grid and
 /// domain; only L, i.e. αp_h, changes).
 fn with_alpha(pr: &Problem, sc: &Scales, f: f64) -> (Problem, Scales) {
@@ -554,7 +616,7 @@ fn with_alpha(pr: &Problem, sc: &Scales, f: f64) -> (Problem, Scales) {
 /// `ALPHA_OMEGA_GS` and a coarsest grid of at least `ALPHA_COARSEST` points (with larger ω_GS,
 /// or the 33² coarsest grid, the warm starts diverge within 2–5 cycles at αp_max ≳ 60–90).
 /// Intermediate steps get `ALPHA_STEP_CYCLES` cycles and need not converge; the last one must.
-/// `Err((cycles, lowest residual reached at the case's α))` if it cannot be completed.
+/// [`AlphaFailure`] if it cannot be completed.
 fn alpha_continuation(
     c: &EhlContact,
     pr: &Problem,
@@ -562,10 +624,16 @@ fn alpha_continuation(
     ladder: &[EhlSettings; LADDER],
     mut cycles_total: usize,
     t0: Instant,
-) -> Result<EhlSolution, (usize, f64)> {
+) -> Result<EhlSolution, AlphaFailure> {
     let mut lowest = f64::NAN;
+    let mut best: Option<(Vec<f64>, f64, usize)> = None;
+    let mut best_res = f64::INFINITY;
     if pr.lub.pressure_viscosity <= 0.0 {
-        return Err((cycles_total, lowest));
+        return Err(AlphaFailure {
+            cycles: cycles_total,
+            lowest,
+            best,
+        });
     }
     let (pr0, sc0) = with_alpha(pr, sc, ALPHA_FROM);
     let h_est0 = h_estimate(&sc0);
@@ -584,7 +652,11 @@ fn alpha_continuation(
         }
     }
     let Some(mut state) = state else {
-        return Err((cycles_total, lowest));
+        return Err(AlphaFailure {
+            cycles: cycles_total,
+            lowest,
+            best,
+        });
     };
     let warm = EhlSettings {
         omega_gs: ladder[0].omega_gs.min(ALPHA_OMEGA_GS),
@@ -621,6 +693,11 @@ fn alpha_continuation(
                         r.attempts = LADDER + 2;
                         return Ok(r);
                     }
+                    if core.residual < best_res {
+                        best_res = core.residual;
+                        let lv = core.hier.levels.last().expect("at least one level");
+                        best = Some((lv.p.clone(), core.hier.h0, steps));
+                    }
                     false
                 } else {
                     let lv = core.hier.levels.last().expect("at least one level");
@@ -642,7 +719,11 @@ fn alpha_continuation(
         } else {
             q = (f / done).sqrt();
             if q < ALPHA_MIN_STEP {
-                return Err((cycles_total, lowest));
+                return Err(AlphaFailure {
+                    cycles: cycles_total,
+                    lowest,
+                    best,
+                });
             }
         }
     }
