@@ -147,6 +147,18 @@ pub struct MoesParameters {
 }
 
 impl ContactConditions {
+    /// The steady EHL problem of this contact at its load `load` (N).
+    pub fn ehl_contact(&self) -> EhlContact {
+        EhlContact {
+            load: self.load,
+            rx: self.rx,
+            ry: self.ry,
+            sum_velocity: self.sum_velocity,
+            e_reduced: self.e_reduced,
+            lubricant: self.lubricant,
+        }
+    }
+
     /// Moes' dimensionless parameters of this contact.
     pub fn moes(&self) -> MoesParameters {
         let w = self.load / (self.e_reduced * self.rx * self.rx);
@@ -537,15 +549,7 @@ pub struct QuasiStaticCharacterizer {
 impl ContactCharacterizer for QuasiStaticCharacterizer {
     fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error> {
         c.validate()?;
-        let contact = crate::ehl::EhlContact {
-            load: c.load,
-            rx: c.rx,
-            ry: c.ry,
-            sum_velocity: c.sum_velocity,
-            e_reduced: c.e_reduced,
-            lubricant: c.lubricant,
-        };
-        let fit = crate::contact::characterize_quasi_static(&contact, &self.settings)?;
+        let fit = crate::contact::characterize_quasi_static(&c.ehl_contact(), &self.settings)?;
         let approach = fit.law.approach_at(c.load).unwrap_or(fit.approach);
         let (delta, q): (Vec<f64>, Vec<f64>) =
             fit.samples.iter().map(|x| (x.approach, x.load)).unzip();
@@ -610,15 +614,7 @@ pub fn predict_steady(
         tol_film: e.tol_film.max(PREDICTOR_TOLERANCE),
         ..*e
     };
-    let contact = EhlContact {
-        load: c.load,
-        rx: c.rx,
-        ry: c.ry,
-        sum_velocity: c.sum_velocity,
-        e_reduced: c.e_reduced,
-        lubricant: c.lubricant,
-    };
-    let sol = solve_steady(&contact, &settings)?;
+    let sol = solve_steady(&c.ehl_contact(), &settings)?;
     let film = h.contact(c.load).deflection - sol.approach;
     Ok(PredictedLaw::new(h.stiffness, film, sol.converged)?)
 }

@@ -558,15 +558,7 @@ impl crate::characterize::ContactCharacterizer for HarmonicCharacterizer {
     ) -> Result<crate::characterize::CharacterizedContact, Error> {
         use crate::ContactLaw;
         // The contact and the mass are validated by characterize_harmonic (EHL input checks).
-        let contact = EhlContact {
-            load: c.load,
-            rx: c.rx,
-            ry: c.ry,
-            sum_velocity: c.sum_velocity,
-            e_reduced: c.e_reduced,
-            lubricant: c.lubricant,
-        };
-        let fit = characterize_harmonic(&contact, c.ball_mass, &self.settings)?;
+        let fit = characterize_harmonic(&c.ehl_contact(), c.ball_mass, &self.settings)?;
         let approach = fit.law.approach_at(c.load).unwrap_or(fit.approach);
         // Largest force residual of the fit over the recorded steps, damping term included (N).
         let damping = fit.c.unwrap_or(0.0);

@@ -47,6 +47,20 @@ fn assert_consistent(r: &BearingCharacterization) {
     }
 }
 
+/// The loop's JSON result is the same string with 1, 2 and 3 threads.
+fn assert_thread_independent(ch: &dyn ContactCharacterizer, s: &CharacterizeSettings) {
+    let with = |n: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .unwrap();
+        pool.install(|| characterization_json(&run(ch, s), false).to_string())
+    };
+    let one = with(1);
+    assert_eq!(one, with(2));
+    assert_eq!(one, with(3));
+}
+
 /// The approach of a fresh steady EHL solution at contact `c`'s final load and conditions.
 fn fresh_ehl_approach(
     case: &Case,
@@ -296,16 +310,7 @@ fn results_do_not_depend_on_the_number_of_threads() {
         tolerance: 1e-6,
         ..CharacterizeSettings::default()
     };
-    let with = |n: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .unwrap();
-        pool.install(|| characterization_json(&run(&ch, &s), false).to_string())
-    };
-    let one = with(1);
-    assert_eq!(one, with(2));
-    assert_eq!(one, with(3));
+    assert_thread_independent(&ch, &s);
 }
 
 #[test]
@@ -503,16 +508,7 @@ fn predicted_start_centres_the_first_characterization_and_reused_laws_close_the_
         );
     }
     // Thread independence with the predictor phase.
-    let with = |n: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .unwrap();
-        pool.install(|| characterization_json(&run(&ch, &s), false).to_string())
-    };
-    let one = with(1);
-    assert_eq!(one, with(2));
-    assert_eq!(one, with(3));
+    assert_thread_independent(&ch, &s);
 }
 
 #[test]
