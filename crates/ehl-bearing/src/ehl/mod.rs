@@ -43,7 +43,8 @@ pub enum EhlError {
     /// A contact file could not be read or has an invalid entry.
     #[error("{0}")]
     File(String),
-    /// The iteration produced non-finite numbers or blew up, also after load continuation.
+    /// The iteration produced non-finite numbers or blew up in every start, including the load
+    /// and α continuations.
     #[error(
         "EHL solver diverged after {cycles} cycles (M = {m:.4}, L = {l:.4}, Ry/Rx = {ratio:.4}, \
          lowest relative residual reached {residual:e})"
@@ -290,13 +291,16 @@ pub struct EhlSolution {
     pub seconds: f64,
     /// Relative residual after each finest-grid cycle.
     pub residual_history: Vec<f64>,
-    /// Continuation steps used, in load (`attempts` = 7) or in α (`attempts` = 8); 0 when a
-    /// direct start converged.
+    /// Continuation steps used, in load (`attempts` = 7) or in α (`attempts` = 8, and 9 with the
+    /// final single-grid relaxation counted as one step); 0 when a direct start converged.
     pub continuation_steps: usize,
     /// Starts tried: 1 = the given settings; 2–5 = more conservative relaxation after a
     /// divergence or stagnation; 6 = the given settings with strongly under-relaxed
     /// Gauss–Seidel lines (ω_GS ≤ 0.1); 7 = load continuation with the settings of start 5;
-    /// 8 = continuation in the pressure–viscosity coefficient α from α/4 (docs/ehl.md §5.8).
+    /// 8 = continuation in the pressure–viscosity coefficient α from α/4; 9 = the best iterate
+    /// of a failed α-continuation relaxed on the finest grid alone (docs/ehl.md §2, §5.8). For
+    /// an unconverged result: the start whose iterate is returned (the one with the lowest
+    /// residual), not the number of starts tried.
     pub attempts: usize,
     /// Fields on the finest grid.
     pub fields: EhlFields,

@@ -451,8 +451,8 @@ fn finish(
     }
 }
 
-/// Solves one steady contact from a Hertzian start (load continuation if the direct start
-/// diverges). A run that stops at `max_cycles` is returned with `converged: false`.
+/// Solves one steady contact from a Hertzian start (more conservative restarts, then load and α
+/// continuation and a single-grid relaxation if the direct start diverges; docs/ehl.md §2). A run that stops at `max_cycles` is returned with `converged: false`.
 pub fn solve_steady(c: &EhlContact, s: &EhlSettings) -> Result<EhlSolution, EhlError> {
     let t0 = Instant::now();
     let (pr, sc) = setup(c, s)?;
