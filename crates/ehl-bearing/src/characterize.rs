@@ -146,6 +146,40 @@ pub struct MoesParameters {
     pub l: f64,
 }
 
+impl CharacterizedContact {
+    /// The characterized contact of an EHL method's fit (`contact::ContactFit`) at load `load`
+    /// (N): the approach where the law gives `load` (the fit's centre approach if the law cannot
+    /// reach it), the law's largest force residual `max_residual` (N) over the `samples` fitted
+    /// samples; the method's name is the fit's.
+    pub fn from_fit(
+        fit: crate::contact::ContactFit,
+        load: f64,
+        max_residual: f64,
+        samples: usize,
+    ) -> Self {
+        let approach = fit.law.approach_at(load).unwrap_or(fit.approach);
+        CharacterizedContact {
+            law: fit.law,
+            k: fit.k,
+            d: fit.d,
+            delta_f: fit.delta_f,
+            load,
+            approach,
+            moes_m: fit.moes_m,
+            moes_l: fit.moes_l,
+            ry_over_rx: fit.ry_over_rx,
+            r_squared: fit.r_squared,
+            rms_residual: fit.rms_residual,
+            max_residual,
+            std_errors: [fit.std_errors.k, fit.std_errors.d, fit.std_errors.delta_f],
+            converged: fit.converged,
+            method: fit.method,
+            seconds: fit.seconds,
+            samples,
+        }
+    }
+}
+
 impl ContactConditions {
     /// The steady EHL problem of this contact at its load `load` (N).
     pub fn ehl_contact(&self) -> EhlContact {
@@ -550,28 +584,16 @@ impl ContactCharacterizer for QuasiStaticCharacterizer {
     fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error> {
         c.validate()?;
         let fit = crate::contact::characterize_quasi_static(&c.ehl_contact(), &self.settings)?;
-        let approach = fit.law.approach_at(c.load).unwrap_or(fit.approach);
         let (delta, q): (Vec<f64>, Vec<f64>) =
             fit.samples.iter().map(|x| (x.approach, x.load)).unzip();
-        Ok(CharacterizedContact {
-            law: fit.law,
-            k: fit.k,
-            d: fit.d,
-            delta_f: fit.delta_f,
-            load: c.load,
-            approach,
-            moes_m: fit.moes_m,
-            moes_l: fit.moes_l,
-            ry_over_rx: fit.ry_over_rx,
-            r_squared: fit.r_squared,
-            rms_residual: fit.rms_residual,
-            max_residual: max_abs_residual(&fit.law, &delta, &q),
-            std_errors: [fit.std_errors.k, fit.std_errors.d, fit.std_errors.delta_f],
-            converged: fit.converged,
-            method: self.name().to_string(),
-            seconds: fit.seconds,
-            samples: fit.samples.len(),
-        })
+        let max_residual = max_abs_residual(&fit.law, &delta, &q);
+        let samples = fit.samples.len();
+        Ok(CharacterizedContact::from_fit(
+            fit,
+            c.load,
+            max_residual,
+            samples,
+        ))
     }
 
     fn settings_json(&self) -> Value {

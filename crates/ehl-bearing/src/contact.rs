@@ -559,32 +559,19 @@ impl crate::characterize::ContactCharacterizer for HarmonicCharacterizer {
         use crate::ContactLaw;
         // The contact and the mass are validated by characterize_harmonic (EHL input checks).
         let fit = characterize_harmonic(&c.ehl_contact(), c.ball_mass, &self.settings)?;
-        let approach = fit.law.approach_at(c.load).unwrap_or(fit.approach);
         // Largest force residual of the fit over the recorded steps, damping term included (N).
         let damping = fit.c.unwrap_or(0.0);
         let max_residual = fit.history[fit.settling_steps..]
             .iter()
             .map(|x| (fit.law.force(x.approach).0 + damping * x.velocity - x.film_force).abs())
             .fold(0.0_f64, f64::max);
-        Ok(crate::characterize::CharacterizedContact {
-            law: fit.law,
-            k: fit.k,
-            d: fit.d,
-            delta_f: fit.delta_f,
-            load: c.load,
-            approach,
-            moes_m: fit.moes_m,
-            moes_l: fit.moes_l,
-            ry_over_rx: fit.ry_over_rx,
-            r_squared: fit.r_squared,
-            rms_residual: fit.rms_residual,
+        let samples = fit.history.len() - fit.settling_steps;
+        Ok(crate::characterize::CharacterizedContact::from_fit(
+            fit,
+            c.load,
             max_residual,
-            std_errors: [fit.std_errors.k, fit.std_errors.d, fit.std_errors.delta_f],
-            converged: fit.converged,
-            method: "harmonic".to_string(),
-            seconds: fit.seconds,
-            samples: fit.history.len() - fit.settling_steps,
-        })
+            samples,
+        ))
     }
 
     fn settings_json(&self) -> serde_json::Value {

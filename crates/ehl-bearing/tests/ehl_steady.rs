@@ -313,6 +313,26 @@ fn isoviscous_elongated_high_load_converges() {
     );
 }
 
+/// Prints a fallback run's summary and asserts it converged in start `start` (`attempts`), below
+/// the default residual and force-balance tolerances.
+fn assert_converged_in_start(x: &EhlSolution, start: usize) {
+    println!(
+        "cycles {} steps {} t {:.2}s H_c {:.4} H_min {:.4} p_max/p_h {:.3} res {:.2e} fb {:.1e}",
+        x.cycles,
+        x.continuation_steps,
+        x.seconds,
+        x.h_central_moes,
+        x.h_min_moes,
+        x.p_max / x.p_hertz,
+        x.residual,
+        x.force_balance_residual
+    );
+    assert!(x.converged, "residual {}", x.residual);
+    assert_eq!(x.attempts, start);
+    assert!(x.residual < 1e-4);
+    assert!(x.force_balance_residual < 1e-5);
+}
+
 /// Barus at large αp_h (circular, M 20, L 25: αp_h = 24.7, a piezoviscous pressure peak of about
 /// 4·p_h): every direct start diverges within a few cycles and so does load continuation; the
 /// continuation in α from L/4 (start 8, ω_GS ≤ 0.1 and a coarsest grid of 65² on the warm-started
@@ -320,20 +340,7 @@ fn isoviscous_elongated_high_load_converges() {
 #[test]
 fn barus_large_alpha_converges_by_alpha_continuation() {
     let x = solve_moes(&barus(20.0, 25.0, 1.0), &settings(129)).unwrap();
-    println!(
-        "cycles {} steps {} t {:.2}s H_c {:.4} H_min {:.4} p_max/p_h {:.3} fb {:.1e}",
-        x.cycles,
-        x.continuation_steps,
-        x.seconds,
-        x.h_central_moes,
-        x.h_min_moes,
-        x.p_max / x.p_hertz,
-        x.force_balance_residual
-    );
-    assert!(x.converged, "residual {}", x.residual);
-    assert_eq!(x.attempts, 8);
-    assert!(x.residual < 1e-4);
-    assert!(x.force_balance_residual < 1e-5);
+    assert_converged_in_start(&x, 8);
     // Force balance from the returned pressure field: ∬p dx dy = w = (2π/3)·p_h·a_x·a_y.
     let f = &x.fields;
     let (dx, dy) = (f.x[1] - f.x[0], f.y[1] - f.y[0]);
@@ -361,21 +368,7 @@ fn barus_large_alpha_converges_by_alpha_continuation() {
 #[ignore]
 fn barus_spike_single_grid_polish_converges() {
     let x = solve_moes(&barus(2000.0, 25.0, 100.0), &settings(257)).unwrap();
-    println!(
-        "cycles {} steps {} t {:.2}s H_c {:.4} H_min {:.4} p_max/p_h {:.3} res {:.2e} fb {:.1e}",
-        x.cycles,
-        x.continuation_steps,
-        x.seconds,
-        x.h_central_moes,
-        x.h_min_moes,
-        x.p_max / x.p_hertz,
-        x.residual,
-        x.force_balance_residual
-    );
-    assert!(x.converged, "residual {}", x.residual);
-    assert_eq!(x.attempts, 9);
-    assert!(x.residual < 1e-4);
-    assert!(x.force_balance_residual < 1e-5);
+    assert_converged_in_start(&x, 9);
     assert!(x.h_min > 0.0 && x.h_central > x.h_min);
     // 9.89 on 257² (9.61 on 129², start 1).
     assert!(
