@@ -4,180 +4,18 @@
 use anyhow::{bail, Context};
 use ehl_bearing::characterize::{
     characterization_json, characterize_bearing_with_progress, BearingCharacterization,
-    CharacterizeSettings, ContactCharacterizer, ContactRow, HertzCharacterizer, Progress,
-    QuasiStaticCharacterizer, SyntheticCharacterizer,
+    CharacterizeSettings, ContactRow, Progress,
 };
+use ehl_bearing::method::Method;
 use ehl_bearing::io::{read_case, Case};
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::Value;
 use std::io::IsTerminal;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-/// Methods the command line knows (`--method`, study files).
-pub const METHODS: [&str; 4] = ["quasi-static", "harmonic", "hertz", "synthetic"];
-
-/// The characterization method `method` with options `options` (a JSON object; unknown keys are
-/// errors). The one place where methods are mapped to library types: add the EHL ones here.
-pub fn characterizer(
-    method: &str,
-    options: &Value,
-) -> anyhow::Result<Box<dyn ContactCharacterizer>> {
-    let empty = serde_json::Map::new();
-    let opts = match options {
-        Value::Object(m) => m,
-        Value::Null => &empty,
-        other => bail!("method options must be a table, got {other}"),
-    };
-    let get_f64 = |key: &str, default: f64| -> anyhow::Result<f64> {
-        match opts.get(key) {
-            None => Ok(default),
-            Some(v) => v
-                .as_f64()
-                .with_context(|| format!("method_options.{key} = {v}: expected a number")),
-        }
-    };
-    let check_keys = |known: &[&str]| -> anyhow::Result<()> {
-        for k in opts.keys() {
-            if !known.contains(&k.as_str()) {
-                bail!(
-                    "method_options.{k}: unknown option for method {method} (known: {})",
-                    if known.is_empty() {
-                        "none".to_string()
-                    } else {
-                        known.join(", ")
-                    }
-                );
-            }
-        }
-        Ok(())
-    };
-    let samples = |default: usize| -> anyhow::Result<usize> {
-        match opts.get("samples") {
-            None => Ok(default),
-            Some(v) => match v.as_u64() {
-                Some(n) if (4..=10_000).contains(&n) => Ok(n as usize),
-                _ => bail!("method_options.samples = {v}: expected an integer from 4 to 10000"),
-            },
-        }
-    };
-    let amplitude = |default: f64| -> anyhow::Result<f64> {
-        let a = get_f64("amplitude", default)?;
-        if !(a > 0.0 && a < 1.0) {
-            bail!("method_options.amplitude = {a}: expected a relative amplitude 0 < ε < 1");
-        }
-        Ok(a)
-    };
-    match method {
-        "hertz" => {
-            check_keys(&["samples", "amplitude"])?;
-            let d = HertzCharacterizer::default();
-            Ok(Box::new(HertzCharacterizer {
-                samples: samples(d.samples)?,
-                amplitude: amplitude(d.amplitude)?,
-            }))
-        }
-        "synthetic" => {
-            let known = [
-                "samples",
-                "amplitude",
-                "d_amplitude",
-                "d_exponent",
-                "load_ref",
-                "lift_ref",
-                "lift_load_exponent",
-                "lift_speed_exponent",
-                "speed_ref",
-            ];
-            check_keys(&known)?;
-            let d = SyntheticCharacterizer::default();
-            let s = SyntheticCharacterizer {
-                d_amplitude: get_f64("d_amplitude", d.d_amplitude)?,
-                d_exponent: get_f64("d_exponent", d.d_exponent)?,
-                load_ref: get_f64("load_ref", d.load_ref)?,
-                lift_ref: get_f64("lift_ref", d.lift_ref)?,
-                lift_load_exponent: get_f64("lift_load_exponent", d.lift_load_exponent)?,
-                lift_speed_exponent: get_f64("lift_speed_exponent", d.lift_speed_exponent)?,
-                speed_ref: get_f64("speed_ref", d.speed_ref)?,
-                samples: samples(d.samples)?,
-                amplitude: amplitude(d.amplitude)?,
-            };
-            for (k, v) in [("load_ref", s.load_ref), ("speed_ref", s.speed_ref)] {
-                if !(v.is_finite() && v > 0.0) {
-                    bail!("method_options.{k} = {v}: expected a positive number");
-                }
-            }
-            Ok(Box::new(s))
-        }
-        "quasi-static" => {
-            check_keys(&["amplitude", "points", "grid"])?;
-            let mut q = QuasiStaticCharacterizer::default();
-            q.settings.amplitude = get_f64("amplitude", q.settings.amplitude)?;
-            if let Some(v) = opts.get("points") {
-                q.settings.points =
-                    v.as_u64()
-                        .filter(|n| (4..=101).contains(n))
-                        .with_context(|| {
-                            format!(
-                                "method_options.points = {v}: expected an integer from 4 to 101"
-                            )
-                        })? as usize;
-            }
-            if let Some(v) = opts.get("grid") {
-                q.settings.ehl.grid = v
-                    .as_u64()
-                    .filter(|n| (9..=4097).contains(n))
-                    .with_context(|| format!("method_options.grid = {v}: expected an integer grid size from 9 to 4097"))?
-                    as usize;
-            }
-            Ok(Box::new(q))
-        }
-        "harmonic" => {
-            check_keys(&[
-                "amplitude",
-                "grid",
-                "frequency_fraction",
-                "settling_periods",
-                "recorded_periods",
-                "steps_per_period",
-            ])?;
-            let mut h = ehl_bearing::contact::HarmonicCharacterizer::default();
-            h.settings.amplitude = get_f64("amplitude", h.settings.amplitude)?;
-            if let Some(v) = opts.get("frequency_fraction") {
-                let f = v.as_f64().with_context(|| {
-                    format!("method_options.frequency_fraction = {v}: expected a number")
-                })?;
-                h.settings.frequency =
-                    ehl_bearing::contact::ExcitationFrequency::FractionOfNatural(f);
-            }
-            let count = |key: &str, lo: u64, hi: u64, default: usize| -> anyhow::Result<usize> {
-                match opts.get(key) {
-                    None => Ok(default),
-                    Some(v) => {
-                        Ok(v.as_u64()
-                            .filter(|n| (lo..=hi).contains(n))
-                            .with_context(|| {
-                                format!(
-                                "method_options.{key} = {v}: expected an integer from {lo} to {hi}"
-                            )
-                            })? as usize)
-                    }
-                }
-            };
-            h.settings.ehl.grid = count("grid", 9, 4097, h.settings.ehl.grid)?;
-            h.settings.settling_periods =
-                count("settling_periods", 0, 100, h.settings.settling_periods)?;
-            h.settings.recorded_periods =
-                count("recorded_periods", 1, 100, h.settings.recorded_periods)?;
-            h.settings.steps_per_period =
-                count("steps_per_period", 8, 4096, h.settings.steps_per_period)?;
-            h.settings.validate()?;
-            Ok(Box::new(h))
-        }
-        other => bail!(
-            "unknown method {other:?}: expected one of {}",
-            METHODS.join(", ")
-        ),
-    }
+/// The method `name` at its defaults, or an error listing the methods.
+pub fn method(name: &str) -> anyhow::Result<Method> {
+    Method::parse(name, None).map_err(|e| anyhow::anyhow!("--method: {e}"))
 }
 
 /// Run `f` on a rayon pool of `threads` threads (the global pool, sized by RAYON_NUM_THREADS or
@@ -197,27 +35,7 @@ pub fn with_threads<T: Send>(
     }
 }
 
-/// Write `bytes` to `path` atomically: a temporary file in the same folder, synced, then renamed
-/// over `path`. A reader (or a resumed run) never sees a partial file.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    use std::io::Write;
-    let dir = path.parent().unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .and_then(|n| n.to_str())
-        .context("output file name")?;
-    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
-    {
-        let mut f =
-            std::fs::File::create(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
-        f.write_all(bytes)
-            .with_context(|| format!("writing {}", tmp.display()))?;
-        f.sync_all().ok();
-    }
-    std::fs::rename(&tmp, path)
-        .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))?;
-    Ok(())
-}
+pub use ehl_bearing::io::write_atomic;
 
 /// A progress container drawing on stderr when it is a terminal, hidden otherwise (piped or
 /// redirected output stays clean).
@@ -266,7 +84,7 @@ pub struct CharacterizeArgs {
     /// Case file (TOML), e.g. examples/7006.toml.
     pub case: PathBuf,
     /// Characterization method: quasi-static (EHL, default), harmonic (EHL), hertz (dry
-    /// reference), synthetic (test fixture).
+    /// reference).
     #[arg(long, default_value = "quasi-static")]
     pub method: String,
     /// Print JSON in SI units instead of a table.
@@ -335,7 +153,7 @@ pub fn contacts_csv(c: &BearingCharacterization) -> String {
 /// Run `characterize`.
 pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
     let case = read_case(&args.case)?;
-    let ch = characterizer(&args.method, &Value::Null)?;
+    let ch = method(&args.method)?;
     let settings = CharacterizeSettings {
         tolerance: args.tolerance,
         max_iterations: args.max_iterations,
@@ -348,7 +166,7 @@ pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
     let multi = progress_container();
     let (bar, callback) = contact_progress(&multi);
     let c = with_threads(args.threads, || {
-        characterize_bearing_with_progress(&case, ch.as_ref(), &settings, &callback)
+        characterize_bearing_with_progress(&case, &ch, &settings, &callback)
             .with_context(|| format!("characterizing {}", args.case.display()))
     });
     bar.finish_and_clear();
@@ -384,12 +202,15 @@ pub fn table(case: &Case, c: &BearingCharacterization) -> String {
     let op = &case.operating;
     let _ = writeln!(
         s,
-        "{}: inner {:.0} rpm, outer {:.0} rpm; method {} {}",
+        "{}: inner {:.0} rpm, outer {:.0} rpm; method {}{}",
         case.name.as_deref().unwrap_or("bearing"),
         op.inner_speed * rpm,
         op.outer_speed * rpm,
         c.method,
-        c.method_settings
+        c.method
+            .grid()
+            .map(|g| format!(" (EHL grid {g}²)"))
+            .unwrap_or_default()
     );
     if !case.lubricant_given {
         let _ = writeln!(

@@ -28,14 +28,20 @@ use crate::bearing::{
     solve_equilibrium, BearingError, ContactLaws, ContactState, Equilibrium, Race,
 };
 use crate::contact_law::ContactLaw;
-use crate::ehl::{solve_steady, EhlContact, EhlSettings};
-use crate::fit::{fit_power_law, FitOptions, FittedLaw, RangeStatus};
-use crate::hertz::HertzGeometry;
+use crate::fit::{FittedLaw, RangeStatus};
 use crate::io::Case;
-use crate::material::Lubricant;
+use crate::method::Method;
 use rayon::prelude::*;
-use serde::Serialize;
-use serde_json::{json, Value};
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+
+// The method data and adapters live in `crate::method`; re-exported here for the callers that
+// knew them from this module.
+pub use crate::method::{
+    predict_steady, CharacterizedContact, ContactCharacterizer, ContactConditions,
+    HarmonicCharacterizer, HertzCharacterizer, LoadPredictor, MoesParameters, PredictedLaw,
+    QuasiStaticCharacterizer, SyntheticCharacterizer, PREDICTOR_TOLERANCE,
+};
 use std::sync::Arc;
 use std::time::Instant;
 use thiserror::Error;
@@ -109,544 +115,10 @@ impl CharacterizeError {
     }
 }
 
-/// Operating conditions of one ball/raceway contact (SI).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct ContactConditions {
-    /// Which raceway.
-    pub race: Race,
-    /// Normal load w0 the contact is characterized at, N (> 0).
-    pub load: f64,
-    /// Curvature radius in the rolling direction, m.
-    pub rx: f64,
-    /// Transverse curvature radius, m.
-    pub ry: f64,
-    /// Sum velocity u_s = u1 + u2 (entrainment velocity times two), m/s (≥ 0).
-    pub sum_velocity: f64,
-    /// Reduced modulus E′ (2/E′ = (1−ν1²)/E1 + (1−ν2²)/E2), Pa.
-    pub e_reduced: f64,
-    /// Lubricant.
-    pub lubricant: Lubricant,
-    /// Ball mass, kg (the moving mass of a dynamic characterization).
-    pub ball_mass: f64,
-}
-
-/// Dimensionless groups of an EHL point contact (Moes; see DESIGN.md §2 for the definitions —
-/// the seed paper's eq. (7) is wrong).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct MoesParameters {
-    /// Load parameter W = w/(E′Rx²).
-    pub w: f64,
-    /// Speed parameter U = η0·u_s/(E′Rx) (u_s: sum velocity).
-    pub u: f64,
-    /// Material parameter G = α·E′.
-    pub g: f64,
-    /// Moes load parameter M = W·U^(−3/4) (infinite when U = 0).
-    pub m: f64,
-    /// Moes lubricant parameter L = G·U^(1/4).
-    pub l: f64,
-}
-
-impl CharacterizedContact {
-    /// The characterized contact of an EHL method's fit (`contact::ContactFit`) at load `load`
-    /// (N): the approach where the law gives `load` (the fit's centre approach if the law cannot
-    /// reach it), the law's largest force residual `max_residual` (N) over the `samples` fitted
-    /// samples; the method's name is the fit's.
-    pub fn from_fit(
-        fit: crate::contact::ContactFit,
-        load: f64,
-        max_residual: f64,
-        samples: usize,
-    ) -> Self {
-        let approach = fit.law.approach_at(load).unwrap_or(fit.approach);
-        CharacterizedContact {
-            law: fit.law,
-            k: fit.k,
-            d: fit.d,
-            delta_f: fit.delta_f,
-            load,
-            approach,
-            moes_m: fit.moes_m,
-            moes_l: fit.moes_l,
-            ry_over_rx: fit.ry_over_rx,
-            r_squared: fit.r_squared,
-            rms_residual: fit.rms_residual,
-            max_residual,
-            std_errors: [fit.std_errors.k, fit.std_errors.d, fit.std_errors.delta_f],
-            converged: fit.converged,
-            method: fit.method,
-            seconds: fit.seconds,
-            samples,
-        }
-    }
-}
-
-impl ContactConditions {
-    /// The steady EHL problem of this contact at its load `load` (N).
-    pub fn ehl_contact(&self) -> EhlContact {
-        EhlContact {
-            load: self.load,
-            rx: self.rx,
-            ry: self.ry,
-            sum_velocity: self.sum_velocity,
-            e_reduced: self.e_reduced,
-            lubricant: self.lubricant,
-        }
-    }
-
-    /// Moes' dimensionless parameters of this contact.
-    pub fn moes(&self) -> MoesParameters {
-        let w = self.load / (self.e_reduced * self.rx * self.rx);
-        let u = self.lubricant.viscosity * self.sum_velocity / (self.e_reduced * self.rx);
-        let g = self.lubricant.pressure_viscosity * self.e_reduced;
-        MoesParameters {
-            w,
-            u,
-            g,
-            m: w * u.powf(-0.75),
-            l: g * u.powf(0.25),
-        }
-    }
-
-    /// Ratio Ry/Rx (dimensionless).
-    pub fn ry_over_rx(&self) -> f64 {
-        self.ry / self.rx
-    }
-
-    fn validate(&self) -> Result<(), crate::Error> {
-        let checks = [
-            ("load", self.load, "a positive finite load in N"),
-            ("rx", self.rx, "a positive curvature radius in m"),
-            ("ry", self.ry, "a positive curvature radius in m"),
-            ("e_reduced", self.e_reduced, "a positive modulus in Pa"),
-        ];
-        for (field, v, expected) in checks {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(CharacterizeError::setting(field, v, expected).into());
-            }
-        }
-        if !(self.sum_velocity.is_finite() && self.sum_velocity >= 0.0) {
-            return Err(CharacterizeError::setting(
-                "sum_velocity",
-                self.sum_velocity,
-                "a finite sum velocity ≥ 0 in m/s",
-            )
-            .into());
-        }
-        Ok(())
-    }
-}
-
-/// A characterized contact: the fitted law and what a user needs to judge it.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct CharacterizedContact {
-    /// The fitted law Q(δ) with its extension below the fitted range.
-    pub law: FittedLaw,
-    /// Stiffness K, N/m^d.
-    pub k: f64,
-    /// Nonlinear index d (dimensionless; 1.5 for dry Hertz).
-    pub d: f64,
-    /// Hydrodynamic lift at zero approach ΔF, N.
-    pub delta_f: f64,
-    /// Load the contact was characterized at, N.
-    pub load: f64,
-    /// Approach δ of the fitted law at `load`, m.
-    pub approach: f64,
-    /// Moes load parameter M (dimensionless).
-    pub moes_m: f64,
-    /// Moes lubricant parameter L (dimensionless).
-    pub moes_l: f64,
-    /// Ry/Rx (dimensionless).
-    pub ry_over_rx: f64,
-    /// Coefficient of determination of the fit (dimensionless).
-    pub r_squared: f64,
-    /// Root-mean-square residual of the fit, N.
-    pub rms_residual: f64,
-    /// Largest absolute residual |Q_law(δ_k) − Q_k| over the fitted samples, N: the estimate of
-    /// the law's force error anywhere inside its fitted range (between the samples the EHL
-    /// force–approach curve is smooth), whether the contact operates at the characterization load
-    /// or elsewhere in the range (a reused law, `docs/study.md` §3.2).
-    pub max_residual: f64,
-    /// Standard errors of (K in N/m^d, d, ΔF in N) from the fit's linearized covariance (K's is
-    /// large relative to K: K and d are strongly correlated).
-    pub std_errors: [f64; 3],
-    /// Whether the characterization (solver and fit) converged.
-    pub converged: bool,
-    /// Name of the method.
-    pub method: String,
-    /// Wall-clock time of the characterization, s (not reproducible; never written to files
-    /// that are compared between runs).
-    pub seconds: f64,
-    /// Number of (δ, Q) samples fitted.
-    pub samples: usize,
-}
-
-/// A method that characterizes one contact: computes (δ, Q) samples around the contact's load and
-/// fits Q = K·δ^d + ΔF. Implementations must be deterministic (same input, same bits) for the
-/// loop's results not to depend on the number of threads.
-pub trait ContactCharacterizer: Sync + Send {
-    /// Characterize the contact `c`.
-    fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error>;
-    /// Settings that define the excitation/method, part of the cache key and written into results.
-    fn settings_json(&self) -> Value;
-    /// Name of the method, e.g. `hertz`.
-    fn name(&self) -> &str;
-    /// The method's load predictor, if it has one (default: none, the loop starts from the dry
-    /// Hertz loads).
-    fn predictor(&self) -> Option<&dyn LoadPredictor> {
-        None
-    }
-}
-
-/// A cheap approximate law of a contact near a load, used by the loop (with
-/// [`CharacterizeSettings::predict_loads`]) to predict the lubricated loads before the first
-/// characterization. It only moves the point where the first characterization is centred; the
-/// result is still the loop's fixed point with the characterized laws. Must be deterministic.
-pub trait LoadPredictor: Sync + Send {
-    /// The predictor law of contact `c` near `c.load`.
-    fn predict(&self, c: &ContactConditions) -> Result<PredictedLaw, crate::Error>;
-}
-
-/// A load predictor law: dry Hertz shifted by an effective film h,
-///
-/// ```text
-/// Q(δ) = K_H·(δ + h)^1.5   for δ > −h,   0 otherwise
-/// ```
-///
-/// with K_H the contact's Hertz constant (N/m^1.5) and h = δ_H(w0) − δ_EHL(w0) (m) from one steady
-/// EHL solution at the load w0, so Q(δ_EHL(w0)) = w0 exactly. The lubricated approach is the
-/// Hertz approach minus a film term that varies only weakly with the load (≈ Q^−0.06,
-/// `docs/study.md` §6), so this law predicts the contact's load near w0 closely: on the seed
-/// case the loads of the predicted equilibrium are within 0.7 % of the converged lubricated
-/// ones (dry Hertz: up to 26 %), `docs/study.md` §3.3. Never used for results.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct PredictedLaw {
-    /// Hertz load–deflection constant K_H, N/m^1.5.
-    pub stiffness: f64,
-    /// Effective film h, m (the shift of the approach against dry Hertz).
-    pub film: f64,
-    /// Whether the solution behind it met its (loosened) convergence criteria.
-    pub converged: bool,
-}
-
-impl PredictedLaw {
-    /// A predictor law; errors if K_H is not positive or h is not finite.
-    pub fn new(stiffness: f64, film: f64, converged: bool) -> Result<Self, CharacterizeError> {
-        if !(stiffness.is_finite() && stiffness > 0.0 && film.is_finite()) {
-            return Err(CharacterizeError::setting(
-                "predicted law",
-                format!("K_H = {stiffness} N/m^1.5, h = {film} m"),
-                "a positive Hertz constant and a finite film",
-            ));
-        }
-        Ok(PredictedLaw {
-            stiffness,
-            film,
-            converged,
-        })
-    }
-}
-
-impl ContactLaw for PredictedLaw {
-    fn force(&self, approach: f64) -> (f64, f64) {
-        let x = approach + self.film;
-        if x > 0.0 {
-            let s = x.sqrt();
-            (self.stiffness * x * s, 1.5 * self.stiffness * s)
-        } else {
-            (0.0, 0.0)
-        }
-    }
-
-    fn approach_at(&self, load: f64) -> Option<f64> {
-        if load >= 0.0 && load.is_finite() {
-            Some((load / self.stiffness).powf(2.0 / 3.0) - self.film)
-        } else {
-            None
-        }
-    }
-}
-
-/// Largest absolute residual of `law` over the samples (δ_k, Q_k), N.
-fn max_abs_residual(law: &FittedLaw, delta: &[f64], q: &[f64]) -> f64 {
-    delta
-        .iter()
-        .zip(q)
-        .map(|(&d, &w)| (law.force(d).0 - w).abs())
-        .fold(0.0_f64, f64::max)
-}
-
-/// Sample loads w0·(1 + ε·(2i/(n−1) − 1)), i = 0..n−1.
-fn sample_loads(w0: f64, samples: usize, amplitude: f64) -> Vec<f64> {
-    (0..samples)
-        .map(|i| w0 * (1.0 + amplitude * (2.0 * i as f64 / (samples - 1) as f64 - 1.0)))
-        .collect()
-}
-
-fn check_sampling(samples: usize, amplitude: f64) -> Result<(), crate::Error> {
-    if !(4..=10_000).contains(&samples) {
-        return Err(
-            CharacterizeError::setting("samples", samples, "an integer from 4 to 10000").into(),
-        );
-    }
-    if !(amplitude.is_finite() && amplitude > 0.0 && amplitude < 1.0) {
-        return Err(CharacterizeError::setting(
-            "amplitude",
-            amplitude,
-            "a relative amplitude ε with 0 < ε < 1",
-        )
-        .into());
-    }
-    Ok(())
-}
-
-/// Fit samples and assemble a [`CharacterizedContact`].
-fn fit_samples(
-    c: &ContactConditions,
-    delta: &[f64],
-    q: &[f64],
-    method: &str,
-    start: Instant,
-) -> Result<CharacterizedContact, crate::Error> {
-    let fit = fit_power_law(delta, q, &FitOptions::default())?;
-    let law = fit.law()?;
-    let approach = law.approach_at(c.load).ok_or_else(|| {
-        CharacterizeError::Trend(format!(
-            "the fitted law does not reach the load {} N",
-            c.load
-        ))
-    })?;
-    let moes = c.moes();
-    Ok(CharacterizedContact {
-        law,
-        k: fit.k,
-        d: fit.d,
-        delta_f: fit.delta_f,
-        load: c.load,
-        approach,
-        moes_m: moes.m,
-        moes_l: moes.l,
-        ry_over_rx: c.ry_over_rx(),
-        r_squared: fit.r_squared,
-        rms_residual: fit.rms_residual,
-        max_residual: max_abs_residual(&law, delta, q),
-        std_errors: [fit.std_errors.k, fit.std_errors.d, fit.std_errors.delta_f],
-        converged: fit.converged,
-        method: method.to_string(),
-        seconds: start.elapsed().as_secs_f64(),
-        samples: delta.len(),
-    })
-}
-
-/// Reference method: samples the contact's dry Hertz law Q = K_H·δ^1.5 (exact elliptic integrals,
-/// [`HertzGeometry`]) at loads w0·(1 ± ε) and fits Q = K·δ^d + ΔF to them, so it returns
-/// K = K_H, d = 1.5, ΔF = 0 to fit precision. The coupled loop with it reproduces the dry
-/// equilibrium (with K evaluated at each contact's operating contact angle): a test of the
-/// plumbing, and the method of choice for a dry or very heavily loaded bearing.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct HertzCharacterizer {
-    /// Number of samples n (≥ 4; default 9).
-    pub samples: usize,
-    /// Relative load amplitude ε of the samples (0 < ε < 1; default 0.2).
-    pub amplitude: f64,
-}
-
-impl Default for HertzCharacterizer {
-    fn default() -> Self {
-        HertzCharacterizer {
-            samples: 9,
-            amplitude: 0.2,
-        }
-    }
-}
-
-impl ContactCharacterizer for HertzCharacterizer {
-    fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error> {
-        let start = Instant::now();
-        c.validate()?;
-        check_sampling(self.samples, self.amplitude)?;
-        let h = HertzGeometry::new(c.rx, c.ry, c.e_reduced)?;
-        let q = sample_loads(c.load, self.samples, self.amplitude);
-        let delta: Vec<f64> = q.iter().map(|&w| h.contact(w).deflection).collect();
-        fit_samples(c, &delta, &q, self.name(), start)
-    }
-
-    fn settings_json(&self) -> Value {
-        json!({"samples": self.samples, "amplitude": self.amplitude})
-    }
-
-    fn name(&self) -> &str {
-        "hertz"
-    }
-}
-
-/// A synthetic characterizer with known, smooth load and speed dependence, for testing trend
-/// curves and the loop. At load w and sum velocity u_s:
-///
-/// ```text
-/// d(w)      = 1.5 − d_amplitude·(w/load_ref)^(−d_exponent)
-/// ΔF(w,u_s) = lift_ref·(w/load_ref)^lift_load_exponent·(u_s/speed_ref)^lift_speed_exponent
-/// K(w)      = (w − ΔF)/δ_H(w − ΔF)^d,   δ_H(x) = (x/K_H)^(2/3)  (Hertz approach)
-/// ```
-///
-/// so that the law reaches w at the Hertz approach of w − ΔF (the lift carries ΔF: a smaller
-/// approach than dry, as in EHL), sampled at w·(1 ± ε) from the law with the parameters frozen at
-/// w and fitted like the other methods (so the fit returns these K, d, ΔF to fit precision). Not
-/// physics: a test fixture.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct SyntheticCharacterizer {
-    /// Amplitude of the deviation of d from 1.5 at `load_ref` (dimensionless).
-    pub d_amplitude: f64,
-    /// Exponent of the decay of that deviation with load (dimensionless, > 0).
-    pub d_exponent: f64,
-    /// Reference load, N.
-    pub load_ref: f64,
-    /// Lift ΔF at `load_ref` and `speed_ref`, N.
-    pub lift_ref: f64,
-    /// Load exponent of ΔF (dimensionless).
-    pub lift_load_exponent: f64,
-    /// Speed exponent of ΔF (dimensionless).
-    pub lift_speed_exponent: f64,
-    /// Reference sum velocity, m/s.
-    pub speed_ref: f64,
-    /// Number of samples (≥ 4).
-    pub samples: usize,
-    /// Relative load amplitude of the samples.
-    pub amplitude: f64,
-}
-
-impl Default for SyntheticCharacterizer {
-    fn default() -> Self {
-        SyntheticCharacterizer {
-            d_amplitude: 0.1,
-            d_exponent: 0.5,
-            load_ref: 100.0,
-            lift_ref: 2.0,
-            lift_load_exponent: 0.3,
-            lift_speed_exponent: 0.7,
-            speed_ref: 10.0,
-            samples: 9,
-            amplitude: 0.2,
-        }
-    }
-}
-
-impl SyntheticCharacterizer {
-    /// (K in N/m^d, d, ΔF in N) at load `w` (N) and sum velocity `us` (m/s) for a contact with
-    /// Hertz constant `k_hertz` (N/m^1.5).
-    pub fn parameters(&self, w: f64, us: f64, k_hertz: f64) -> (f64, f64, f64) {
-        let d = 1.5 - self.d_amplitude * (w / self.load_ref).powf(-self.d_exponent);
-        let lift = self.lift_ref
-            * (w / self.load_ref).powf(self.lift_load_exponent)
-            * (us / self.speed_ref).powf(self.lift_speed_exponent);
-        let dh = ((w - lift).max(0.0) / k_hertz).powf(2.0 / 3.0);
-        ((w - lift) / dh.powf(d), d, lift)
-    }
-}
-
-impl ContactCharacterizer for SyntheticCharacterizer {
-    fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error> {
-        let start = Instant::now();
-        c.validate()?;
-        check_sampling(self.samples, self.amplitude)?;
-        let h = HertzGeometry::new(c.rx, c.ry, c.e_reduced)?;
-        let (k, d, lift) = self.parameters(c.load, c.sum_velocity, h.stiffness);
-        if !(k.is_finite() && k > 0.0 && d > 0.0 && lift < 0.5 * c.load) {
-            return Err(CharacterizeError::setting(
-                "synthetic parameters",
-                format!("K = {k}, d = {d}, ΔF = {lift} at w = {} N", c.load),
-                "K > 0, d > 0 and ΔF < w/2",
-            )
-            .into());
-        }
-        let q = sample_loads(c.load, self.samples, self.amplitude);
-        let delta: Vec<f64> = q.iter().map(|&w| ((w - lift) / k).powf(1.0 / d)).collect();
-        fit_samples(c, &delta, &q, self.name(), start)
-    }
-
-    fn settings_json(&self) -> Value {
-        serde_json::to_value(self).unwrap_or(Value::Null)
-    }
-
-    fn name(&self) -> &str {
-        "synthetic"
-    }
-}
-
-/// The EHL quasi-static method ([`crate::contact::characterize_quasi_static`]: a family of steady
-/// EHL solutions at w0·(1 ± ε), fitted) as a [`ContactCharacterizer`].
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct QuasiStaticCharacterizer {
-    /// Settings of the method (amplitude, number of solutions, EHL grid and solver).
-    pub settings: crate::contact::QuasiStaticSettings,
-}
-
-impl ContactCharacterizer for QuasiStaticCharacterizer {
-    fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error> {
-        c.validate()?;
-        let fit = crate::contact::characterize_quasi_static(&c.ehl_contact(), &self.settings)?;
-        let (delta, q): (Vec<f64>, Vec<f64>) =
-            fit.samples.iter().map(|x| (x.approach, x.load)).unzip();
-        let max_residual = max_abs_residual(&fit.law, &delta, &q);
-        let samples = fit.samples.len();
-        Ok(CharacterizedContact::from_fit(
-            fit,
-            c.load,
-            max_residual,
-            samples,
-        ))
-    }
-
-    fn settings_json(&self) -> Value {
-        serde_json::to_value(self.settings).unwrap_or(Value::Null)
-    }
-
-    fn name(&self) -> &str {
-        "quasi-static"
-    }
-
-    fn predictor(&self) -> Option<&dyn LoadPredictor> {
-        Some(self)
-    }
-}
-
-impl LoadPredictor for QuasiStaticCharacterizer {
-    /// One steady EHL solution at `c.load` with the method's grid and domain, converged to
-    /// [`PREDICTOR_TOLERANCE`] (100–1000× looser than the family's solutions: a third of the
-    /// cycles, and the predicted loads hardly change — within 0.64 % of the converged ones at
-    /// 5000 rpm on the seed case, 0.62 % with the family's tolerances), turned into a
-    /// [`PredictedLaw`].
-    fn predict(&self, c: &ContactConditions) -> Result<PredictedLaw, crate::Error> {
-        predict_steady(c, &self.settings.ehl)
-    }
-}
-
-/// The load predictor shared by the EHL methods: one steady EHL solution at `c.load` with the
-/// grid and domain of `ehl` but its tolerances loosened to [`PREDICTOR_TOLERANCE`], turned into a
-/// [`PredictedLaw`] (dry Hertz shifted by h = δ_Hertz(w0) − δ_EHL(w0), m).
-pub fn predict_steady(
-    c: &ContactConditions,
-    ehl: &EhlSettings,
-) -> Result<PredictedLaw, crate::Error> {
-    c.validate()?;
-    let h = HertzGeometry::new(c.rx, c.ry, c.e_reduced)?;
-    let e = ehl;
-    let settings = EhlSettings {
-        tol_residual: e.tol_residual.max(PREDICTOR_TOLERANCE),
-        tol_force: e.tol_force.max(PREDICTOR_TOLERANCE),
-        tol_film: e.tol_film.max(PREDICTOR_TOLERANCE),
-        ..*e
-    };
-    let sol = solve_steady(&c.ehl_contact(), &settings)?;
-    let film = h.contact(c.load).deflection - sol.approach;
-    Ok(PredictedLaw::new(h.stiffness, film, sol.converged)?)
-}
-
-/// Convergence tolerance of the predictor's steady EHL solution (relative Reynolds residual,
-/// force balance and film change; dimensionless).
-pub const PREDICTOR_TOLERANCE: f64 = 1e-2;
 
 /// Settings of [`characterize_bearing`].
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct CharacterizeSettings {
     /// Converged when the largest relative change of the contact loads between two iterations is
     /// below this (dimensionless; default 1e-3).
@@ -846,10 +318,8 @@ pub struct BearingCharacterization {
     pub equilibrium: Equilibrium,
     /// Per-contact results, ordered ball 0 inner, ball 0 outer, ball 1 inner, …
     pub contacts: Vec<ContactResult>,
-    /// Method name.
-    pub method: String,
-    /// Method settings.
-    pub method_settings: Value,
+    /// The method and its settings.
+    pub method: Method,
     /// Loop settings.
     pub settings: CharacterizeSettings,
     /// Largest relative key distance of any reused law in the final iteration (dimensionless).
@@ -1313,8 +783,7 @@ pub fn characterize_bearing_with_progress(
         dry,
         equilibrium: eq,
         contacts: results,
-        method: ch.name().to_string(),
-        method_settings: ch.settings_json(),
+        method: ch.method(),
         settings: *settings,
         max_key_distance,
         max_load_offset,
@@ -1444,6 +913,9 @@ pub struct ContactRow {
     pub d: f64,
     /// Lift at zero approach ΔF, N.
     pub delta_f_n: f64,
+    /// Damping coefficient c of the law's c·δ̇ term, N·s/m (null for laws without one: the
+    /// quasi-static and dry methods).
+    pub damping_n_s_m: Option<f64>,
     /// Standard error of K from the fit, N/m^d (null if undefined).
     pub k_std_error: Option<f64>,
     /// Standard error of d (null if undefined).
@@ -1516,6 +988,7 @@ impl ContactRow {
             k: cc.k,
             d: cc.d,
             delta_f_n: cc.delta_f,
+            damping_n_s_m: cc.law.c(),
             k_std_error: finite_or_none(cc.std_errors[0]),
             d_std_error: finite_or_none(cc.std_errors[1]),
             delta_f_std_error_n: finite_or_none(cc.std_errors[2]),
@@ -1546,75 +1019,221 @@ impl ContactRow {
     }
 }
 
-/// The characterization as JSON in SI units: `converged`, `iterations`, `max_load_change`,
-/// `max_key_distance`, `max_load_offset`, `max_relative_residual`, `method`, `method_settings`,
-/// `settings`, `prediction` (null, or `contacts`, `not_converged`, `failed`, `max_load_change`,
-/// `equilibrium_iterations`, `error`, and `seconds` if `timing`), `history` (per iteration:
-/// `iteration`, `max_load_change`, `characterized`, `reused`, `max_key_distance`,
-/// `max_load_offset`, `max_relative_residual`, `equilibrium_iterations`, and `seconds` if
-/// `timing`), `displacement` and `dry_displacement`
-/// (x, y, z in m; θy, θz in rad), `reaction` (N, N·m), `stiffness_dry` and `stiffness_ehl`
-/// (5×5, N/m, N, N·m/rad), `contacts` ([`ContactRow`]s) and `seconds` if `timing`. Without
-/// timing the output is reproducible bit for bit.
-pub fn characterization_json(c: &BearingCharacterization, timing: bool) -> Value {
-    let history: Vec<Value> = c
-        .history
-        .iter()
-        .map(|h| {
-            let mut v = json!({
-                "iteration": h.iteration,
-                "max_load_change": h.max_load_change,
-                "characterized": h.characterized,
-                "reused": h.reused,
-                "max_key_distance": h.max_key_distance,
-                "max_load_offset": h.max_load_offset,
-                "max_relative_residual": h.max_relative_residual,
-                "equilibrium_iterations": h.equilibrium_iterations,
-            });
-            if timing {
-                v["seconds"] = json!(h.seconds);
-            }
-            v
-        })
-        .collect();
-    let dof =
-        |q: &[f64; 5]| json!({"x": q[0], "y": q[1], "z": q[2], "theta_y": q[3], "theta_z": q[4]});
-    let prediction = c.prediction.as_ref().map(|p| {
-        let mut v = json!({
-            "contacts": p.contacts,
-            "not_converged": p.not_converged,
-            "failed": p.failed,
-            "max_load_change": p.max_load_change,
-            "equilibrium_iterations": p.equilibrium_iterations,
-            "error": p.error,
-        });
-        if timing {
-            v["seconds"] = json!(p.seconds);
+/// Ring displacements (x, y, z in m; θy, θz in rad) as a named record.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Displacements {
+    /// Axial displacement x, m.
+    pub x: f64,
+    /// Radial displacement y, m.
+    pub y: f64,
+    /// Radial displacement z, m.
+    pub z: f64,
+    /// Tilt θy about +y, rad.
+    pub theta_y: f64,
+    /// Tilt θz about +z, rad.
+    pub theta_z: f64,
+}
+
+impl From<[f64; 5]> for Displacements {
+    fn from(q: [f64; 5]) -> Self {
+        Displacements {
+            x: q[0],
+            y: q[1],
+            z: q[2],
+            theta_y: q[3],
+            theta_z: q[4],
         }
-        v
-    });
-    let f = &c.equilibrium.reaction;
-    let mut v = json!({
-        "converged": c.converged,
-        "iterations": c.iterations,
-        "max_load_change": c.max_load_change,
-        "max_key_distance": c.max_key_distance,
-        "max_load_offset": c.max_load_offset,
-        "max_relative_residual": c.max_relative_residual,
-        "method": c.method,
-        "method_settings": c.method_settings,
-        "settings": c.settings,
-        "prediction": prediction,
-        "history": history,
-        "displacement": dof(&c.equilibrium.displacement),
-        "dry_displacement": dof(&c.dry.displacement),
-        "reaction": {"force_x": f[0], "force_y": f[1], "force_z": f[2], "moment_y": f[3], "moment_z": f[4]},
-        "stiffness_dry": c.dry.stiffness,
-        "stiffness_ehl": c.equilibrium.stiffness,
-        "contacts": c.contacts.iter().map(ContactRow::from_result).collect::<Vec<_>>(),
-    });
-    if timing {
-        v["seconds"] = json!(c.seconds);
     }
-    v
+}
+
+impl Displacements {
+    /// As an array in the order x, y, z, θy, θz.
+    pub fn to_array(&self) -> [f64; 5] {
+        [self.x, self.y, self.z, self.theta_y, self.theta_z]
+    }
+}
+
+/// Reactions on the inner ring (F_x, F_y, F_z in N; M_y, M_z in N·m) as a named record.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Reactions {
+    /// Axial force F_x, N.
+    pub force_x: f64,
+    /// Radial force F_y, N.
+    pub force_y: f64,
+    /// Radial force F_z, N.
+    pub force_z: f64,
+    /// Moment M_y, N·m.
+    pub moment_y: f64,
+    /// Moment M_z, N·m.
+    pub moment_z: f64,
+}
+
+impl From<[f64; 5]> for Reactions {
+    fn from(f: [f64; 5]) -> Self {
+        Reactions {
+            force_x: f[0],
+            force_y: f[1],
+            force_z: f[2],
+            moment_y: f[3],
+            moment_z: f[4],
+        }
+    }
+}
+
+impl Reactions {
+    /// As an array in the order F_x, F_y, F_z, M_y, M_z.
+    pub fn to_array(&self) -> [f64; 5] {
+        [
+            self.force_x,
+            self.force_y,
+            self.force_z,
+            self.moment_y,
+            self.moment_z,
+        ]
+    }
+}
+
+fn no_time(s: &Option<f64>) -> bool {
+    s.is_none()
+}
+
+/// One iteration of the loop as written to files ([`IterationRecord`] with its time optional).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct IterationSummary {
+    /// Iteration number (1-based).
+    pub iteration: usize,
+    /// Largest relative change of the contact loads against the previous equilibrium.
+    pub max_load_change: f64,
+    /// Contacts characterized in this iteration.
+    pub characterized: usize,
+    /// Contacts whose law was reused.
+    pub reused: usize,
+    /// Largest relative key distance of a reused law (0 if none).
+    pub max_key_distance: f64,
+    /// Largest relative offset between a contact's load and the load its reused law was
+    /// characterized at (0 if none reused).
+    pub max_load_offset: f64,
+    /// Largest fit residual of the laws relative to their characterization loads.
+    pub max_relative_residual: f64,
+    /// Newton iterations of the equilibrium with the fitted laws.
+    pub equilibrium_iterations: usize,
+    /// Wall-clock time, s (absent in reproducible files).
+    #[serde(default, skip_serializing_if = "no_time")]
+    pub seconds: Option<f64>,
+}
+
+/// The load prediction as written to files ([`PredictionRecord`] with its time optional).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PredictionSummary {
+    /// Contacts predicted.
+    pub contacts: usize,
+    /// Predictor solutions that stopped short of their tolerance.
+    pub not_converged: usize,
+    /// Contacts whose predictor failed (kept their dry law for the prediction).
+    pub failed: usize,
+    /// Largest relative change of the contact loads from the dry to the predicted equilibrium.
+    pub max_load_change: f64,
+    /// Newton iterations of the predicted equilibrium.
+    pub equilibrium_iterations: usize,
+    /// Why the predicted equilibrium failed, if it did.
+    pub error: Option<String>,
+    /// Wall-clock time, s (absent in reproducible files).
+    #[serde(default, skip_serializing_if = "no_time")]
+    pub seconds: Option<f64>,
+}
+
+/// A characterization as a typed record in SI units: what `characterize --json` prints,
+/// `characterization.json` holds and every study point file carries. Reads back into the same
+/// value (`serde_json::from_str`). Without timing it is reproducible bit for bit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CharacterizationReport {
+    /// Whether the loop converged.
+    pub converged: bool,
+    /// Iterations performed.
+    pub iterations: usize,
+    /// Last largest relative load change (dimensionless).
+    pub max_load_change: f64,
+    /// Largest relative key distance of a reused law in the final iteration.
+    pub max_key_distance: f64,
+    /// Largest |Q/w0 − 1| of the final contacts that were not floored.
+    pub max_load_offset: f64,
+    /// Largest max_residual/w0 of the final laws.
+    pub max_relative_residual: f64,
+    /// The method and its settings.
+    pub method: Method,
+    /// Loop settings.
+    pub settings: CharacterizeSettings,
+    /// The load prediction the loop started from (null: started from the dry loads).
+    pub prediction: Option<PredictionSummary>,
+    /// Per-iteration history.
+    pub history: Vec<IterationSummary>,
+    /// Displacements of the final equilibrium (m, rad).
+    pub displacement: Displacements,
+    /// Displacements of the dry Hertz equilibrium (m, rad).
+    pub dry_displacement: Displacements,
+    /// Reactions of the final equilibrium (N, N·m).
+    pub reaction: Reactions,
+    /// Dry stiffness matrix, order x, y, z, θy, θz (N/m, N, N·m/rad).
+    pub stiffness_dry: [[f64; 5]; 5],
+    /// Stiffness matrix with the fitted laws.
+    pub stiffness_ehl: [[f64; 5]; 5],
+    /// Per-contact rows, ball 0 inner, ball 0 outer, ball 1 inner, …
+    pub contacts: Vec<ContactRow>,
+    /// Total wall-clock time, s (absent in reproducible files).
+    #[serde(default, skip_serializing_if = "no_time")]
+    pub seconds: Option<f64>,
+}
+
+impl BearingCharacterization {
+    /// The typed record of this characterization; with `timing` false every time is left out, so
+    /// the record is reproducible bit for bit.
+    pub fn report(&self, timing: bool) -> CharacterizationReport {
+        let t = |s: f64| timing.then_some(s);
+        CharacterizationReport {
+            converged: self.converged,
+            iterations: self.iterations,
+            max_load_change: self.max_load_change,
+            max_key_distance: self.max_key_distance,
+            max_load_offset: self.max_load_offset,
+            max_relative_residual: self.max_relative_residual,
+            method: self.method,
+            settings: self.settings,
+            prediction: self.prediction.as_ref().map(|p| PredictionSummary {
+                contacts: p.contacts,
+                not_converged: p.not_converged,
+                failed: p.failed,
+                max_load_change: p.max_load_change,
+                equilibrium_iterations: p.equilibrium_iterations,
+                error: p.error.clone(),
+                seconds: t(p.seconds),
+            }),
+            history: self
+                .history
+                .iter()
+                .map(|h| IterationSummary {
+                    iteration: h.iteration,
+                    max_load_change: h.max_load_change,
+                    characterized: h.characterized,
+                    reused: h.reused,
+                    max_key_distance: h.max_key_distance,
+                    max_load_offset: h.max_load_offset,
+                    max_relative_residual: h.max_relative_residual,
+                    equilibrium_iterations: h.equilibrium_iterations,
+                    seconds: t(h.seconds),
+                })
+                .collect(),
+            displacement: self.equilibrium.displacement.into(),
+            dry_displacement: self.dry.displacement.into(),
+            reaction: self.equilibrium.reaction.into(),
+            stiffness_dry: self.dry.stiffness,
+            stiffness_ehl: self.equilibrium.stiffness,
+            contacts: self.contacts.iter().map(ContactRow::from_result).collect(),
+            seconds: t(self.seconds),
+        }
+    }
+}
+
+/// The characterization as JSON ([`BearingCharacterization::report`]).
+pub fn characterization_json(c: &BearingCharacterization, timing: bool) -> Value {
+    serde_json::to_value(c.report(timing)).unwrap_or(Value::Null)
 }

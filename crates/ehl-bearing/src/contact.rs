@@ -17,11 +17,11 @@ use crate::ehl::{
 };
 use crate::fit::{fit_power_law, fit_power_law_damped, FitOptions, FittedLaw, PowerLawStdErrors};
 use crate::Error;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
 /// Settings of the quasi-static method.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct QuasiStaticSettings {
     /// Relative load amplitude ε: loads span w0·(1 ± ε) (dimensionless, in (0, 0.9]; default 0.2).
     pub amplitude: f64,
@@ -234,7 +234,7 @@ pub fn characterize_quasi_static(
 }
 
 /// Excitation frequency Ω of the harmonic method.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ExcitationFrequency {
     /// Ω as a fraction of the contact's linearized natural frequency ω_n = √(k/m), with k the
@@ -245,7 +245,7 @@ pub enum ExcitationFrequency {
 }
 
 /// Settings of the harmonic method. Every result carries them (`ContactFit::excitation`).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct HarmonicSettings {
     /// Relative load amplitude ε of w(t) = w0·(1 + ε·sin Ωt) (dimensionless, in (0, 0.9];
     /// default 0.2, the quasi-static method's span, so that the two fit the same range).
@@ -538,62 +538,4 @@ pub fn characterize_harmonic(
         settling_steps: settling,
         law,
     })
-}
-
-/// The harmonic method ([`characterize_harmonic`]) as a
-/// [`ContactCharacterizer`](crate::characterize::ContactCharacterizer) for the coupled loop: each
-/// contact is excited with its own ball mass ([`ContactConditions::ball_mass`](crate::characterize::ContactConditions)).
-/// The fitted law's damping term (if any) is kept in the law but plays no part in the quasi-static
-/// bearing equilibrium (δ̇ = 0 there).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct HarmonicCharacterizer {
-    /// Settings of the method.
-    pub settings: HarmonicSettings,
-}
-
-impl crate::characterize::ContactCharacterizer for HarmonicCharacterizer {
-    fn characterize(
-        &self,
-        c: &crate::characterize::ContactConditions,
-    ) -> Result<crate::characterize::CharacterizedContact, Error> {
-        use crate::ContactLaw;
-        // The contact and the mass are validated by characterize_harmonic (EHL input checks).
-        let fit = characterize_harmonic(&c.ehl_contact(), c.ball_mass, &self.settings)?;
-        // Largest force residual of the fit over the recorded steps, damping term included (N).
-        let damping = fit.c.unwrap_or(0.0);
-        let max_residual = fit.history[fit.settling_steps..]
-            .iter()
-            .map(|x| (fit.law.force(x.approach).0 + damping * x.velocity - x.film_force).abs())
-            .fold(0.0_f64, f64::max);
-        let samples = fit.history.len() - fit.settling_steps;
-        Ok(crate::characterize::CharacterizedContact::from_fit(
-            fit,
-            c.load,
-            max_residual,
-            samples,
-        ))
-    }
-
-    fn settings_json(&self) -> serde_json::Value {
-        serde_json::to_value(self.settings).unwrap_or(serde_json::Value::Null)
-    }
-
-    fn name(&self) -> &str {
-        "harmonic"
-    }
-
-    fn predictor(&self) -> Option<&dyn crate::characterize::LoadPredictor> {
-        Some(self)
-    }
-}
-
-impl crate::characterize::LoadPredictor for HarmonicCharacterizer {
-    /// The steady predictor of the quasi-static method
-    /// ([`predict_steady`](crate::characterize::predict_steady)) with this method's grid and domain.
-    fn predict(
-        &self,
-        c: &crate::characterize::ContactConditions,
-    ) -> Result<crate::characterize::PredictedLaw, Error> {
-        crate::characterize::predict_steady(c, &self.settings.ehl)
-    }
 }

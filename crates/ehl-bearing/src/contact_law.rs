@@ -14,6 +14,14 @@ pub trait ContactLaw: Send + Sync + std::fmt::Debug {
         // Generic inversion by bracketing Newton; laws with a closed-form inverse override this.
         invert_monotone(self, load)
     }
+
+    /// Damping coefficient c of a c·δ̇ term at approach `approach` (m), N·s/m: the force grows by
+    /// c·δ̇ when the approach changes at the rate δ̇ (m/s). Default 0 (no damping: dry laws and
+    /// laws fitted by the quasi-static method).
+    fn damping(&self, approach: f64) -> f64 {
+        let _ = approach;
+        0.0
+    }
 }
 
 /// Dry Hertz law Q = K·δ^1.5 for δ > 0, Q = 0 otherwise.

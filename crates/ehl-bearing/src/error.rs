@@ -20,9 +20,15 @@ pub enum Error {
     /// Contact-law fit.
     #[error(transparent)]
     Fit(#[from] crate::fit::FitError),
-    /// Characterization loop, study and trend curves.
+    /// Characterization methods and their settings.
+    #[error(transparent)]
+    Method(#[from] crate::method::MethodError),
+    /// Characterization loop and trend curves.
     #[error(transparent)]
     Characterize(#[from] crate::characterize::CharacterizeError),
+    /// Running, merging and storing studies.
+    #[error(transparent)]
+    Study(#[from] crate::study::StudyError),
 }
 
 /// Result with the crate error.

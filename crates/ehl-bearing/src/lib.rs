@@ -16,9 +16,11 @@ pub mod contact_law;
 pub mod ehl;
 pub mod error;
 pub mod fit;
+pub mod force_element;
 pub mod hertz;
 pub mod io;
 pub mod material;
+pub mod method;
 pub mod study;
 
 pub use contact_law::{ContactLaw, HertzLaw};

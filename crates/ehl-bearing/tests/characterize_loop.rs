@@ -420,7 +420,7 @@ fn quasi_static_characterizer_is_the_contact_module_behind_the_trait() {
         got.moes_m,
         c.moes().m
     );
-    assert_eq!(ch.settings_json()["ehl"]["grid"], 65);
+    assert_eq!(ch.method().grid(), Some(65));
 }
 
 /// The synthetic fixture with a load predictor: the synthetic law at the load, as dry Hertz
@@ -435,8 +435,8 @@ impl ContactCharacterizer for PredictingSynthetic {
     ) -> Result<CharacterizedContact, ehl_bearing::Error> {
         self.0.characterize(c)
     }
-    fn settings_json(&self) -> serde_json::Value {
-        self.0.settings_json()
+    fn method(&self) -> ehl_bearing::method::Method {
+        self.0.method()
     }
     fn name(&self) -> &str {
         "predicting-synthetic"
@@ -624,7 +624,7 @@ fn quasi_static_loop_with_predicted_start_and_reused_laws_matches_fresh_ehl_solu
 
 #[test]
 fn harmonic_loop_converges_and_its_laws_carry_the_steady_film_forces() {
-    use ehl_bearing::contact::HarmonicCharacterizer;
+    use ehl_bearing::method::HarmonicCharacterizer;
     // The seed case at 5000 rpm with the harmonic method (transient EHL, docs/contact.md) on a
     // 65² grid with 16 steps per period and one settling period, to keep the test short (the
     // seed study uses 129², 32 and 1: docs/study.md §3.4; ≈ 35 s of CPU, the heaviest test of

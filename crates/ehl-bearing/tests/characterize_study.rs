@@ -5,11 +5,10 @@
 use ehl_bearing::characterize::SyntheticCharacterizer;
 use ehl_bearing::io::InputError;
 use ehl_bearing::study::{
-    fit_trends, parse_study, point_rows, run_point, JacobianMode, ResultRow, Study,
+    fit_trends, parse_study, run_point, JacobianMode, PointRecord, ResultRow, Study,
     TrendForceElement, TrendModel,
 };
 use proptest::prelude::*;
-use serde_json::Value;
 use std::path::Path;
 
 fn examples() -> &'static Path {
@@ -21,17 +20,26 @@ fn study(extra: &str) -> Result<Study, InputError> {
     parse_study(&text, "test.toml", examples())
 }
 
-fn synthetic_study() -> (Study, SyntheticCharacterizer, Vec<Value>, Vec<ResultRow>) {
+fn synthetic_study() -> (Study, SyntheticCharacterizer, Vec<PointRecord>, Vec<ResultRow>) {
     let s =
         study("inner_speeds_rpm = [3000, 4000, 5000]\nload_scales = [0.5, 1.0, 2.0]\n").unwrap();
     let ch = SyntheticCharacterizer::default();
-    let points: Vec<Value> = s
+    let points: Vec<PointRecord> = s
         .points()
         .iter()
-        .map(|p| run_point(&s, p, &ch).unwrap())
+        .map(|p| {
+            let r = run_point(&s, p, &|_| {});
+            assert!(r.error.is_none(), "{:?}", r.error);
+            r
+        })
         .collect();
-    let rows = points.iter().flat_map(|p| point_rows(p).unwrap()).collect();
+    let rows = points.iter().flat_map(|p| p.rows()).collect();
     (s, ch, points, rows)
+}
+
+/// Displacements of a point's equilibrium.
+fn displacement(p: &PointRecord) -> [f64; 5] {
+    p.result.as_ref().unwrap().displacement.to_array()
 }
 
 #[test]
@@ -39,18 +47,21 @@ fn example_study_file_parses() {
     let s = ehl_bearing::study::read_study(&examples().join("study_7006.toml")).unwrap();
     assert_eq!(s.inner_speeds_rpm, vec![3000.0, 4000.0, 5000.0]);
     assert_eq!(s.load_scales, vec![0.5, 1.0, 1.5, 2.0]);
-    assert_eq!(s.method, "quasi-static");
+    assert_eq!(s.method.name(), "quasi-static");
     assert_eq!(s.points().len(), 12);
     assert_eq!(s.settings.tolerance, 1e-3);
     assert_eq!(s.settings.load_reuse_tolerance, 0.01);
     assert!(s.settings.predict_loads);
     // The harmonic seed study (docs/study.md §3.4): the three speeds at scale 1, lighter excitation.
     let h = ehl_bearing::study::read_study(&examples().join("study_7006_harmonic.toml")).unwrap();
-    assert_eq!(h.method, "harmonic");
+    assert_eq!(h.method.name(), "harmonic");
     assert_eq!(h.inner_speeds_rpm, vec![3000.0, 4000.0, 5000.0]);
     assert_eq!(h.points().len(), 3);
-    assert_eq!(h.method_options["steps_per_period"], 32);
-    assert_eq!(h.method_options["settling_periods"], 1);
+    let ehl_bearing::method::Method::Harmonic(hs) = h.method else {
+        panic!("{:?}", h.method)
+    };
+    assert_eq!(hs.steps_per_period, 32);
+    assert_eq!(hs.settling_periods, 1);
     let t = study("[characterize]\nload_reuse_tolerance = 0.0\npredict_loads = false\n").unwrap();
     assert_eq!(t.settings.load_reuse_tolerance, 0.0);
     assert!(!t.settings.predict_loads);
@@ -234,7 +245,7 @@ fn trend_json_round_trips_and_rejects_bad_input() {
     let back = TrendModel::from_json(&m.to_json()).unwrap();
     assert_eq!(back, m);
     assert!(TrendModel::from_json("{}").is_err());
-    let mut v: Value = serde_json::from_str(&m.to_json()).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&m.to_json()).unwrap();
     v["inner"]["d"]["params"] = serde_json::json!([1.0]);
     let e = TrendModel::from_json(&v.to_string()).unwrap_err();
     assert!(e.to_string().contains("inner.d"), "{e}");
@@ -251,16 +262,15 @@ fn trend_force_element_reproduces_the_characterized_equilibria() {
     let fe = TrendForceElement::from_json(&m.to_json()).unwrap();
     let mut worst = 0.0_f64;
     for p in &points {
-        let q =
-            ["x", "y", "z", "theta_y", "theta_z"].map(|k| p["displacement"][k].as_f64().unwrap());
-        let rpm = p["spec"]["inner_speed_rpm"].as_f64().unwrap();
+        let q = displacement(p);
+        let rpm = p.spec.inner_speed_rpm;
         let r = fe
             .evaluate(&q, rpm * std::f64::consts::PI / 30.0, 0.0)
             .unwrap();
         assert!(r.converged, "fixed point: {}", r.load_change);
-        for (k, key) in ["force_x", "force_y", "force_z"].iter().enumerate() {
-            let want = p["reaction"][key].as_f64().unwrap();
-            worst = worst.max((r.force.reaction[k] - want).abs() / want.abs());
+        let want = p.result.as_ref().unwrap().reaction.to_array();
+        for k in 0..3 {
+            worst = worst.max((r.force.reaction[k] - want[k]).abs() / want[k].abs());
         }
     }
     eprintln!("largest relative force error of the trend force element: {worst:.3e}");
@@ -274,7 +284,7 @@ fn trend_force_element_flags_states_outside_the_validity_range() {
     let (s, _, points, rows) = synthetic_study();
     let fe = TrendForceElement::new(fit_trends(&s, &rows).unwrap()).unwrap();
     let p = &points[0];
-    let q = ["x", "y", "z", "theta_y", "theta_z"].map(|k| p["displacement"][k].as_f64().unwrap());
+    let q = displacement(p);
     let inside = fe
         .evaluate(&q, 4000.0 * std::f64::consts::PI / 30.0, 0.0)
         .unwrap();
@@ -300,7 +310,7 @@ fn trend_force_element_jacobian_is_close_to_finite_differences() {
     let (s, _, points, rows) = synthetic_study();
     let fe = TrendForceElement::new(fit_trends(&s, &rows).unwrap()).unwrap();
     let p = &points[4];
-    let q = ["x", "y", "z", "theta_y", "theta_z"].map(|k| p["displacement"][k].as_f64().unwrap());
+    let q = displacement(p);
     let n = 4000.0 * std::f64::consts::PI / 30.0;
     let r = fe.evaluate(&q, n, 0.0).unwrap();
     let mut worst = 0.0_f64;
@@ -370,6 +380,7 @@ fn approach_trend_recovers_a_hertz_minus_film_law() {
                         k: (q - df) / delta.powf(d),
                         d,
                         delta_f_n: df,
+                        damping_n_s_m: None,
                         k_std_error: None,
                         d_std_error: None,
                         delta_f_std_error_n: None,

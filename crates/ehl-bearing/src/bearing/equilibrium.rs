@@ -60,7 +60,7 @@ impl RaceControl {
 }
 
 /// How one degree of freedom is driven.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Control {
     /// Load-controlled: applied force (N) or moment (N·m); the displacement is solved for.
@@ -73,7 +73,7 @@ pub enum Control {
 pub const DOF_NAMES: [&str; 5] = ["x", "y", "z", "theta_y", "theta_z"];
 
 /// An operating point: speeds and the control of each DOF.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct OperatingPoint {
     /// Inner ring speed about +x, rad/s.
     pub inner_speed: f64,
@@ -134,7 +134,7 @@ fn shared(law: HertzLaw) -> Arc<dyn ContactLaw> {
 }
 
 /// Convergence settings of the equilibrium solver.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct EquilibriumSettings {
     /// Relative force tolerance: converged when every load-controlled residual (moments divided
     /// by d_m/2) is below `tolerance`·max(largest applied load, 1 N).
@@ -262,6 +262,9 @@ struct Terms {
     qo: f64,
     di: f64,
     dout: f64,
+    /// ∂δ_i and ∂δ_o with respect to (X1, X2, A1, A2).
+    ddi: [f64; 4],
+    ddo: [f64; 4],
     sin_ai: f64,
     cos_ai: f64,
     sin_ao: f64,
@@ -275,10 +278,12 @@ struct Terms {
     fo: f64,
 }
 
-/// The bearing model at one operating speed and set of contact laws.
-pub struct BearingModel<'a> {
-    bearing: &'a Bearing,
-    laws: &'a ContactLaws,
+/// The bearing model at one operating speed and set of contact laws. Owns its data (the laws are
+/// shared through `Arc`), so it can live in a rotor model or another thread.
+#[derive(Debug, Clone)]
+pub struct BearingModel {
+    bearing: Bearing,
+    laws: ContactLaws,
     inner_speed: f64,
     outer_speed: f64,
     race_control: RaceControl,
@@ -287,6 +292,7 @@ pub struct BearingModel<'a> {
     a0: f64,
     frak_ri: f64,
     psi: Vec<f64>,
+    cage_angle: f64,
     mass: f64,
     inertia: f64,
 }
@@ -298,14 +304,35 @@ struct BallSolution {
     /// g = (v_x, v_r, f_i λ_i G) and dg/dA (3×2).
     g: [f64; 3],
     dg: [[f64; 2]; 3],
+    /// Loads (N) and approaches (m) of the inner and outer contacts.
+    q: [f64; 2],
+    delta: [f64; 2],
+    /// d(δ_i, δ_o)/dA with the ball at its equilibrium (rows inner, outer).
+    ddelta: [[f64; 2]; 2],
 }
 
-impl<'a> BearingModel<'a> {
+/// Reactions, stiffness, damping and contact states of the bearing at a ring displacement and
+/// rate: what [`BearingModel::evaluate_dynamic`] returns.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicForce {
+    /// Load on the inner ring (N, N·m): the quasi-static reaction plus the contact damping term.
+    pub reaction: [f64; 5],
+    /// ∂reaction/∂q at the given rates, without the term ∂C/∂q·q̇ (N/m, N, N·m/rad).
+    pub stiffness: [[f64; 5]; 5],
+    /// ∂reaction/∂q̇ (N·s/m, N·s, N·m·s/rad): Σ c_k·g_k·g_kᵀ over the contacts, g_k = dδ_k/dq.
+    pub damping: [[f64; 5]; 5],
+    /// Per ball: [inner, outer] contact loads without the damping term, N.
+    pub loads: Vec<[f64; 2]>,
+    /// Per ball: [inner, outer] contact approaches, m.
+    pub approaches: Vec<[f64; 2]>,
+}
+
+impl BearingModel {
     /// A model of `bearing` with `laws` at the speeds of `op` (the DOF controls of `op` are not
     /// used here).
     pub fn new(
-        bearing: &'a Bearing,
-        laws: &'a ContactLaws,
+        bearing: &Bearing,
+        laws: &ContactLaws,
         inner_speed: f64,
         outer_speed: f64,
         race_control: RaceControl,
@@ -328,8 +355,8 @@ impl<'a> BearingModel<'a> {
         }
         let d = g.ball_diameter;
         Ok(BearingModel {
-            bearing,
-            laws,
+            bearing: *bearing,
+            laws: laws.clone(),
             inner_speed,
             outer_speed,
             race_control,
@@ -338,9 +365,66 @@ impl<'a> BearingModel<'a> {
             a0: g.center_distance(),
             frak_ri: g.inner_groove_center_radius(),
             psi: (0..z).map(|j| 2.0 * PI * j as f64 / z as f64).collect(),
+            cage_angle: 0.0,
             mass: bearing.ball_mass(),
             inertia: bearing.ball_inertia(),
         })
+    }
+
+    /// Set the ring speeds about +x, rad/s (errors if not finite).
+    pub fn set_speeds(&mut self, inner_speed: f64, outer_speed: f64) -> Result<(), BearingError> {
+        for (name, v) in [("inner_speed", inner_speed), ("outer_speed", outer_speed)] {
+            if !v.is_finite() {
+                return Err(BearingError::invalid(name, v, "a finite speed in rad/s"));
+            }
+        }
+        self.inner_speed = inner_speed;
+        self.outer_speed = outer_speed;
+        Ok(())
+    }
+
+    /// Set the cage angle, rad: ball j sits at azimuth ψ_j = 2πj/Z + angle (from +y toward +z).
+    /// The balls move with the cage, so a rotor simulation advances it at the cage speed
+    /// ([`BearingModel::cage_speed`]); the stiffness of a radially loaded bearing then varies at
+    /// Z times the cage frequency. Errors if not finite.
+    pub fn set_cage_angle(&mut self, angle: f64) -> Result<(), BearingError> {
+        if !angle.is_finite() {
+            return Err(BearingError::invalid(
+                "cage_angle",
+                angle,
+                "a finite angle in rad",
+            ));
+        }
+        if angle != self.cage_angle {
+            let z = self.psi.len();
+            for (j, p) in self.psi.iter_mut().enumerate() {
+                *p = 2.0 * PI * j as f64 / z as f64 + angle;
+            }
+            self.cage_angle = angle;
+        }
+        Ok(())
+    }
+
+    /// The bearing.
+    pub fn bearing(&self) -> &Bearing {
+        &self.bearing
+    }
+
+    /// The race-control hypothesis.
+    pub fn race_control(&self) -> RaceControl {
+        self.race_control
+    }
+
+    /// Number of balls Z.
+    pub fn ball_count(&self) -> usize {
+        self.psi.len()
+    }
+
+    /// Cage (orbital) speed of an unloaded ball at the free contact angle under pure rolling,
+    /// rad/s: ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)], γ = D·cos α0/d_m (the kinematic estimate a
+    /// rotor model advances the cage angle with).
+    pub fn cage_speed(&self) -> f64 {
+        self.orbital_guess()
     }
 
     fn groove_offsets(&self, j: usize, q: &[f64; 5]) -> [f64; 2] {
@@ -444,6 +528,8 @@ impl<'a> BearingModel<'a> {
             qo: qo.v,
             di: di.v,
             dout: dout.v,
+            ddi: di.d,
+            ddo: dout.d,
             sin_ai: sin_ai.v,
             cos_ai: cos_ai.v,
             sin_ao: sin_ao.v,
@@ -515,6 +601,9 @@ impl<'a> BearingModel<'a> {
                     x: xm,
                     g: [0.0; 3],
                     dg: [[0.0; 2]; 3],
+                    q: [0.0; 2],
+                    delta: [tm.di, tm.dout],
+                    ddelta: [[0.0; 2]; 2],
                 });
             }
             x = xm;
@@ -561,10 +650,19 @@ impl<'a> BearingModel<'a> {
                 *v = t.g[m].d[2 + k] + t.g[m].d[0] * dx_da[0][k] + t.g[m].d[1] * dx_da[1][k];
             }
         }
+        let mut ddelta = [[0.0; 2]; 2];
+        for (row, dd) in ddelta.iter_mut().zip([&t.ddi, &t.ddo]) {
+            for (k, v) in row.iter_mut().enumerate() {
+                *v = dd[2 + k] + dd[0] * dx_da[0][k] + dd[1] * dx_da[1][k];
+            }
+        }
         Ok(BallSolution {
             x,
             g: [t.g[0].v, t.g[1].v, t.g[2].v],
             dg,
+            q: [t.qi, t.qo],
+            delta: [t.di, t.dout],
+            ddelta,
         })
     }
 
@@ -672,17 +770,8 @@ impl<'a> BearingModel<'a> {
             let a = self.groove_offsets(j, q);
             let sol = self.solve_ball(j, a, warm[j])?;
             warm[j] = Some(sol.x);
-            let (s, c) = self.psi[j].sin_cos();
-            let rr = self.frak_ri;
             // reaction = T·g, A = A(q) with dA/dq = P.
-            let t: [[f64; 3]; 5] = [
-                [1.0, 0.0, 0.0],
-                [0.0, c, 0.0],
-                [0.0, s, 0.0],
-                [rr * s, 0.0, -s],
-                [-rr * c, 0.0, c],
-            ];
-            let p: [[f64; 5]; 2] = [[1.0, 0.0, 0.0, rr * s, -rr * c], [0.0, c, s, 0.0, 0.0]];
+            let (t, p) = self.ring_maps(j);
             let mut dg_dq = [[0.0; 5]; 3];
             for m in 0..3 {
                 for n in 0..5 {
@@ -704,6 +793,118 @@ impl<'a> BearingModel<'a> {
             reaction: f,
             jacobian: jac,
         })
+    }
+
+    /// Replace the contact laws (one per ball and raceway); errors if the counts differ from the
+    /// bearing's ball count.
+    pub fn set_laws(&mut self, laws: ContactLaws) -> Result<(), BearingError> {
+        let z = self.psi.len();
+        if laws.inner.len() != z || laws.outer.len() != z {
+            return Err(BearingError::Invalid(format!(
+                "contact laws given for {} inner and {} outer contacts, bearing has {} balls",
+                laws.inner.len(),
+                laws.outer.len(),
+                z
+            )));
+        }
+        self.laws = laws;
+        Ok(())
+    }
+
+    /// Reactions, stiffness and damping at ring displacements `q` (x, y, z in m; θy, θz in rad)
+    /// and rates `q_dot` (m/s, rad/s), using and updating the per-ball warm starts `warm` (one
+    /// entry per ball; `None` starts a ball from scratch).
+    ///
+    /// The balls are massless and follow their quasi-static equilibrium. A law with a damping
+    /// term c·δ̇ ([`ContactLaw::damping`]) then acts through the rate of its approach along that
+    /// equilibrium, δ̇_k = g_k·q̇ with g_k = dδ_k/dq (ball position included): the damping matrix
+    /// is C = Σ_k c_k·g_k·g_kᵀ (symmetric, from the dissipated power Σ c_k·δ̇_k²) and the reaction
+    /// is the quasi-static one plus C·q̇. For one ball this is the low-frequency limit of the
+    /// inner and outer contacts (spring and damper each) in series. The stiffness omits the term
+    /// ∂C/∂q·q̇ (exact at q̇ = 0).
+    pub fn evaluate_dynamic(
+        &self,
+        q: &[f64; 5],
+        q_dot: &[f64; 5],
+        warm: &mut [Option<[f64; 2]>],
+    ) -> Result<DynamicForce, BearingError> {
+        check_finite_displacement(q)?;
+        for (k, v) in q_dot.iter().enumerate() {
+            if !v.is_finite() {
+                return Err(BearingError::invalid(
+                    DOF_NAMES[k],
+                    *v,
+                    "a finite rate (m/s or rad/s)",
+                ));
+            }
+        }
+        if warm.len() != self.psi.len() {
+            return Err(BearingError::Invalid(format!(
+                "warm-start state for {} balls, bearing has {}",
+                warm.len(),
+                self.psi.len()
+            )));
+        }
+        let z = self.psi.len();
+        let mut out = DynamicForce {
+            reaction: [0.0; 5],
+            stiffness: [[0.0; 5]; 5],
+            damping: [[0.0; 5]; 5],
+            loads: Vec::with_capacity(z),
+            approaches: Vec::with_capacity(z),
+        };
+        for j in 0..z {
+            let a = self.groove_offsets(j, q);
+            let sol = self.solve_ball(j, a, warm[j])?;
+            warm[j] = Some(sol.x);
+            let (t, p) = self.ring_maps(j);
+            for r in 0..5 {
+                for m in 0..3 {
+                    if t[r][m] != 0.0 {
+                        out.reaction[r] += t[r][m] * sol.g[m];
+                        for n in 0..5 {
+                            out.stiffness[r][n] +=
+                                t[r][m] * (sol.dg[m][0] * p[0][n] + sol.dg[m][1] * p[1][n]);
+                        }
+                    }
+                }
+            }
+            for (k, law) in [&self.laws.inner[j], &self.laws.outer[j]].iter().enumerate() {
+                let c = law.damping(sol.delta[k]);
+                if c == 0.0 {
+                    continue;
+                }
+                let g: [f64; 5] =
+                    std::array::from_fn(|n| sol.ddelta[k][0] * p[0][n] + sol.ddelta[k][1] * p[1][n]);
+                let rate: f64 = g.iter().zip(q_dot).map(|(a, b)| a * b).sum();
+                for r in 0..5 {
+                    out.reaction[r] += c * rate * g[r];
+                    for n in 0..5 {
+                        out.damping[r][n] += c * g[r] * g[n];
+                    }
+                }
+            }
+            out.loads.push(sol.q);
+            out.approaches.push(sol.delta);
+        }
+        Ok(out)
+    }
+
+    /// The maps of ball j between its local terms and the ring: reaction = T·g (T: 5×3) and the
+    /// groove-centre offsets' derivative dA/dq = P (2×5).
+    fn ring_maps(&self, j: usize) -> ([[f64; 3]; 5], [[f64; 5]; 2]) {
+        let (s, c) = self.psi[j].sin_cos();
+        let rr = self.frak_ri;
+        (
+            [
+                [1.0, 0.0, 0.0],
+                [0.0, c, 0.0],
+                [0.0, s, 0.0],
+                [rr * s, 0.0, -s],
+                [-rr * c, 0.0, c],
+            ],
+            [[1.0, 0.0, 0.0, rr * s, -rr * c], [0.0, c, s, 0.0, 0.0]],
+        )
     }
 
     /// Reactions and their Jacobian at ring displacements `q` (x, y, z in m; θy, θz in rad):

@@ -7,7 +7,7 @@ use serde::Serialize;
 use std::f64::consts::PI;
 
 /// Internal geometry of an angular-contact ball bearing.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct BearingGeometry {
     /// Number of balls Z (≥ 3).
     pub ball_count: usize,
@@ -24,7 +24,7 @@ pub struct BearingGeometry {
 }
 
 /// Which raceway a contact is on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Race {
     /// The inner ring's raceway.
@@ -186,7 +186,7 @@ fn max_balls(d: f64, dm: f64) -> usize {
 }
 
 /// A bearing: geometry and materials.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct Bearing {
     /// Internal geometry.
     pub geometry: BearingGeometry,

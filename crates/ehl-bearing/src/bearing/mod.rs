@@ -7,7 +7,7 @@ pub mod geometry;
 mod linalg;
 
 pub use equilibrium::{
-    solve_equilibrium, BallState, BearingModel, ContactLaws, ContactState, Control, Equilibrium,
+    solve_equilibrium, BallState, BearingModel, DynamicForce, ContactLaws, ContactState, Control, Equilibrium,
     EquilibriumSettings, ForceResult, OperatingPoint, RaceControl, DOF_NAMES,
 };
 pub use geometry::{Bearing, BearingGeometry, Race};

@@ -25,6 +25,7 @@ use thiserror::Error;
 
 pub use crate::material::{DensityModel, ViscosityModel};
 pub use steady::{solve_moes, solve_steady, solve_steady_from};
+pub(crate) use steady::validate_settings;
 pub use transient::{TransientSolver, TransientStep};
 
 /// Errors of the EHL solver.

@@ -228,6 +228,25 @@ impl ContactLaw for FittedLaw {
         }
     }
 
+    /// The fitted c inside and above the fitted range; below it c·Q(δ)/Q(δ_min), so the damping
+    /// fades with the force as the contact opens instead of acting across a separated contact
+    /// (continuous in δ). 0 without a damping term.
+    fn damping(&self, approach: f64) -> f64 {
+        let Some(c) = self.c else {
+            return 0.0;
+        };
+        if approach >= self.delta_min {
+            c
+        } else {
+            let q_min = self.force(self.delta_min).0;
+            if q_min > 0.0 {
+                c * (self.force(approach).0 / q_min).clamp(0.0, 1.0)
+            } else {
+                0.0
+            }
+        }
+    }
+
     /// Closed-form inverse: None for a load that is not finite and positive (the law is positive
     /// everywhere and tends to 0 only as δ → −∞).
     fn approach_at(&self, load: f64) -> Option<f64> {

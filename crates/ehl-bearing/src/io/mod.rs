@@ -5,8 +5,10 @@
 
 pub mod case;
 pub mod json;
+pub mod store;
 
 pub use case::{parse_case, read_case, Case};
+pub use store::{write_atomic, FsStore};
 
 use thiserror::Error;
 

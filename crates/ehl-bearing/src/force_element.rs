@@ -1,0 +1,747 @@
+//! The bearing as a force element for rotor simulations: ring displacements q, their rates q̇,
+//! the ring speeds and the cage angle in; the five reactions on the inner ring, their stiffness
+//! ∂F/∂q and damping ∂F/∂q̇, the contact loads and flags out.
+//!
+//! - [`ForceElement`]: the interface a rotor integrator calls every time step, with a
+//!   caller-owned warm-start [`ElementState`] (one per bearing and caller) that makes repeated
+//!   calls cheap.
+//! - [`LawElement`]: contact laws fixed per contact — dry Hertz ([`LawElement::hertz`]) or the
+//!   fitted laws of a characterization ([`LawElement::from_characterization`]), including each
+//!   contact's damping c·δ̇ from the harmonic method.
+//! - [`TrendForceElement`]: laws from a study's trend curves, load- and speed-dependent, with no
+//!   EHL run.
+//!
+//! Every element owns its data (`Send + Sync + Clone`), so it can live in a rotor model, a Python
+//! object or another thread. Conventions: x axial, y and z radial, θy and θz tilts about +y and
+//! +z (right-handed); ball j at azimuth ψ_j = 2πj/Z + cage angle from +y toward +z; SI units
+//! (m, rad, m/s, rad/s, N, N·m, N/m, N·s/m). The reaction is the load on the inner ring in
+//! equilibrium with the balls: the bearing acts on the shaft with the opposite.
+
+use crate::bearing::{BearingError, BearingModel, ContactLaws, DynamicForce, Race, RaceControl};
+use crate::bearing::{Bearing, ForceResult};
+use crate::characterize::{BearingCharacterization, CharacterizationReport, CharacterizeError};
+use crate::contact_law::ContactLaw;
+use crate::fit::FittedLaw;
+use crate::io::Case;
+use crate::study::{PointRecord, RaceTrends, TrendModel};
+use serde::Serialize;
+use std::f64::consts::PI;
+use std::sync::Arc;
+
+/// The inputs of one evaluation (SI).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ElementInput {
+    /// Inner-ring displacements x, y, z (m) and tilts θy, θz (rad) relative to the outer ring.
+    pub displacement: [f64; 5],
+    /// Their rates (m/s, rad/s).
+    pub velocity: [f64; 5],
+    /// Inner-ring speed about +x, rad/s.
+    pub inner_speed: f64,
+    /// Outer-ring speed about +x, rad/s.
+    pub outer_speed: f64,
+    /// Cage angle, rad: ball j sits at azimuth 2πj/Z + cage angle. Advance it at the cage speed
+    /// ([`ForceElement::cage_speed`]) for the varying-compliance excitation at Z·f_cage; hold it
+    /// fixed for a time-invariant bearing.
+    pub cage_angle: f64,
+}
+
+impl ElementInput {
+    /// Displacement `q` at rest (zero rates, cage angle 0) and the given speeds (rad/s).
+    pub fn at(displacement: [f64; 5], inner_speed: f64, outer_speed: f64) -> Self {
+        ElementInput {
+            displacement,
+            velocity: [0.0; 5],
+            inner_speed,
+            outer_speed,
+            cage_angle: 0.0,
+        }
+    }
+}
+
+/// The result of one evaluation (SI).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ElementOutput {
+    /// Load on the inner ring in equilibrium with the balls: F_x, F_y, F_z (N), M_y, M_z (N·m),
+    /// damping term included.
+    pub reaction: [f64; 5],
+    /// ∂reaction/∂q (N/m, N, N·m/rad), order x, y, z, θy, θz; not symmetrized.
+    pub stiffness: [[f64; 5]; 5],
+    /// ∂reaction/∂q̇ (N·s/m, N·s, N·m·s/rad); zero for laws without damping.
+    pub damping: [[f64; 5]; 5],
+    /// Per ball: [inner, outer] contact loads without the damping term, N.
+    pub loads: Vec<[f64; 2]>,
+    /// Per ball: [inner, outer] contact approaches δ, m (negative: separated).
+    pub approaches: Vec<[f64; 2]>,
+    /// Loaded contacts whose approach lies outside the range their law was fitted on (or, for a
+    /// trend element, whose load lies outside the trends' load range): (ball, race).
+    pub outside_range: Vec<(usize, Race)>,
+    /// For a trend element: the speed lies outside the trends' speed range (laws evaluated at the
+    /// nearest end). Always false for fixed laws.
+    pub speed_outside: bool,
+}
+
+/// Caller-owned state of an element between calls: warm starts of every ball's equilibrium and
+/// the model at the last speeds. One per bearing and caller; [`ElementState::default`] starts
+/// cold. Results do not depend on it beyond the solvers' tolerances.
+#[derive(Debug, Clone, Default)]
+pub struct ElementState {
+    model: Option<BearingModel>,
+    warm: Vec<Option<[f64; 2]>>,
+    loads: Vec<[f64; 2]>,
+    trend: Option<TrendSpeedCache>,
+}
+
+/// A bearing as a force element.
+pub trait ForceElement: Send + Sync {
+    /// Reactions, stiffness and damping at `input`, warm-started from and updating `state`.
+    /// Errors (a ball whose equilibrium does not converge, with its residual; non-finite
+    /// inputs, naming them) leave `state` usable.
+    fn evaluate(
+        &self,
+        input: &ElementInput,
+        state: &mut ElementState,
+    ) -> Result<ElementOutput, crate::Error>;
+
+    /// Number of balls Z.
+    fn ball_count(&self) -> usize;
+
+    /// The bearing (geometry and materials).
+    fn bearing(&self) -> &Bearing;
+
+    /// Cage speed at ring speeds `inner_speed` and `outer_speed` (rad/s) under pure rolling at
+    /// the free contact angle, rad/s: ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)], γ = D·cos α0/d_m.
+    fn cage_speed(&self, inner_speed: f64, outer_speed: f64) -> f64 {
+        let g = &self.bearing().geometry;
+        let gamma = g.ball_diameter * g.free_contact_angle.cos() / g.pitch_diameter;
+        0.5 * (inner_speed * (1.0 - gamma) + outer_speed * (1.0 + gamma))
+    }
+
+    /// The reactions at `input` alone (a convenience over [`ForceElement::evaluate`] with a cold
+    /// state).
+    fn reaction(&self, input: &ElementInput) -> Result<[f64; 5], crate::Error> {
+        Ok(self.evaluate(input, &mut ElementState::default())?.reaction)
+    }
+}
+
+/// Make the model in `state` that of `bearing` with `laws` and `race_control` at the input's
+/// speeds and cage angle: rebuilt (cold warm starts) when the state is new or was used with
+/// another bearing, otherwise updated in place.
+fn prepare(
+    state: &mut ElementState,
+    bearing: &Bearing,
+    laws: ContactLaws,
+    race_control: RaceControl,
+    input: &ElementInput,
+) -> Result<(), BearingError> {
+    let z = bearing.geometry.ball_count;
+    let model = match state.model.as_mut() {
+        Some(m) if m.bearing() == bearing && m.race_control() == race_control => {
+            m.set_laws(laws)?;
+            m
+        }
+        _ => {
+            state.warm = vec![None; z];
+            state.loads.clear();
+            state.model.insert(BearingModel::new(
+                bearing,
+                &laws,
+                input.inner_speed,
+                input.outer_speed,
+                race_control,
+            )?)
+        }
+    };
+    model.set_speeds(input.inner_speed, input.outer_speed)?;
+    model.set_cage_angle(input.cage_angle)
+}
+
+fn solve(state: &mut ElementState, input: &ElementInput) -> Result<DynamicForce, BearingError> {
+    let ElementState { model, warm, .. } = state;
+    let model = model
+        .as_ref()
+        .ok_or_else(|| BearingError::Invalid("force element state without a model".into()))?;
+    // A failed solve must not poison the warm starts.
+    let mut trial = warm.clone();
+    let out = model.evaluate_dynamic(&input.displacement, &input.velocity, &mut trial)?;
+    *warm = trial;
+    Ok(out)
+}
+
+/// A bearing whose every contact has a fixed law: dry Hertz, or the fitted laws of one
+/// characterization (with their damping terms, if the method fitted them).
+#[derive(Debug, Clone)]
+pub struct LawElement {
+    bearing: Bearing,
+    laws: ContactLaws,
+    race_control: RaceControl,
+    /// The fitted laws per ball [inner, outer], for the range flags (None for dry laws).
+    fitted: Option<Vec<[FittedLaw; 2]>>,
+}
+
+impl LawElement {
+    /// Dry Hertz laws (K at the free contact angle) for `bearing` with `race_control`.
+    pub fn hertz(bearing: &Bearing, race_control: RaceControl) -> Result<Self, crate::Error> {
+        bearing.validate()?;
+        Ok(LawElement {
+            bearing: *bearing,
+            laws: ContactLaws::hertz(bearing)?,
+            race_control,
+            fitted: None,
+        })
+    }
+
+    /// Dry Hertz laws for the bearing and race control of `case`.
+    pub fn hertz_case(case: &Case) -> Result<Self, crate::Error> {
+        Self::hertz(&case.bearing, case.operating.race_control)
+    }
+
+    /// The fitted laws of a characterization of `case` (the laws of its final equilibrium,
+    /// including each contact's c·δ̇ term where the method fitted one).
+    pub fn from_characterization(
+        case: &Case,
+        c: &BearingCharacterization,
+    ) -> Result<Self, crate::Error> {
+        let laws: Vec<FittedLaw> = c.contacts.iter().map(|r| r.characterized.law).collect();
+        Self::from_fitted(&case.bearing, case.operating.race_control, &laws)
+    }
+
+    /// The fitted laws of a characterization report (e.g. a study point file or
+    /// `characterization.json`) for `bearing` with `race_control`.
+    pub fn from_report(
+        bearing: &Bearing,
+        race_control: RaceControl,
+        report: &CharacterizationReport,
+    ) -> Result<Self, crate::Error> {
+        let mut laws = Vec::with_capacity(report.contacts.len());
+        for row in &report.contacts {
+            let mut law = FittedLaw::new(
+                row.k,
+                row.d,
+                row.delta_f_n,
+                row.fit_approach_min_m,
+                row.fit_approach_max_m,
+            )?;
+            if let Some(c) = row.damping_n_s_m {
+                law = law.with_damping(c)?;
+            }
+            laws.push(law);
+        }
+        Self::from_fitted(bearing, race_control, &laws)
+    }
+
+    /// Fitted laws in contact order (ball 0 inner, ball 0 outer, ball 1 inner, …).
+    pub fn from_fitted(
+        bearing: &Bearing,
+        race_control: RaceControl,
+        laws: &[FittedLaw],
+    ) -> Result<Self, crate::Error> {
+        bearing.validate()?;
+        let z = bearing.geometry.ball_count;
+        if laws.len() != 2 * z {
+            return Err(BearingError::Invalid(format!(
+                "{} contact laws given, the bearing has {z} balls (2·Z laws needed)",
+                laws.len()
+            ))
+            .into());
+        }
+        let pairs: Vec<[FittedLaw; 2]> = laws.chunks(2).map(|p| [p[0], p[1]]).collect();
+        let inner: Vec<Arc<dyn ContactLaw>> = pairs
+            .iter()
+            .map(|p| Arc::new(p[0]) as Arc<dyn ContactLaw>)
+            .collect();
+        let outer: Vec<Arc<dyn ContactLaw>> = pairs
+            .iter()
+            .map(|p| Arc::new(p[1]) as Arc<dyn ContactLaw>)
+            .collect();
+        Ok(LawElement {
+            bearing: *bearing,
+            laws: ContactLaws { inner, outer },
+            race_control,
+            fitted: Some(pairs),
+        })
+    }
+
+    /// Whether the laws carry damping terms.
+    pub fn has_damping(&self) -> bool {
+        self.fitted
+            .as_ref()
+            .is_some_and(|f| f.iter().flatten().any(|l| l.c().is_some()))
+    }
+}
+
+impl ForceElement for LawElement {
+    fn evaluate(
+        &self,
+        input: &ElementInput,
+        state: &mut ElementState,
+    ) -> Result<ElementOutput, crate::Error> {
+        prepare(
+            state,
+            &self.bearing,
+            self.laws.clone(),
+            self.race_control,
+            input,
+        )?;
+        let f = solve(state, input)?;
+        let mut outside_range = Vec::new();
+        if let Some(fitted) = &self.fitted {
+            for (j, (laws, delta)) in fitted.iter().zip(&f.approaches).enumerate() {
+                for (k, race) in [Race::Inner, Race::Outer].into_iter().enumerate() {
+                    if f.loads[j][k] > 0.0 && laws[k].outside_fit_range(delta[k]) {
+                        outside_range.push((j, race));
+                    }
+                }
+            }
+        }
+        state.loads.clone_from(&f.loads);
+        Ok(ElementOutput {
+            reaction: f.reaction,
+            stiffness: f.stiffness,
+            damping: f.damping,
+            loads: f.loads,
+            approaches: f.approaches,
+            outside_range,
+            speed_outside: false,
+        })
+    }
+
+    fn ball_count(&self) -> usize {
+        self.bearing.geometry.ball_count
+    }
+
+    fn bearing(&self) -> &Bearing {
+        &self.bearing
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Trend curves as a force element
+// ---------------------------------------------------------------------------------------------
+
+/// Settings of [`TrendForceElement::evaluate`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TrendEvalOptions {
+    /// Relative tolerance of a contact's load inverted from the approach trend (dimensionless).
+    pub tolerance: f64,
+    /// Iteration limit of that inversion (safeguarded Newton).
+    pub max_iterations: usize,
+    /// How the Jacobian is computed.
+    pub jacobian: JacobianMode,
+}
+
+/// Jacobian of [`TrendForceElement::evaluate`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum JacobianMode {
+    /// The exact derivative of the trend laws (each contact's dQ/dδ = 1/(∂δ_trend/∂Q) inside
+    /// the validity range), through the balls' equilibria: free.
+    Exact,
+    /// Central differences of the reactions (10 more evaluations) with steps `step_m` (m) for
+    /// x, y, z and `step_rad` (rad) for θy, θz: a check of [`JacobianMode::Exact`].
+    CentralDifference {
+        /// Step of the translations, m.
+        step_m: f64,
+        /// Step of the tilts, rad.
+        step_rad: f64,
+    },
+}
+
+impl Default for TrendEvalOptions {
+    fn default() -> Self {
+        TrendEvalOptions {
+            tolerance: 1e-12,
+            max_iterations: 100,
+            jacobian: JacobianMode::Exact,
+        }
+    }
+}
+
+/// Result of [`TrendForceElement::evaluate`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TrendForce {
+    /// Reactions on the inner ring (N, N·m) and their Jacobian (N/m, N, N·m/rad).
+    pub force: ForceResult,
+    /// Contact loads [inner, outer] per ball, N.
+    pub contact_loads: Vec<[f64; 2]>,
+    /// Evaluations of the bearing (1, or 11 with central differences).
+    pub iterations: usize,
+    /// Whether every contact's load inversion met its tolerance.
+    pub converged: bool,
+    /// Largest relative residual of the contact-load inversions (dimensionless).
+    pub load_change: f64,
+    /// Whether any contact load or the speed lies outside the trend curves' validity range
+    /// (laws are then those at the nearest end of the range).
+    pub outside_validity: bool,
+    /// The contacts outside the load range: (ball, race).
+    pub contacts_outside: Vec<(usize, Race)>,
+    /// Whether the speed lies outside the speed range of either raceway.
+    pub speed_outside: bool,
+}
+
+/// The law of one raceway at one speed from the trend curves.
+///
+/// Inside the load range [Q_lo, Q_hi] of the trends, the contact's load is the one whose trend
+/// approach equals the contact's approach: Q(δ) solves δ_trend(Q, n) = δ (safeguarded Newton,
+/// started from the contact's load of the previous call), so dQ/dδ = 1/(∂δ_trend/∂Q). This is the
+/// law K(Q)·δ^d(Q) + ΔF(Q) of the trends with K anchored on the approach trend
+/// ([`RaceTrends::k_at`]), evaluated at its own load. Outside the range the law is the fitted law
+/// with K, d, ΔF frozen at the nearest end ([`TrendForceElement::law_at`]), which passes through
+/// the same end point (continuous force).
+#[derive(Debug, Clone)]
+struct TrendLaw {
+    race: Arc<RaceTrends>,
+    n: f64,
+    lo: f64,
+    hi: f64,
+    delta_lo: f64,
+    delta_hi: f64,
+    law_lo: FittedLaw,
+    law_hi: FittedLaw,
+    hint: f64,
+    tolerance: f64,
+    max_iterations: usize,
+}
+
+impl TrendLaw {
+    /// (Q, dQ/dδ, relative residual) at approach δ inside [δ_lo, δ_hi].
+    fn invert(&self, delta: f64) -> (f64, f64, f64) {
+        let (mut a, mut b) = (self.lo, self.hi);
+        let mut q = if self.hint > a && self.hint < b {
+            self.hint
+        } else {
+            // Interpolate in the approach between the ends.
+            a + (b - a) * (delta - self.delta_lo) / (self.delta_hi - self.delta_lo)
+        };
+        let scale = (self.delta_hi - self.delta_lo).abs().max(1e-300);
+        let mut res = f64::INFINITY;
+        let mut slope = 0.0;
+        for _ in 0..self.max_iterations {
+            let (d, dd) = self.race.approach_dq(q, self.n);
+            let f = d - delta;
+            res = f.abs() / scale;
+            slope = dd;
+            if f > 0.0 {
+                b = q;
+            } else {
+                a = q;
+            }
+            if res <= self.tolerance || (b - a) <= self.tolerance * b {
+                break;
+            }
+            let newton = q - f / dd;
+            q = if dd > 0.0 && newton > a && newton < b {
+                newton
+            } else {
+                0.5 * (a + b)
+            };
+        }
+        let dq = if slope > 0.0 { 1.0 / slope } else { 0.0 };
+        (q, dq, res)
+    }
+}
+
+impl ContactLaw for TrendLaw {
+    fn force(&self, approach: f64) -> (f64, f64) {
+        if approach <= self.delta_lo {
+            self.law_lo.force(approach)
+        } else if approach >= self.delta_hi {
+            self.law_hi.force(approach)
+        } else {
+            let (q, dq, _) = self.invert(approach);
+            (q, dq)
+        }
+    }
+
+    fn approach_at(&self, load: f64) -> Option<f64> {
+        if !(load.is_finite() && load > 0.0) {
+            return None;
+        }
+        if load <= self.lo {
+            self.law_lo.approach_at(load)
+        } else if load >= self.hi {
+            self.law_hi.approach_at(load)
+        } else {
+            Some(self.race.approach_at(load, self.n))
+        }
+    }
+}
+
+/// The per-raceway parts of the trend laws at one speed (kept in the state between calls).
+#[derive(Debug, Clone)]
+struct TrendSpeedCache {
+    n: f64,
+    races: [TrendLaw; 2],
+}
+
+/// The bearing as a force element with contact laws from trend curves: no EHL run.
+///
+/// Each contact's law depends on the contact's own load (K(Q), d(Q), ΔF(Q, n)). The element
+/// evaluates it as the load whose approach trend δ(Q, n) equals the contact's approach (see the
+/// private `TrendLaw`): one bearing evaluation per call, no fixed point over the loads, and the
+/// exact Jacobian. Contacts whose load falls outside the trends' load range, and speeds outside
+/// their speed range, are flagged and use the laws at the nearest end.
+#[derive(Debug, Clone)]
+pub struct TrendForceElement {
+    model: TrendModel,
+    bearing: Bearing,
+    races: [Arc<RaceTrends>; 2],
+    /// Evaluation settings.
+    pub options: TrendEvalOptions,
+}
+
+impl TrendForceElement {
+    /// A force element from a trend model. Errors if the model's bearing is invalid or its
+    /// approach trend does not increase with the load over the validity range (it could not be
+    /// inverted).
+    pub fn new(model: TrendModel) -> Result<Self, CharacterizeError> {
+        let bearing = model.bearing_model()?;
+        for (name, t) in [("inner", &model.inner), ("outer", &model.outer)] {
+            let [lo, hi] = t.load_range_n;
+            let [nlo, nhi] = t.speed_range_rad_s;
+            for n in [nlo, 0.5 * (nlo + nhi), nhi] {
+                let mut prev = f64::NEG_INFINITY;
+                for i in 0..=64 {
+                    let q = lo * (hi / lo).powf(i as f64 / 64.0);
+                    let d = t.approach_at(q, n);
+                    if !(d.is_finite() && d > prev) {
+                        return Err(CharacterizeError::Trend(format!(
+                            "{name} approach trend δ(Q, n) does not increase with the load at Q = {q:.4e} N, n = {n:.4e} rad/s: it cannot serve as a contact law"
+                        )));
+                    }
+                    prev = d;
+                }
+            }
+        }
+        let races = [Arc::new(model.inner.clone()), Arc::new(model.outer.clone())];
+        Ok(TrendForceElement {
+            model,
+            bearing,
+            races,
+            options: TrendEvalOptions::default(),
+        })
+    }
+
+    /// A force element from trend JSON ([`TrendModel::to_json`]).
+    pub fn from_json(text: &str) -> Result<Self, CharacterizeError> {
+        Self::new(TrendModel::from_json(text)?)
+    }
+
+    /// The trend model.
+    pub fn model(&self) -> &TrendModel {
+        &self.model
+    }
+
+    /// Largest relative difference between the reactions F_x, F_y, F_z this element gives at a
+    /// characterized point's displacement and speed and the point's own equilibrium reactions
+    /// (each relative to max(|F|, 1 N)): how well the trends reproduce the characterization.
+    pub fn reaction_error(&self, point: &PointRecord) -> Result<f64, crate::Error> {
+        let r = point.result.as_ref().ok_or_else(|| {
+            CharacterizeError::Trend("the point failed: no equilibrium to compare".into())
+        })?;
+        let q = r.displacement.to_array();
+        let inner = point.spec.inner_speed_rpm * PI / 30.0;
+        let f = self.evaluate(&q, inner, point.spec.operating.outer_speed)?;
+        let want = r.reaction.to_array();
+        Ok(f.force.reaction[..3]
+            .iter()
+            .zip(&want[..3])
+            .map(|(got, w)| (got - w).abs() / w.abs().max(1.0))
+            .fold(0.0_f64, f64::max))
+    }
+
+    /// The fitted law of a contact on `race` at load `load` (N) and speed `n` (rad/s): d and ΔF
+    /// from their trends at the load and speed clamped into the validity range,
+    /// K = (Q − ΔF)/δ(Q, n)^d so that the law passes through the approach trend (K(Q) from its
+    /// own trend only if that anchor is not positive), fitted range δ at 0.8·Q and 1.2·Q (or just
+    /// above ΔF). Returns the law and whether the load was clamped.
+    pub fn law_at(
+        &self,
+        race: Race,
+        load: f64,
+        n: f64,
+    ) -> Result<(FittedLaw, bool), CharacterizeError> {
+        let t = self.model.race(race);
+        let [lo, hi] = t.load_range_n;
+        let qc = if load.is_nan() {
+            lo
+        } else {
+            load.clamp(lo, hi)
+        };
+        let clamped = !(load >= lo && load <= hi);
+        let [nlo, nhi] = t.speed_range_rad_s;
+        let nc = n.clamp(nlo, nhi);
+        let d = t.d.eval(qc, nc);
+        let df = t.delta_f.eval(qc, nc);
+        let k = t.k_at(qc, nc);
+        let q_lo = (0.8 * qc).max(df + 0.05 * qc);
+        let q_hi = (1.2 * qc).max(1.5 * q_lo);
+        let delta = |q: f64| ((q - df) / k).powf(1.0 / d);
+        let law = FittedLaw::new(k, d, df, delta(q_lo), delta(q_hi)).map_err(|e| {
+            CharacterizeError::Trend(format!(
+                "law from the trends at Q = {qc} N, n = {nc} rad/s ({race:?}): {e}"
+            ))
+        })?;
+        Ok((law, clamped))
+    }
+
+    /// The raceway laws at relative speed `n` (rad/s, clamped into the speed range).
+    fn speed_cache(&self, n: f64) -> Result<TrendSpeedCache, CharacterizeError> {
+        let mk = |k: usize, race: Race| -> Result<TrendLaw, CharacterizeError> {
+            let t = &self.races[k];
+            let [lo, hi] = t.load_range_n;
+            let [nlo, nhi] = t.speed_range_rad_s;
+            let nc = n.clamp(nlo, nhi);
+            Ok(TrendLaw {
+                race: self.races[k].clone(),
+                n: nc,
+                lo,
+                hi,
+                delta_lo: t.approach_at(lo, nc),
+                delta_hi: t.approach_at(hi, nc),
+                law_lo: self.law_at(race, lo, nc)?.0,
+                law_hi: self.law_at(race, hi, nc)?.0,
+                hint: f64::NAN,
+                tolerance: self.options.tolerance,
+                max_iterations: self.options.max_iterations,
+            })
+        };
+        Ok(TrendSpeedCache {
+            n,
+            races: [mk(0, Race::Inner)?, mk(1, Race::Outer)?],
+        })
+    }
+
+    /// Reactions and Jacobian at ring displacement `displacement` (x, y, z in m; θy, θz in rad)
+    /// and ring speeds (rad/s), with the flags of the validity range. Cold start; a rotor model
+    /// calls [`ForceElement::evaluate`] with a state instead.
+    pub fn evaluate(
+        &self,
+        displacement: &[f64; 5],
+        inner_speed: f64,
+        outer_speed: f64,
+    ) -> Result<TrendForce, crate::Error> {
+        let input = ElementInput::at(*displacement, inner_speed, outer_speed);
+        let mut state = ElementState::default();
+        let (out, residual) = self.evaluate_state(&input, &mut state)?;
+        let mut jacobian = out.stiffness;
+        let mut iterations = 1;
+        if let JacobianMode::CentralDifference { step_m, step_rad } = self.options.jacobian {
+            for k in 0..5 {
+                let h = if k < 3 { step_m } else { step_rad };
+                let mut plus = input;
+                let mut minus = input;
+                plus.displacement[k] += h;
+                minus.displacement[k] -= h;
+                let fp = self.evaluate_state(&plus, &mut state.clone())?.0.reaction;
+                let fm = self.evaluate_state(&minus, &mut state.clone())?.0.reaction;
+                for (row, (p, m)) in jacobian.iter_mut().zip(fp.iter().zip(&fm)) {
+                    row[k] = (p - m) / (2.0 * h);
+                }
+                iterations += 2;
+            }
+        }
+        Ok(TrendForce {
+            force: ForceResult {
+                reaction: out.reaction,
+                jacobian,
+            },
+            contact_loads: out.loads.clone(),
+            iterations,
+            converged: residual <= self.options.tolerance,
+            load_change: residual,
+            outside_validity: !out.outside_range.is_empty() || out.speed_outside,
+            contacts_outside: out.outside_range,
+            speed_outside: out.speed_outside,
+        })
+    }
+
+    /// One evaluation and the largest relative residual of its load inversions.
+    fn evaluate_state(
+        &self,
+        input: &ElementInput,
+        state: &mut ElementState,
+    ) -> Result<(ElementOutput, f64), crate::Error> {
+        let n = (input.inner_speed - input.outer_speed).abs();
+        if !n.is_finite() {
+            return Err(BearingError::invalid(
+                "inner_speed − outer_speed",
+                n,
+                "finite ring speeds in rad/s",
+            )
+            .into());
+        }
+        let stale = state.trend.as_ref().map_or(true, |c| c.n != n);
+        if stale {
+            state.trend = Some(self.speed_cache(n)?);
+        }
+        let z = self.bearing.geometry.ball_count;
+        let cache = state
+            .trend
+            .as_ref()
+            .ok_or_else(|| CharacterizeError::Trend("trend state missing".into()))?;
+        let mut inner: Vec<Arc<dyn ContactLaw>> = Vec::with_capacity(z);
+        let mut outer: Vec<Arc<dyn ContactLaw>> = Vec::with_capacity(z);
+        for j in 0..z {
+            let hint = |k: usize| state.loads.get(j).map_or(f64::NAN, |l| l[k]);
+            inner.push(Arc::new(TrendLaw {
+                hint: hint(0),
+                ..cache.races[0].clone()
+            }));
+            outer.push(Arc::new(TrendLaw {
+                hint: hint(1),
+                ..cache.races[1].clone()
+            }));
+        }
+        let laws = ContactLaws { inner, outer };
+        let races = [cache.races[0].clone(), cache.races[1].clone()];
+        prepare(state, &self.bearing, laws, self.model.race_control, input)?;
+        let f = solve(state, input)?;
+        let mut outside_range = Vec::new();
+        let mut residual = 0.0_f64;
+        for (j, (loads, delta)) in f.loads.iter().zip(&f.approaches).enumerate() {
+            for (k, race) in [Race::Inner, Race::Outer].into_iter().enumerate() {
+                let l = &races[k];
+                if loads[k] > 0.0 && !(loads[k] >= l.lo && loads[k] <= l.hi) {
+                    outside_range.push((j, race));
+                }
+                if delta[k] > l.delta_lo && delta[k] < l.delta_hi {
+                    residual = residual.max(l.invert(delta[k]).2);
+                }
+            }
+        }
+        let speed_outside = self.races.iter().any(|t| {
+            let [lo, hi] = t.speed_range_rad_s;
+            !(n >= lo * (1.0 - 1e-12) && n <= hi * (1.0 + 1e-12))
+        });
+        state.loads.clone_from(&f.loads);
+        Ok((
+            ElementOutput {
+                reaction: f.reaction,
+                stiffness: f.stiffness,
+                damping: f.damping,
+                loads: f.loads,
+                approaches: f.approaches,
+                outside_range,
+                speed_outside,
+            },
+            residual,
+        ))
+    }
+}
+
+impl ForceElement for TrendForceElement {
+    fn evaluate(
+        &self,
+        input: &ElementInput,
+        state: &mut ElementState,
+    ) -> Result<ElementOutput, crate::Error> {
+        Ok(self.evaluate_state(input, state)?.0)
+    }
+
+    fn ball_count(&self) -> usize {
+        self.bearing.geometry.ball_count
+    }
+
+    fn bearing(&self) -> &Bearing {
+        &self.bearing
+    }
+}

@@ -1,0 +1,126 @@
+//! The file-system [`PointStore`]: `DIR/points/<stem>.json` and `DIR/<output>`, every file
+//! written atomically (a temporary file in the same folder, synced, then renamed).
+
+use crate::study::{PointStore, StoreError};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// A study's output folder on disk.
+#[derive(Debug, Clone)]
+pub struct FsStore {
+    dir: PathBuf,
+}
+
+fn err(action: &str, path: &Path, e: impl ToString) -> StoreError {
+    StoreError {
+        action: action.into(),
+        location: path.display().to_string(),
+        message: e.to_string(),
+    }
+}
+
+/// Write `bytes` to `path` atomically: a temporary file in the same folder (named after the
+/// process, so concurrent writers never share one), synced, then renamed over `path`.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), StoreError> {
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .and_then(|n| n.to_str())
+        .ok_or_else(|| err("writing", path, "not a file name"))?;
+    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp).map_err(|e| err("creating", &tmp, e))?;
+        f.write_all(bytes).map_err(|e| err("writing", &tmp, e))?;
+        f.sync_all().map_err(|e| err("syncing", &tmp, e))?;
+        std::fs::rename(&tmp, path).map_err(|e| err("renaming into", path, e))
+    })();
+    if result.is_err() {
+        std::fs::remove_file(&tmp).ok();
+    }
+    result
+}
+
+impl FsStore {
+    /// The store in folder `dir`: creates `dir/points` if needed and removes temporary files
+    /// that an interrupted run of this process id could have left (other processes' temporaries
+    /// are left alone: they may be writing).
+    pub fn create(dir: &Path) -> Result<Self, StoreError> {
+        let points = dir.join("points");
+        if dir.exists() && !dir.is_dir() {
+            return Err(err(
+                "using",
+                dir,
+                "exists and is not a folder: give a folder for -o",
+            ));
+        }
+        std::fs::create_dir_all(&points).map_err(|e| err("creating", &points, e))?;
+        Ok(FsStore {
+            dir: dir.to_path_buf(),
+        })
+    }
+
+    /// Open an existing store (for merging and status); errors if `dir/points` is missing.
+    pub fn open(dir: &Path) -> Result<Self, StoreError> {
+        let points = dir.join("points");
+        if !points.is_dir() {
+            return Err(err(
+                "opening",
+                &points,
+                "no points folder: not the output folder of a study",
+            ));
+        }
+        Ok(FsStore {
+            dir: dir.to_path_buf(),
+        })
+    }
+
+    /// The folder.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// Path of the point file `stem`.
+    pub fn point_path(&self, stem: &str) -> PathBuf {
+        self.dir.join("points").join(format!("{stem}.json"))
+    }
+
+    /// Stems of the point files present (sorted).
+    pub fn stems(&self) -> Result<Vec<String>, StoreError> {
+        let points = self.dir.join("points");
+        let mut out = Vec::new();
+        for entry in std::fs::read_dir(&points).map_err(|e| err("reading", &points, e))? {
+            let entry = entry.map_err(|e| err("reading", &points, e))?;
+            let name = entry.file_name().to_string_lossy().to_string();
+            if let Some(stem) = name.strip_suffix(".json") {
+                if !name.starts_with('.') {
+                    out.push(stem.to_string());
+                }
+            }
+        }
+        out.sort();
+        Ok(out)
+    }
+}
+
+impl PointStore for FsStore {
+    fn load_point(&self, stem: &str) -> Result<Option<String>, StoreError> {
+        let path = self.point_path(stem);
+        match std::fs::read(&path) {
+            Ok(bytes) => Ok(Some(String::from_utf8_lossy(&bytes).into_owned())),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
+            Err(e) => Err(err("reading", &path, e)),
+        }
+    }
+
+    fn save_point(&self, stem: &str, text: &str) -> Result<(), StoreError> {
+        write_atomic(&self.point_path(stem), text.as_bytes())
+    }
+
+    fn write_output(&self, name: &str, bytes: &[u8]) -> Result<(), StoreError> {
+        write_atomic(&self.dir.join(name), bytes)
+    }
+
+    fn point_location(&self, stem: &str) -> String {
+        self.point_path(stem).display().to_string()
+    }
+}

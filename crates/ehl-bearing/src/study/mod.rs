@@ -1,0 +1,35 @@
+//! Load × speed studies of a bearing's fitted contact laws, and trend curves a rotor model can
+//! evaluate without any EHL run.
+//!
+//! - [`Study`]: a study file (TOML; see [`parse_study`]) — a case, inner-ring speeds, load scales,
+//!   the characterization [`Method`](crate::method::Method) and the loop settings; its points
+//!   ([`StudyPoint`]) and the fixed subsets that shards run ([`Shard`]).
+//! - [`run_study`]: run all points or one shard, resuming from a [`PointStore`] (the file-system
+//!   one is [`crate::io::FsStore`]); every finished point is one [`PointRecord`] written
+//!   atomically. [`merge_points`] gathers shards run in separate folders; [`finish_study`] builds
+//!   `results.csv`, `points.csv` and `trends.json` from the point files, identical for one run,
+//!   a resumed run or merged shards.
+//! - [`fit_trends`]: trend curves K(Q), d(Q), ΔF(Q, n) per raceway with fit quality and validity
+//!   range, as a [`TrendModel`] (JSON with [`TrendModel::to_json`] / [`TrendModel::from_json`]),
+//!   evaluated as a force element by [`crate::force_element::TrendForceElement`].
+//!
+//! The library prints nothing: progress goes through a callback ([`StudyEvent`]). Forms, fits
+//! and measured figures: `docs/study.md`.
+
+mod point;
+mod runner;
+mod spec;
+mod store;
+mod trends;
+
+pub use point::{
+    points_csv, results_csv, PointRecord, PointSpec, ResultRow, POINTS_CSV_HEADER,
+};
+pub use runner::{
+    finish_study, merge_points, run_point, run_study, RunOptions, StudyError, StudyEvent,
+    StudyOutputs, StudyRun,
+};
+pub use spec::{parse_study, read_study, Shard, Study, StudyPoint};
+pub use store::{MemoryStore, PointStore, StoreError};
+pub use trends::{fit_trends, RaceTrends, TrendBearing, TrendCurve, TrendModel, TREND_VERSION};
+pub use crate::force_element::{JacobianMode, TrendEvalOptions, TrendForce, TrendForceElement};

@@ -1,0 +1,177 @@
+//! Typed records of a study's points: what a point depends on ([`PointSpec`]), what a point file
+//! holds ([`PointRecord`]), and the tables built from them (`results.csv`: [`ResultRow`],
+//! [`results_csv`]; `points.csv`: [`points_csv`]).
+
+use crate::bearing::{Bearing, EquilibriumSettings, OperatingPoint};
+use crate::characterize::{CharacterizationReport, CharacterizeSettings, ContactRow};
+use crate::material::Lubricant;
+use crate::method::Method;
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+use std::f64::consts::PI;
+
+/// Everything a point's result depends on (SI). Written into the point file and compared on
+/// resume: a point file with a different spec is recomputed, never reused.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PointSpec {
+    /// Inner-ring speed, rpm.
+    pub inner_speed_rpm: f64,
+    /// Load scale (dimensionless).
+    pub load_scale: f64,
+    /// The method and its full settings.
+    pub method: Method,
+    /// Loop settings.
+    pub settings: CharacterizeSettings,
+    /// Bearing geometry and materials.
+    pub bearing: Bearing,
+    /// Lubricant.
+    pub lubricant: Lubricant,
+    /// Operating point of the point (speeds in rad/s, scaled loads).
+    pub operating: OperatingPoint,
+    /// Equilibrium solver settings.
+    pub equilibrium: EquilibriumSettings,
+}
+
+/// One point file (`points/<stem>.json`): the spec and either the characterization (without
+/// timings, so reproducible bit for bit) or the error that stopped it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointRecord {
+    /// What the point depends on.
+    pub spec: PointSpec,
+    /// The characterization, if it ran to the end (converged or not).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub result: Option<CharacterizationReport>,
+    /// Why the point failed (a load the bearing cannot carry, a diverged EHL solve, …).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+}
+
+impl PointRecord {
+    /// The point file's text: pretty JSON with a final newline.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).unwrap_or_default() + "\n"
+    }
+
+    /// Parse a point file.
+    pub fn from_json(text: &str) -> Result<Self, serde_json::Error> {
+        serde_json::from_str(text)
+    }
+
+    /// Whether the point's loop converged (false for a failed point).
+    pub fn converged(&self) -> bool {
+        self.result.as_ref().is_some_and(|r| r.converged)
+    }
+
+    /// The point's rows of `results.csv` (none for a failed point).
+    pub fn rows(&self) -> Vec<ResultRow> {
+        let Some(r) = &self.result else {
+            return Vec::new();
+        };
+        let rpm = self.spec.inner_speed_rpm;
+        r.contacts
+            .iter()
+            .map(|c| ResultRow {
+                speed_rpm: rpm,
+                inner_speed_rad_s: rpm * PI / 30.0,
+                load_scale: self.spec.load_scale,
+                point_converged: r.converged,
+                contact: c.clone(),
+            })
+            .collect()
+    }
+}
+
+/// A row of `results.csv`: the point and one contact.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ResultRow {
+    /// Inner-ring speed, rpm.
+    pub speed_rpm: f64,
+    /// Inner-ring speed, rad/s.
+    pub inner_speed_rad_s: f64,
+    /// Load scale.
+    pub load_scale: f64,
+    /// Whether the point's loop converged.
+    pub point_converged: bool,
+    /// The contact.
+    #[serde(flatten)]
+    pub contact: ContactRow,
+}
+
+fn csv_cell(v: &Value) -> String {
+    match v {
+        Value::Null => String::new(),
+        Value::String(s) => s.clone(),
+        other => other.to_string(),
+    }
+}
+
+/// Long-format CSV of `rows` (one line per point and contact; SI units in the column names;
+/// empty cell for an undefined value).
+pub fn results_csv(rows: &[ResultRow]) -> String {
+    let mut out = String::new();
+    let mut header = false;
+    for r in rows {
+        let Ok(Value::Object(m)) = serde_json::to_value(r) else {
+            continue;
+        };
+        if !header {
+            out.push_str(&m.keys().cloned().collect::<Vec<_>>().join(","));
+            out.push('\n');
+            header = true;
+        }
+        out.push_str(&m.values().map(csv_cell).collect::<Vec<_>>().join(","));
+        out.push('\n');
+    }
+    out
+}
+
+/// Columns of `points.csv` (SI units in the names).
+pub const POINTS_CSV_HEADER: &str = "speed_rpm,load_scale,converged,iterations,max_load_change,max_key_distance,max_load_offset,max_relative_residual,characterizations,x_m,y_m,z_m,theta_y_rad,theta_z_rad,dry_x_m,dry_y_m,dry_z_m,k_xx_n_m,k_yy_n_m,k_zz_n_m,dry_k_xx_n_m,dry_k_yy_n_m,dry_k_zz_n_m,trend_reaction_error";
+
+/// `points.csv`: one row per point (`error` in the converged column and empty cells for a failed
+/// point), with the trend force element's largest relative reaction error at that point in the
+/// last column (`trend_errors[i]`, empty where None).
+pub fn points_csv(records: &[PointRecord], trend_errors: &[Option<f64>]) -> String {
+    let mut out = String::from(POINTS_CSV_HEADER);
+    out.push('\n');
+    let num = |x: f64| Value::from(x).to_string();
+    for (i, p) in records.iter().enumerate() {
+        let mut cells = vec![num(p.spec.inner_speed_rpm), num(p.spec.load_scale)];
+        match &p.result {
+            None => {
+                cells.push("error".into());
+                cells.resize(24, String::new());
+            }
+            Some(r) => {
+                let q = r.displacement.to_array();
+                let dry = r.dry_displacement.to_array();
+                let characterizations: usize = r.history.iter().map(|h| h.characterized).sum();
+                cells.extend([
+                    r.converged.to_string(),
+                    r.iterations.to_string(),
+                    num(r.max_load_change),
+                    num(r.max_key_distance),
+                    num(r.max_load_offset),
+                    num(r.max_relative_residual),
+                    characterizations.to_string(),
+                ]);
+                cells.extend(q.iter().map(|&x| num(x)));
+                cells.extend(dry[..3].iter().map(|&x| num(x)));
+                cells.extend((0..3).map(|k| num(r.stiffness_ehl[k][k])));
+                cells.extend((0..3).map(|k| num(r.stiffness_dry[k][k])));
+                cells.push(
+                    trend_errors
+                        .get(i)
+                        .copied()
+                        .flatten()
+                        .map(num)
+                        .unwrap_or_default(),
+                );
+            }
+        }
+        out.push_str(&cells.join(","));
+        out.push('\n');
+    }
+    out
+}

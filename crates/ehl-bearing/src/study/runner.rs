@@ -1,0 +1,398 @@
+//! Running a study (all points or one shard), resuming it, and building its outputs from the
+//! stored point files ([`run_study`], [`finish_study`], [`merge_points`]).
+//!
+//! Every finished point is one file, written atomically as soon as it is done; a rerun skips
+//! every point whose file holds the same spec, so a study killed at any moment redoes only the
+//! points in flight. The outputs (`results.csv`, `points.csv`, `trends.json`) are built from the
+//! point files alone, in study order, so they are byte for byte the same whether the study ran
+//! in one go, was resumed, or ran as shards (in one folder or merged from several).
+
+use super::point::{points_csv, results_csv, PointRecord, ResultRow};
+use super::spec::{Shard, Study, StudyPoint};
+use super::store::{PointStore, StoreError};
+use super::trends::{fit_trends, TrendModel};
+use crate::characterize::{characterize_bearing_with_progress, CharacterizeError, Progress};
+use crate::force_element::TrendForceElement;
+use std::time::Instant;
+use thiserror::Error;
+
+/// Errors of running, merging and finishing a study.
+#[derive(Debug, Error)]
+pub enum StudyError {
+    /// Reading or writing the store failed.
+    #[error(transparent)]
+    Store(#[from] StoreError),
+    /// The store holds point files of a different study (another method, case or setting) under
+    /// this study's point names; nothing was computed or overwritten.
+    #[error("{count} point file(s) in the output hold results of a different study (first: {first}: {difference}); nothing was overwritten — use another output folder, or pass --overwrite to recompute them")]
+    ForeignPoints {
+        /// How many point files differ.
+        count: usize,
+        /// The first of them.
+        first: String,
+        /// What differs in it (the first differing part of the spec).
+        difference: String,
+    },
+    /// Building the outputs needs every point, and some are missing.
+    #[error("{missing} of {total} points are not finished (first missing: {first}); run the remaining shards first")]
+    Incomplete {
+        /// Points without a valid file.
+        missing: usize,
+        /// Points of the study.
+        total: usize,
+        /// The first missing point's file.
+        first: String,
+    },
+}
+
+/// Options of [`run_study`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunOptions {
+    /// Which points to run (default: all).
+    pub shard: Shard,
+    /// Recompute point files that hold a different spec instead of refusing (default false).
+    pub overwrite: bool,
+}
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        RunOptions {
+            shard: Shard::ALL,
+            overwrite: false,
+        }
+    }
+}
+
+/// Events of [`run_study`] for progress displays and logs (no effect on results).
+#[derive(Debug, Clone, PartialEq)]
+pub enum StudyEvent {
+    /// The plan: `to_compute` of the shard's `points` points will be computed, the others were
+    /// loaded; `redone` of those to compute had an unreadable (e.g. truncated) file.
+    Planned {
+        /// Points of the shard.
+        points: usize,
+        /// Points to compute.
+        to_compute: usize,
+        /// Unreadable point files that will be recomputed.
+        redone: usize,
+    },
+    /// A point starts.
+    PointStarted(StudyPoint),
+    /// The characterization loop of the current point progressed.
+    Loop(Progress),
+    /// A point finished and its file was written.
+    PointDone {
+        /// The point.
+        point: StudyPoint,
+        /// Whether its loop converged.
+        converged: bool,
+        /// Its error, if it failed.
+        error: Option<String>,
+        /// Wall-clock time, s.
+        seconds: f64,
+    },
+}
+
+/// What [`run_study`] did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StudyRun {
+    /// The shard that ran.
+    pub shard: Shard,
+    /// Points of the shard.
+    pub points: usize,
+    /// Points computed in this run.
+    pub computed: usize,
+    /// Points loaded from their files.
+    pub loaded: usize,
+    /// Points recomputed because their file was unreadable.
+    pub redone: usize,
+    /// Computed points whose loop did not converge (recorded with `converged: false`).
+    pub not_converged: usize,
+    /// Points that failed, with their errors (recorded in their files).
+    pub failed: Vec<(StudyPoint, String)>,
+    /// Wall-clock time, s.
+    pub seconds: f64,
+}
+
+/// State of one point in the store.
+enum Stored {
+    /// A file with this study's spec.
+    Done(Box<PointRecord>),
+    /// No file.
+    Missing,
+    /// A file that does not parse (e.g. truncated by a crash).
+    Unreadable,
+    /// A file of a different study; the string says what differs.
+    Foreign(String),
+}
+
+fn stored(study: &Study, store: &dyn PointStore, p: &StudyPoint) -> Result<Stored, StoreError> {
+    let Some(text) = store.load_point(&p.file_stem())? else {
+        return Ok(Stored::Missing);
+    };
+    let Ok(record) = PointRecord::from_json(&text) else {
+        return Ok(Stored::Unreadable);
+    };
+    let spec = study.point_spec(p);
+    if record.spec == spec {
+        return Ok(Stored::Done(Box::new(record)));
+    }
+    Ok(Stored::Foreign(spec_difference(&record, &spec)))
+}
+
+/// The first top-level part of the spec that differs, in words.
+fn spec_difference(record: &PointRecord, spec: &super::point::PointSpec) -> String {
+    let a = serde_json::to_value(&record.spec).unwrap_or_default();
+    let b = serde_json::to_value(spec).unwrap_or_default();
+    if let (Some(a), Some(b)) = (a.as_object(), b.as_object()) {
+        for (k, va) in a {
+            if b.get(k) != Some(va) {
+                let short = |v: Option<&serde_json::Value>| {
+                    let s = v.map(|v| v.to_string()).unwrap_or_else(|| "absent".into());
+                    if s.len() > 80 {
+                        format!("{}…", &s[..s.floor_char_boundary_compat(80)])
+                    } else {
+                        s
+                    }
+                };
+                return format!("{k} is {} there, {} here", short(Some(va)), short(b.get(k)));
+            }
+        }
+    }
+    "the spec differs".into()
+}
+
+trait FloorCharBoundary {
+    fn floor_char_boundary_compat(&self, i: usize) -> usize;
+}
+
+impl FloorCharBoundary for str {
+    fn floor_char_boundary_compat(&self, mut i: usize) -> usize {
+        i = i.min(self.len());
+        while !self.is_char_boundary(i) {
+            i -= 1;
+        }
+        i
+    }
+}
+
+/// Run the points of `options.shard` of `study` that are not finished in `store`, writing each
+/// point's file as soon as it is done.
+///
+/// Before any work, every existing point file of the shard is checked: a file with this study's
+/// spec is kept, an unreadable one (truncated by a crash) is recomputed, and a file of a
+/// different study is an error ([`StudyError::ForeignPoints`]) unless `options.overwrite`. A
+/// point that fails (e.g. a load the bearing cannot carry) is recorded with its error and the run
+/// goes on; the failures are listed in the returned [`StudyRun`]. Contacts within a point run in
+/// parallel on the current rayon pool; results do not depend on the number of threads.
+pub fn run_study(
+    study: &Study,
+    store: &dyn PointStore,
+    options: &RunOptions,
+    events: &(dyn Fn(StudyEvent) + Sync),
+) -> Result<StudyRun, StudyError> {
+    let t0 = Instant::now();
+    let points = study.shard_points(options.shard);
+    // Plan: look at every point file first, so that a foreign folder is refused before any work.
+    let mut todo = Vec::new();
+    let (mut loaded, mut redone) = (0, 0);
+    let mut foreign: Vec<(String, String)> = Vec::new();
+    for p in &points {
+        match stored(study, store, p)? {
+            Stored::Done(_) => loaded += 1,
+            Stored::Missing => todo.push(*p),
+            Stored::Unreadable => {
+                redone += 1;
+                todo.push(*p);
+            }
+            Stored::Foreign(why) => {
+                foreign.push((store.point_location(&p.file_stem()), why));
+                todo.push(*p);
+            }
+        }
+    }
+    if !foreign.is_empty() && !options.overwrite {
+        return Err(StudyError::ForeignPoints {
+            count: foreign.len(),
+            first: foreign[0].0.clone(),
+            difference: foreign[0].1.clone(),
+        });
+    }
+    events(StudyEvent::Planned {
+        points: points.len(),
+        to_compute: todo.len(),
+        redone,
+    });
+    let mut run = StudyRun {
+        shard: options.shard,
+        points: points.len(),
+        computed: 0,
+        loaded,
+        redone,
+        not_converged: 0,
+        failed: Vec::new(),
+        seconds: 0.0,
+    };
+    for p in todo {
+        events(StudyEvent::PointStarted(p));
+        let tp = Instant::now();
+        let record = run_point(study, &p, &|e| events(StudyEvent::Loop(e)));
+        store.save_point(&p.file_stem(), &record.to_json())?;
+        run.computed += 1;
+        if let Some(e) = &record.error {
+            run.failed.push((p, e.clone()));
+        } else if !record.converged() {
+            run.not_converged += 1;
+        }
+        events(StudyEvent::PointDone {
+            point: p,
+            converged: record.converged(),
+            error: record.error.clone(),
+            seconds: tp.elapsed().as_secs_f64(),
+        });
+    }
+    run.seconds = t0.elapsed().as_secs_f64();
+    Ok(run)
+}
+
+/// Characterize one point: its [`PointRecord`], reproducible bit for bit (no timings). A point
+/// whose characterization fails is a record with the error, not an `Err`.
+pub fn run_point(
+    study: &Study,
+    p: &StudyPoint,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> PointRecord {
+    let spec = study.point_spec(p);
+    match characterize_bearing_with_progress(
+        &study.point_case(p),
+        &study.method,
+        &study.settings,
+        progress,
+    ) {
+        Ok(c) => PointRecord {
+            spec,
+            result: Some(c.report(false)),
+            error: None,
+        },
+        Err(e) => PointRecord {
+            spec,
+            result: None,
+            error: Some(e.to_string()),
+        },
+    }
+}
+
+/// The outputs of a study, built from its point files.
+#[derive(Debug, Clone)]
+pub struct StudyOutputs {
+    /// Every point's record, in study order.
+    pub records: Vec<PointRecord>,
+    /// The rows of `results.csv` (points that did not fail).
+    pub rows: Vec<ResultRow>,
+    /// The trend model, or why it could not be fitted.
+    pub trends: Result<TrendModel, String>,
+    /// Per point, the trend force element's largest relative reaction error against the point's
+    /// own equilibrium (None where there is no trend model or the point failed).
+    pub trend_errors: Vec<Option<f64>>,
+    /// Failed points: (point, error).
+    pub failed: Vec<(StudyPoint, String)>,
+}
+
+impl StudyOutputs {
+    /// Points whose loop did not converge (failed points not counted).
+    pub fn not_converged(&self) -> usize {
+        self.records
+            .iter()
+            .filter(|r| r.result.as_ref().is_some_and(|x| !x.converged))
+            .count()
+    }
+
+    /// Largest trend reaction error over the points (0 if none).
+    pub fn worst_trend_error(&self) -> f64 {
+        self.trend_errors.iter().flatten().fold(0.0, |m, &x| m.max(x))
+    }
+}
+
+/// Read every point of `study` from `store` (all must be finished, with this study's spec), fit
+/// the trend curves, and write `results.csv`, `points.csv` and (if the trends could be fitted)
+/// `trends.json` into the store. The files depend on the point files only.
+pub fn finish_study(study: &Study, store: &dyn PointStore) -> Result<StudyOutputs, StudyError> {
+    let points = study.points();
+    let mut records = Vec::with_capacity(points.len());
+    let mut missing = Vec::new();
+    for p in &points {
+        match stored(study, store, p)? {
+            Stored::Done(r) => records.push(*r),
+            _ => missing.push(store.point_location(&p.file_stem())),
+        }
+    }
+    if !missing.is_empty() {
+        return Err(StudyError::Incomplete {
+            missing: missing.len(),
+            total: points.len(),
+            first: missing[0].clone(),
+        });
+    }
+    let rows: Vec<ResultRow> = records.iter().flat_map(|r| r.rows()).collect();
+    let failed: Vec<(StudyPoint, String)> = points
+        .iter()
+        .zip(&records)
+        .filter_map(|(p, r)| r.error.clone().map(|e| (*p, e)))
+        .collect();
+    store.write_output("results.csv", results_csv(&rows).as_bytes())?;
+    let trends = fit_trends(study, &rows).map_err(|e: CharacterizeError| e.to_string());
+    let mut trend_errors = vec![None; records.len()];
+    if let Ok(model) = &trends {
+        store.write_output("trends.json", (model.to_json() + "\n").as_bytes())?;
+        if let Ok(element) = TrendForceElement::new(model.clone()) {
+            for (i, r) in records.iter().enumerate() {
+                if r.result.is_some() {
+                    trend_errors[i] = element.reaction_error(r).ok();
+                }
+            }
+        }
+    }
+    store.write_output("points.csv", points_csv(&records, &trend_errors).as_bytes())?;
+    Ok(StudyOutputs {
+        records,
+        rows,
+        trends,
+        trend_errors,
+        failed,
+    })
+}
+
+/// Copy into `target` every point file of `study` found in `sources` (the output folders of
+/// shards run apart) whose spec is this study's; a point already in `target` with this spec is
+/// kept. Returns the number of point files copied. Files of other studies are not copied
+/// (a source holding one is an error, as in [`run_study`]).
+pub fn merge_points(
+    study: &Study,
+    target: &dyn PointStore,
+    sources: &[&dyn PointStore],
+) -> Result<usize, StudyError> {
+    let mut copied = 0;
+    for p in &study.points() {
+        if let Stored::Done(_) = stored(study, target, p)? {
+            continue;
+        }
+        for src in sources {
+            match stored(study, *src, p)? {
+                Stored::Done(r) => {
+                    target.save_point(&p.file_stem(), &r.to_json())?;
+                    copied += 1;
+                    break;
+                }
+                Stored::Foreign(why) => {
+                    return Err(StudyError::ForeignPoints {
+                        count: 1,
+                        first: src.point_location(&p.file_stem()),
+                        difference: why,
+                    })
+                }
+                Stored::Missing | Stored::Unreadable => {}
+            }
+        }
+    }
+    Ok(copied)
+}
