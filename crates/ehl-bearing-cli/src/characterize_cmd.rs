@@ -6,8 +6,8 @@ use ehl_bearing::characterize::{
     characterization_json, characterize_bearing_with_progress, BearingCharacterization,
     CharacterizeSettings, ContactRow, Progress,
 };
-use ehl_bearing::method::Method;
 use ehl_bearing::io::{read_case, Case};
+use ehl_bearing::method::Method;
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::Value;
 use std::io::IsTerminal;

@@ -2,10 +2,7 @@
 //! characterize one lubricated contact by the law Q = K·δ^d + ΔF.
 
 use anyhow::{bail, Context, Result};
-use ehl_bearing::contact::{
-    characterize_harmonic, characterize_quasi_static, ContactFit, ExcitationFrequency,
-    HarmonicSettings, QuasiStaticSettings,
-};
+use ehl_bearing::contact::{characterize_harmonic, characterize_quasi_static, ContactFit};
 use ehl_bearing::ehl;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -298,43 +295,54 @@ fn history_csv(f: &ContactFit) -> String {
     csv
 }
 
-fn harmonic_settings(
-    args: &ContactArgs,
-    file_mass: Option<f64>,
-) -> Result<(HarmonicSettings, f64)> {
-    let mut s = HarmonicSettings::default();
-    if let Some(a) = args.amplitude {
-        s.amplitude = a;
-    }
-    if let Some(g) = args.grid {
-        s.ehl.grid = g;
-    }
-    if let Some(f) = args.frequency_fraction {
-        s.frequency = ExcitationFrequency::FractionOfNatural(f);
-    }
-    if let Some(w) = args.frequency_rad_s {
-        s.frequency = ExcitationFrequency::RadPerSecond(w);
-    }
-    if let Some(n) = args.settling_periods {
-        s.settling_periods = n;
-    }
-    if let Some(n) = args.recorded_periods {
-        s.recorded_periods = n;
-    }
-    if let Some(n) = args.steps_per_period {
-        s.steps_per_period = n;
-    }
-    s.damping_term = !args.no_damping_term;
-    s.mass = args.mass_kg;
-    let mass = match (args.mass_kg, file_mass) {
-        (Some(m), _) | (None, Some(m)) => m,
-        (None, None) => bail!(
-            "the harmonic method needs the ball's mass: give ball_mass_kg or ball_diameter_mm in \
-             {}, or --mass-kg",
-            args.contact.display()
-        ),
+/// The method of the command line's options, through the library's one parser and validation
+/// (`Method::parse`); errors name the option as a flag.
+fn method_of(args: &ContactArgs) -> Result<ehl_bearing::method::Method> {
+    let mut t = toml::Table::new();
+    let mut put = |k: &str, v: Option<toml::Value>| {
+        if let Some(v) = v {
+            t.insert(k.to_string(), v);
+        }
     };
-    Ok((s, mass))
+    let int = |n: Option<usize>| n.map(|n| toml::Value::Integer(n.min(i64::MAX as usize) as i64));
+    put("amplitude", args.amplitude.map(toml::Value::Float));
+    put("grid", int(args.grid));
+    let name = match args.method {
+        Method::QuasiStatic => {
+            put("points", int(args.points));
+            "quasi-static"
+        }
+        Method::Harmonic => {
+            put(
+                "frequency_fraction",
+                args.frequency_fraction.map(toml::Value::Float),
+            );
+            put(
+                "frequency_rad_s",
+                args.frequency_rad_s.map(toml::Value::Float),
+            );
+            put("settling_periods", int(args.settling_periods));
+            put("recorded_periods", int(args.recorded_periods));
+            put("steps_per_period", int(args.steps_per_period));
+            put("mass_kg", args.mass_kg.map(toml::Value::Float));
+            put(
+                "damping_term",
+                args.no_damping_term.then_some(toml::Value::Boolean(false)),
+            );
+            "harmonic"
+        }
+    };
+    let keys: Vec<String> = t.keys().cloned().collect();
+    ehl_bearing::method::Method::parse(name, Some(&t)).map_err(|e| {
+        let mut msg = e.to_string();
+        for k in &keys {
+            msg = msg.replace(
+                &format!("method_options.{k}"),
+                &format!("--{}", k.replace('_', "-")),
+            );
+        }
+        anyhow::anyhow!(msg)
+    })
 }
 
 /// Run `contact`.
@@ -344,13 +352,12 @@ pub fn run(args: &ContactArgs) -> Result<()> {
     let file = ehl::input::parse_contact_file(&text)
         .with_context(|| format!("in {}", args.contact.display()))?;
     let c = file.contact;
-    let fit = match args.method {
+    let method = match args.method {
         Method::Harmonic => {
             if args.points.is_some() {
                 bail!("--points applies to the quasi-static method only");
             }
-            let (s, mass) = harmonic_settings(args, file.ball_mass)?;
-            characterize_harmonic(&c, mass, &s)?
+            method_of(args)?
         }
         Method::QuasiStatic => {
             let harmonic_only = args.frequency_fraction.is_some()
@@ -366,18 +373,23 @@ pub fn run(args: &ContactArgs) -> Result<()> {
                      --no-damping-term apply to --method harmonic only"
                 );
             }
-            let mut s = QuasiStaticSettings::default();
-            if let Some(a) = args.amplitude {
-                s.amplitude = a;
-            }
-            if let Some(p) = args.points {
-                s.points = p;
-            }
-            if let Some(g) = args.grid {
-                s.ehl.grid = g;
-            }
-            characterize_quasi_static(&c, &s)?
+            method_of(args)?
         }
+    };
+    let fit = match method {
+        ehl_bearing::method::Method::Harmonic(s) => {
+            let mass = match (s.mass, file.ball_mass) {
+                (Some(m), _) | (None, Some(m)) => m,
+                (None, None) => bail!(
+                    "the harmonic method needs the ball's mass: give ball_mass_kg or \
+                     ball_diameter_mm in {}, or --mass-kg",
+                    args.contact.display()
+                ),
+            };
+            characterize_harmonic(&c, mass, &s)?
+        }
+        ehl_bearing::method::Method::QuasiStatic(s) => characterize_quasi_static(&c, &s)?,
+        other => bail!("method {other} does not characterize a single contact"),
     };
     if let Some(dir) = &args.output {
         std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;

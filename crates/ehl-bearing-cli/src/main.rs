@@ -1,6 +1,7 @@
 //! `ehl-bearing` command line: thin layer over the `ehl-bearing` library.
 
 mod characterize_cmd;
+mod coefficients_cmd;
 mod contact_cmd;
 mod ehl_cmd;
 mod equilibrium_cmd;
@@ -31,6 +32,8 @@ enum Command {
     Ehl(ehl_cmd::EhlArgs),
     /// Characterize one lubricated contact: fit Q = K·δ^d + ΔF to EHL solutions.
     Contact(contact_cmd::ContactArgs),
+    /// Linearized 5×5 stiffness and damping of the lubricated bearing over speed (JSON, CSV, ROSS table).
+    Coefficients(coefficients_cmd::CoefficientsArgs),
 }
 
 fn main() -> ExitCode {
@@ -41,6 +44,7 @@ fn main() -> ExitCode {
         Command::Study(a) => study_cmd::run(a),
         Command::Ehl(a) => ehl_cmd::run(a),
         Command::Contact(a) => contact_cmd::run(a),
+        Command::Coefficients(a) => coefficients_cmd::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -33,11 +33,13 @@ fn killed_study_resumes_to_identical_files() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert!(String::from_utf8_lossy(&out.stdout).contains("6 computed, 0 loaded"));
-    // Piped: no progress bar on stderr.
+    // Piped: no progress bar on stderr, one log line per finished point instead.
+    let log = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(log.lines().count(), 6, "{log}");
     assert!(
-        out.stderr.is_empty(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+        log.lines()
+            .all(|l| l.starts_with("point ") && l.contains("converged")),
+        "{log}"
     );
 
     // Interrupted run: each point waits 400 ms before it is computed, so the kill lands while a
@@ -109,7 +111,7 @@ fn killed_study_resumes_to_identical_files() {
 }
 
 #[test]
-fn point_files_with_another_spec_are_recomputed() {
+fn point_files_of_another_study_are_refused_or_recomputed_on_request() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("out");
     let a = study_file(
@@ -119,16 +121,20 @@ fn point_files_with_another_spec_are_recomputed() {
         "[0.5, 1.0, 2.0]",
         "[method_options]\nsamples = 9\n",
     );
-    let run = |s: &std::path::Path| {
-        let o = bin()
+    let run = |s: &std::path::Path, extra: &[&str]| {
+        bin()
             .args(["study", s.to_str().unwrap(), "-o", out.to_str().unwrap()])
+            .args(extra)
             .output()
-            .unwrap();
+            .unwrap()
+    };
+    let ok = |o: std::process::Output| {
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         String::from_utf8_lossy(&o.stdout).to_string()
     };
-    assert!(run(&a).contains("3 computed, 0 loaded"));
-    assert!(run(&a).contains("0 computed, 3 loaded"));
+    assert!(ok(run(&a, &[])).contains("3 computed, 0 loaded"));
+    assert!(ok(run(&a, &[])).contains("0 computed, 3 loaded"));
+    let before = tree(&out);
     let b = study_file(
         tmp.path(),
         "hertz",
@@ -136,5 +142,16 @@ fn point_files_with_another_spec_are_recomputed() {
         "[0.5, 1.0, 2.0]",
         "[method_options]\nsamples = 11\n",
     );
-    assert!(run(&b).contains("3 computed, 0 loaded"));
+    // Another study's points are not overwritten: refused before any work, naming the file and
+    // what differs.
+    let o = run(&b, &[]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("different study") && err.contains("samples") && err.contains("--overwrite"),
+        "{err}"
+    );
+    assert_eq!(tree(&out), before);
+    // On request they are recomputed.
+    assert!(ok(run(&b, &["--overwrite"])).contains("3 computed, 0 loaded"));
 }

@@ -115,7 +115,6 @@ impl CharacterizeError {
     }
 }
 
-
 /// Settings of [`characterize_bearing`].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -17,8 +17,8 @@
 //! (m, rad, m/s, rad/s, N, N·m, N/m, N·s/m). The reaction is the load on the inner ring in
 //! equilibrium with the balls: the bearing acts on the shaft with the opposite.
 
-use crate::bearing::{BearingError, BearingModel, ContactLaws, DynamicForce, Race, RaceControl};
 use crate::bearing::{Bearing, ForceResult};
+use crate::bearing::{BearingError, BearingModel, ContactLaws, DynamicForce, Race, RaceControl};
 use crate::characterize::{BearingCharacterization, CharacterizationReport, CharacterizeError};
 use crate::contact_law::ContactLaw;
 use crate::fit::FittedLaw;

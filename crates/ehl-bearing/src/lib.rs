@@ -2,8 +2,11 @@
 //!
 //! Lubricated contacts of angular-contact ball bearings: a quasi-static 5-DOF bearing model
 //! ([`bearing`]), Hertz elliptical contacts ([`hertz`]), an elastohydrodynamic point-contact solver
-//! ([`ehl`]), a Levenberg–Marquardt fit of the nonlinear contact law Q = K·δ^d + ΔF ([`fit`]), and
-//! case files ([`io`]).
+//! ([`ehl`]), a Levenberg–Marquardt fit of the nonlinear contact law Q = K·δ^d + ΔF ([`fit`]), the
+//! characterization methods ([`method`]) and the coupled loop ([`characterize`]), load × speed
+//! studies ([`study`]), the bearing as a force element for rotor simulations ([`force_element`])
+//! and its linearized coefficients over speed ([`coefficients`]), and case files ([`io`]).
+//! [`prelude`] has what a typical program needs.
 //!
 //! Units: SI everywhere inside the library (m, N, Pa, Pa·s, s, rad, rad/s). Conversions to
 //! engineering units happen only at the edges (case files and human-readable tables).
@@ -11,6 +14,7 @@
 
 pub mod bearing;
 pub mod characterize;
+pub mod coefficients;
 pub mod contact;
 pub mod contact_law;
 pub mod ehl;
@@ -25,3 +29,23 @@ pub mod study;
 
 pub use contact_law::{ContactLaw, HertzLaw};
 pub use error::{Error, Result};
+
+/// What a program that characterizes a bearing and uses it in a rotor model needs, in one import.
+pub mod prelude {
+    pub use crate::bearing::{Bearing, RaceControl};
+    pub use crate::characterize::{
+        characterize_bearing, BearingCharacterization, CharacterizeSettings,
+    };
+    pub use crate::coefficients::SpeedCoefficients;
+    pub use crate::force_element::{
+        ElementInput, ElementOutput, ElementState, ForceElement, LawElement, TrendForceElement,
+    };
+    pub use crate::io::{read_case, Case, FsStore};
+    pub use crate::method::Method;
+    pub use crate::study::{finish_study, read_study, run_study, RunOptions, Shard, Study};
+}
+
+// The README's Rust code blocks are compiled as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+struct ReadmeDoctests;

@@ -18,12 +18,12 @@
 //! This module sits below the loop: it uses the single-contact methods of [`crate::contact`] and
 //! is used by [`crate::characterize`] and [`crate::study`], never the other way round.
 
+use crate::bearing::Race;
 use crate::contact::{characterize_harmonic, HarmonicSettings, QuasiStaticSettings};
 use crate::contact_law::ContactLaw;
 use crate::ehl::{solve_steady, EhlContact, EhlSettings};
 use crate::fit::{fit_power_law, FitOptions, FittedLaw};
 use crate::hertz::HertzGeometry;
-use crate::bearing::Race;
 use crate::material::Lubricant;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
@@ -345,9 +345,7 @@ fn sample_loads(w0: f64, samples: usize, amplitude: f64) -> Vec<f64> {
 
 fn check_sampling(samples: usize, amplitude: f64) -> Result<(), crate::Error> {
     if !(4..=10_000).contains(&samples) {
-        return Err(
-            MethodError::setting("samples", samples, "an integer from 4 to 10000").into(),
-        );
+        return Err(MethodError::setting("samples", samples, "an integer from 4 to 10000").into());
     }
     if !(amplitude.is_finite() && amplitude > 0.0 && amplitude < 1.0) {
         return Err(MethodError::setting(
@@ -618,10 +616,7 @@ pub struct HarmonicCharacterizer {
 }
 
 impl ContactCharacterizer for HarmonicCharacterizer {
-    fn characterize(
-        &self,
-        c: &ContactConditions,
-    ) -> Result<CharacterizedContact, crate::Error> {
+    fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error> {
         use crate::ContactLaw;
         // The contact and the mass are validated by characterize_harmonic (EHL input checks).
         let fit = characterize_harmonic(&c.ehl_contact(), c.ball_mass, &self.settings)?;
@@ -656,10 +651,7 @@ impl ContactCharacterizer for HarmonicCharacterizer {
 impl LoadPredictor for HarmonicCharacterizer {
     /// The steady predictor of the quasi-static method
     /// ([`predict_steady`](predict_steady)) with this method's grid and domain.
-    fn predict(
-        &self,
-        c: &ContactConditions,
-    ) -> Result<PredictedLaw, crate::Error> {
+    fn predict(&self, c: &ContactConditions) -> Result<PredictedLaw, crate::Error> {
         predict_steady(c, &self.settings.ehl)
     }
 }
@@ -987,7 +979,6 @@ impl Method {
             _ => None,
         }
     }
-
 }
 
 impl ContactCharacterizer for Method {

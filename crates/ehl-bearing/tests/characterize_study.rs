@@ -20,7 +20,12 @@ fn study(extra: &str) -> Result<Study, InputError> {
     parse_study(&text, "test.toml", examples())
 }
 
-fn synthetic_study() -> (Study, SyntheticCharacterizer, Vec<PointRecord>, Vec<ResultRow>) {
+fn synthetic_study() -> (
+    Study,
+    SyntheticCharacterizer,
+    Vec<PointRecord>,
+    Vec<ResultRow>,
+) {
     let s =
         study("inner_speeds_rpm = [3000, 4000, 5000]\nload_scales = [0.5, 1.0, 2.0]\n").unwrap();
     let ch = SyntheticCharacterizer::default();

@@ -60,10 +60,7 @@ fn element(case: &Case, c: f64) -> LawElement {
 
 /// Central differences of the reactions in q (steps 1 nm, 1 µrad) and in q̇ (steps 1 µm/s,
 /// 1 mrad/s).
-fn differences(
-    e: &dyn ForceElement,
-    input: &ElementInput,
-) -> ([[f64; 5]; 5], [[f64; 5]; 5]) {
+fn differences(e: &dyn ForceElement, input: &ElementInput) -> ([[f64; 5]; 5], [[f64; 5]; 5]) {
     let mut k = [[0.0; 5]; 5];
     let mut c = [[0.0; 5]; 5];
     for n in 0..5 {
@@ -211,9 +208,7 @@ fn reactions_with_rates_add_c_times_rates() {
     input.velocity = [2e-4, -1e-4, 3e-4, 5e-3, -2e-3];
     let moving = e.evaluate(&input, &mut ElementState::default()).unwrap();
     for r in 0..5 {
-        let cv: f64 = (0..5)
-            .map(|n| rest.damping[r][n] * input.velocity[n])
-            .sum();
+        let cv: f64 = (0..5).map(|n| rest.damping[r][n] * input.velocity[n]).sum();
         let got = moving.reaction[r] - rest.reaction[r];
         assert!(
             (got - cv).abs() <= 1e-9 * rest.reaction[0].abs(),
@@ -246,7 +241,11 @@ fn fitted_element_reproduces_its_characterization_equilibrium() {
         let Control::Load(f) = case.operating.dofs[k] else {
             panic!()
         };
-        assert!((out.reaction[k] - f).abs() < 1e-6 * f, "{k}: {}", out.reaction[k]);
+        assert!(
+            (out.reaction[k] - f).abs() < 1e-6 * f,
+            "{k}: {}",
+            out.reaction[k]
+        );
     }
     assert!(matrix_error(&out.stiffness, &c.equilibrium.stiffness) < 1e-9);
     // The same laws read back from the report (what a point file or characterization.json holds).
@@ -337,7 +336,9 @@ fn radially_loaded_bearing_reactions_vary_at_ball_pass_frequency() {
     // The variation is real: peak-to-peak well above round-off.
     let (lo, hi) = fy
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &f| (a.min(f), b.max(f)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &f| {
+            (a.min(f), b.max(f))
+        });
     assert!(hi - lo > 1e-4 * hi.abs(), "{lo} {hi}");
 }
 

@@ -20,8 +20,8 @@ fn seed_characterization_matches_the_golden_laws_and_displacements() {
     )
     .unwrap();
     let case = read_case(&root.join("../../examples/7006.toml")).unwrap();
-    let c = characterize_bearing(&case, &Method::default(), &CharacterizeSettings::default())
-        .unwrap();
+    let c =
+        characterize_bearing(&case, &Method::default(), &CharacterizeSettings::default()).unwrap();
     let report = serde_json::to_value(c.report(false)).unwrap();
     assert_eq!(report["iterations"], golden["iterations"]);
     for key in ["displacement", "dry_displacement", "stiffness_ehl"] {

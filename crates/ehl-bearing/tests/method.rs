@@ -20,8 +20,12 @@ fn names_defaults_and_options() {
         m.validate().unwrap();
     }
     // The test fixture is accepted by name but not listed.
-    assert_eq!(Method::parse("synthetic", None).unwrap().name(), "synthetic");
-    let Method::QuasiStatic(q) = parse("quasi-static", "amplitude = 0.1\npoints = 9\ngrid = 257").unwrap()
+    assert_eq!(
+        Method::parse("synthetic", None).unwrap().name(),
+        "synthetic"
+    );
+    let Method::QuasiStatic(q) =
+        parse("quasi-static", "amplitude = 0.1\npoints = 9\ngrid = 257").unwrap()
     else {
         panic!()
     };
@@ -42,16 +46,76 @@ fn names_defaults_and_options() {
 #[test]
 fn errors_name_the_key_the_value_and_the_range() {
     let cases = [
-        ("quasi-static", "grid = 100", "method_options.grid", "100", "2^k + 1 from 17 to 1025"),
-        ("quasi-static", "grid = 2049", "method_options.grid", "2049", "17 to 1025"),
-        ("quasi-static", "amplitude = 0.95", "method_options.amplitude", "0.95", "≤ 0.9"),
-        ("quasi-static", "points = 3", "method_options.points", "3", "4 to 101"),
-        ("harmonic", "amplitude = 1.0", "method_options.amplitude", "1", "≤ 0.9"),
-        ("harmonic", "steps_per_period = 4", "method_options.steps_per_period", "4", "8 to 4096"),
-        ("harmonic", "frequency_fraction = 0.0", "method_options.frequency_fraction", "0", "≤ 10"),
-        ("harmonic", "mass_kg = -1.0", "method_options.mass_kg", "-1", "> 0"),
-        ("hertz", "samples = 2", "method_options.samples", "2", "4 to 10000"),
-        ("hertz", "amplitude = 1.0", "method_options.amplitude", "1", "< 1"),
+        (
+            "quasi-static",
+            "grid = 100",
+            "method_options.grid",
+            "100",
+            "2^k + 1 from 17 to 1025",
+        ),
+        (
+            "quasi-static",
+            "grid = 2049",
+            "method_options.grid",
+            "2049",
+            "17 to 1025",
+        ),
+        (
+            "quasi-static",
+            "amplitude = 0.95",
+            "method_options.amplitude",
+            "0.95",
+            "≤ 0.9",
+        ),
+        (
+            "quasi-static",
+            "points = 3",
+            "method_options.points",
+            "3",
+            "4 to 101",
+        ),
+        (
+            "harmonic",
+            "amplitude = 1.0",
+            "method_options.amplitude",
+            "1",
+            "≤ 0.9",
+        ),
+        (
+            "harmonic",
+            "steps_per_period = 4",
+            "method_options.steps_per_period",
+            "4",
+            "8 to 4096",
+        ),
+        (
+            "harmonic",
+            "frequency_fraction = 0.0",
+            "method_options.frequency_fraction",
+            "0",
+            "≤ 10",
+        ),
+        (
+            "harmonic",
+            "mass_kg = -1.0",
+            "method_options.mass_kg",
+            "-1",
+            "> 0",
+        ),
+        (
+            "hertz",
+            "samples = 2",
+            "method_options.samples",
+            "2",
+            "4 to 10000",
+        ),
+        (
+            "hertz",
+            "amplitude = 1.0",
+            "method_options.amplitude",
+            "1",
+            "< 1",
+        ),
     ];
     for (name, opts, key, value, range) in cases {
         let e = parse(name, opts).unwrap_err().to_string();
@@ -64,14 +128,25 @@ fn errors_name_the_key_the_value_and_the_range() {
     assert!(e.contains("gird"), "{e}");
     let e = parse("hertz", "grid = 129").unwrap_err().to_string();
     assert!(e.contains("grid"), "hertz has no grid: {e}");
-    let e = parse("quasi-static", "grid = \"fine\"").unwrap_err().to_string();
-    assert!(e.contains("method_options.grid") && e.contains("fine"), "{e}");
-    let e = parse("harmonic", "frequency_fraction = 0.1\nfrequency_rad_s = 100.0")
+    let e = parse("quasi-static", "grid = \"fine\"")
         .unwrap_err()
         .to_string();
+    assert!(
+        e.contains("method_options.grid") && e.contains("fine"),
+        "{e}"
+    );
+    let e = parse(
+        "harmonic",
+        "frequency_fraction = 0.1\nfrequency_rad_s = 100.0",
+    )
+    .unwrap_err()
+    .to_string();
     assert!(e.contains("not both"), "{e}");
     let e = Method::parse("magic", None).unwrap_err().to_string();
-    assert!(e.contains("magic") && e.contains("quasi-static, harmonic, hertz"), "{e}");
+    assert!(
+        e.contains("magic") && e.contains("quasi-static, harmonic, hertz"),
+        "{e}"
+    );
     // The grid range is the EHL solver's.
     assert_eq!(GRID_RANGE, (17, 1025));
 }
@@ -87,7 +162,10 @@ fn methods_round_trip_through_json() {
         let json = serde_json::to_string(&m).unwrap();
         let back: Method = serde_json::from_str(&json).unwrap();
         assert_eq!(back, m, "{json}");
-        assert!(json.starts_with(&format!("{{\"name\":\"{}\"", m.name())), "{json}");
+        assert!(
+            json.starts_with(&format!("{{\"name\":\"{}\"", m.name())),
+            "{json}"
+        );
     }
 }
 

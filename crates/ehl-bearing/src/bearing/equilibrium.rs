@@ -869,13 +869,17 @@ impl BearingModel {
                     }
                 }
             }
-            for (k, law) in [&self.laws.inner[j], &self.laws.outer[j]].iter().enumerate() {
+            for (k, law) in [&self.laws.inner[j], &self.laws.outer[j]]
+                .iter()
+                .enumerate()
+            {
                 let c = law.damping(sol.delta[k]);
                 if c == 0.0 {
                     continue;
                 }
-                let g: [f64; 5] =
-                    std::array::from_fn(|n| sol.ddelta[k][0] * p[0][n] + sol.ddelta[k][1] * p[1][n]);
+                let g: [f64; 5] = std::array::from_fn(|n| {
+                    sol.ddelta[k][0] * p[0][n] + sol.ddelta[k][1] * p[1][n]
+                });
                 let rate: f64 = g.iter().zip(q_dot).map(|(a, b)| a * b).sum();
                 for r in 0..5 {
                     out.reaction[r] += c * rate * g[r];

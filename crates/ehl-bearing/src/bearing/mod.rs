@@ -7,10 +7,11 @@ pub mod geometry;
 mod linalg;
 
 pub use equilibrium::{
-    solve_equilibrium, BallState, BearingModel, DynamicForce, ContactLaws, ContactState, Control, Equilibrium,
-    EquilibriumSettings, ForceResult, OperatingPoint, RaceControl, DOF_NAMES,
+    solve_equilibrium, BallState, BearingModel, ContactLaws, ContactState, Control, DynamicForce,
+    Equilibrium, EquilibriumSettings, ForceResult, OperatingPoint, RaceControl, DOF_NAMES,
 };
 pub use geometry::{Bearing, BearingGeometry, Race};
+pub(crate) use linalg::solve as linalg_solve;
 
 use thiserror::Error;
 

@@ -24,8 +24,8 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 pub use crate::material::{DensityModel, ViscosityModel};
-pub use steady::{solve_moes, solve_steady, solve_steady_from};
 pub(crate) use steady::validate_settings;
+pub use steady::{solve_moes, solve_steady, solve_steady_from};
 pub use transient::{TransientSolver, TransientStep};
 
 /// Errors of the EHL solver.

@@ -22,9 +22,8 @@ mod spec;
 mod store;
 mod trends;
 
-pub use point::{
-    points_csv, results_csv, PointRecord, PointSpec, ResultRow, POINTS_CSV_HEADER,
-};
+pub use crate::force_element::{JacobianMode, TrendEvalOptions, TrendForce, TrendForceElement};
+pub use point::{points_csv, results_csv, PointRecord, PointSpec, ResultRow, POINTS_CSV_HEADER};
 pub use runner::{
     finish_study, merge_points, run_point, run_study, RunOptions, StudyError, StudyEvent,
     StudyOutputs, StudyRun,
@@ -32,4 +31,3 @@ pub use runner::{
 pub use spec::{parse_study, read_study, Shard, Study, StudyPoint};
 pub use store::{MemoryStore, PointStore, StoreError};
 pub use trends::{fit_trends, RaceTrends, TrendBearing, TrendCurve, TrendModel, TREND_VERSION};
-pub use crate::force_element::{JacobianMode, TrendEvalOptions, TrendForce, TrendForceElement};

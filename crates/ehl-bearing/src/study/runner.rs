@@ -309,7 +309,10 @@ impl StudyOutputs {
 
     /// Largest trend reaction error over the points (0 if none).
     pub fn worst_trend_error(&self) -> f64 {
-        self.trend_errors.iter().flatten().fold(0.0, |m, &x| m.max(x))
+        self.trend_errors
+            .iter()
+            .flatten()
+            .fold(0.0, |m, &x| m.max(x))
     }
 }
 
