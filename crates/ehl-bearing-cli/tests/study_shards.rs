@@ -117,7 +117,7 @@ fn seed_study_as_three_shards_merges_to_the_same_files_hertz() {
 }
 
 #[test]
-#[ignore = "seed study by the quasi-static method, 3 points × 3 runs: ≈ 3 min on 2 cores; `cargo test --release -p ehl-bearing-cli --test study_shards -- --ignored`"]
+#[ignore = "seed study by the quasi-static method, 3 points × 3 runs: ≈ 3 min on 2 cores; `cargo test -p ehl-bearing-cli --test study_shards -- --ignored`"]
 fn seed_study_as_three_shards_merges_to_the_same_files_quasi_static() {
     let tmp = tempfile::tempdir().unwrap();
     let study = study_file(

@@ -584,133 +584,25 @@ pub fn characterize_bearing_with_progress(
     let mut history = Vec::new();
     let mut converged = false;
     let mut change = f64::INFINITY;
-    let mut contacts: Vec<(CharacterizedContact, bool, LawSource, f64)> = Vec::new();
-    let tol = settings.cache_tolerance;
-    let load_tol = settings.load_reuse_tolerance;
+    let mut contacts: Vec<LoopContact> = Vec::new();
     for iteration in 1..=settings.max_iterations {
         let ti = Instant::now();
         let conds = conditions_of(case, &eq, settings.min_load_fraction);
         let keys: Vec<[f64; 3]> = conds.iter().map(|(c, _)| contact_key(c)).collect();
-        // Plan: cached (entry index), duplicate of a lower index, or to characterize.
-        enum Plan {
-            Cached(usize, f64),
-            Duplicate(usize, f64),
-            Run,
-        }
-        let mut plan = Vec::with_capacity(conds.len());
-        let mut runs: Vec<usize> = Vec::new();
-        for (i, key) in keys.iter().enumerate() {
-            // A law of an earlier iteration: L and Ry/Rx within the key tolerance, and M within
-            // the key tolerance or — the load reuse — within the load tolerance with the load
-            // inside the law's fitted range. Closest key first, earliest entry on ties.
-            let w = load_parameter(&conds[i].0);
-            let mut best: Option<(usize, f64)> = None;
-            for (e, entry) in cache.iter().enumerate() {
-                let [dm, dl, dr] = key_components(key, &entry.key);
-                let in_range = w >= entry.w_range[0] && w <= entry.w_range[1];
-                let ok = dl <= tol && dr <= tol && (dm <= tol || (dm <= load_tol && in_range));
-                let d = dm.max(dl).max(dr);
-                if ok && best.map_or(true, |(_, bd)| d < bd) {
-                    best = Some((e, d));
-                }
-            }
-            if let Some((e, d)) = best {
-                plan.push(Plan::Cached(e, d));
-                continue;
-            }
-            let mut dup: Option<(usize, f64)> = None;
-            for &r in &runs {
-                let d = key_distance(key, &keys[r]);
-                if d <= tol && dup.map_or(true, |(_, bd)| d < bd) {
-                    dup = Some((r, d));
-                }
-            }
-            match dup {
-                Some((r, d)) => plan.push(Plan::Duplicate(r, d)),
-                None => {
-                    runs.push(i);
-                    plan.push(Plan::Run);
-                }
-            }
-        }
+        let (plan, runs) = plan_iteration(&conds, &keys, &cache, settings);
         progress(Progress::IterationStarted {
             iteration,
             contacts: runs.len(),
         });
-        let results: Vec<Result<CharacterizedContact, crate::Error>> = runs
-            .par_iter()
-            .map(|&i| {
-                let r = ch.characterize(&conds[i].0);
-                progress(Progress::ContactDone { iteration });
-                r
-            })
-            .collect();
-        let mut fresh: Vec<Option<CharacterizedContact>> = vec![None; conds.len()];
-        for (&i, r) in runs.iter().zip(results) {
-            match r {
-                Ok(c) => fresh[i] = Some(c),
-                Err(e) => {
-                    return Err(CharacterizeError::Contact {
-                        ball: i / 2,
-                        race: conds[i].0.race,
-                        load: conds[i].0.load,
-                        iteration,
-                        cause: Box::new(e),
-                    })
-                }
-            }
-        }
-        let mut new_contacts = Vec::with_capacity(conds.len());
-        let mut max_dist = 0.0_f64;
-        let mut max_offset = 0.0_f64;
-        let mut max_residual = 0.0_f64;
-        let wrap = |i: usize, e: crate::Error| CharacterizeError::Contact {
-            ball: i / 2,
-            race: conds[i].0.race,
-            load: conds[i].0.load,
-            iteration,
-            cause: Box::new(e),
-        };
-        for (i, p) in plan.iter().enumerate() {
-            let (cc, source, dist) = match *p {
-                Plan::Run => (
-                    fresh[i].clone().expect("characterized above"),
-                    LawSource::Characterized,
-                    0.0,
-                ),
-                Plan::Cached(e, d) => (
-                    rescale(&cache[e], &conds[i].0).map_err(|e| wrap(i, e))?,
-                    LawSource::Cached,
-                    d,
-                ),
-                Plan::Duplicate(r, d) => {
-                    let entry = CacheEntry::new(
-                        keys[r],
-                        conds[r].0,
-                        fresh[r].clone().expect("characterized above"),
-                    );
-                    (
-                        rescale(&entry, &conds[i].0).map_err(|e| wrap(i, e))?,
-                        LawSource::Deduplicated,
-                        d,
-                    )
-                }
-            };
-            max_dist = max_dist.max(dist);
-            if source != LawSource::Characterized {
-                max_offset = max_offset.max((conds[i].0.load / cc.load - 1.0).abs());
-            }
-            max_residual = max_residual.max(cc.max_residual / cc.load);
-            new_contacts.push((cc, conds[i].1, source, dist));
-        }
+        let mut fresh = characterize_runs(ch, &conds, &runs, iteration, progress)?;
+        let assembled = assemble_laws(&plan, &fresh, &cache, &conds, &keys, iteration)?;
         for &i in &runs {
-            cache.push(CacheEntry::new(
-                keys[i],
-                conds[i].0,
-                fresh[i].take().expect("characterized above"),
-            ));
+            let result = fresh[i].take().ok_or_else(|| {
+                CharacterizeError::Trend(format!("contact {i} was planned but not characterized"))
+            })?;
+            cache.push(CacheEntry::new(keys[i], conds[i].0, result));
         }
-        let laws = laws_of(&new_contacts);
+        let laws = laws_of(&assembled.contacts);
         let next = solve_equilibrium(&case.bearing, &laws, &case.operating, &case.settings)
             .map_err(|cause| CharacterizeError::Equilibrium { iteration, cause })?;
         change = max_relative_load_change(
@@ -718,22 +610,21 @@ pub fn characterize_bearing_with_progress(
             &contact_loads(&next),
             settings.min_load_fraction,
         );
-        history.push(IterationRecord {
+        let record = IterationRecord {
             iteration,
             max_load_change: change,
             characterized: runs.len(),
             reused: conds.len() - runs.len(),
-            max_key_distance: max_dist,
-            max_load_offset: max_offset,
-            max_relative_residual: max_residual,
+            max_key_distance: assembled.max_key_distance,
+            max_load_offset: assembled.max_load_offset,
+            max_relative_residual: assembled.max_relative_residual,
             equilibrium_iterations: next.iterations,
             seconds: ti.elapsed().as_secs_f64(),
-        });
-        if let Some(h) = history.last() {
-            progress(Progress::IterationDone(*h));
-        }
+        };
+        history.push(record);
+        progress(Progress::IterationDone(record));
         eq = next;
-        contacts = new_contacts;
+        contacts = assembled.contacts;
         if change < settings.tolerance {
             converged = true;
             break;
@@ -747,6 +638,195 @@ pub fn characterize_bearing_with_progress(
         });
     }
     let max_key_distance = history.last().map_or(0.0, |h| h.max_key_distance);
+    let (results, max_load_offset, max_relative_residual) = final_contacts(&eq, contacts);
+    Ok(BearingCharacterization {
+        converged,
+        iterations: history.len(),
+        max_load_change: change,
+        history,
+        dry,
+        equilibrium: eq,
+        contacts: results,
+        method: ch.method(),
+        settings: *settings,
+        max_key_distance,
+        max_load_offset,
+        max_relative_residual,
+        prediction,
+        seconds: t0.elapsed().as_secs_f64(),
+    })
+}
+
+/// A contact's law in an iteration: the characterized contact, whether its load was floored,
+/// where the law came from and the key distance it was reused over.
+type LoopContact = (CharacterizedContact, bool, LawSource, f64);
+
+/// How a contact gets its law in an iteration.
+enum Plan {
+    /// From cache entry `.0`, at key distance `.1`.
+    Cached(usize, f64),
+    /// From the contact `.0` characterized in this iteration (lower index), at distance `.1`.
+    Duplicate(usize, f64),
+    /// Characterized.
+    Run,
+}
+
+/// Plan an iteration: for every contact, a law of an earlier iteration (L and Ry/Rx within the
+/// key tolerance, and M within the key tolerance or — the load reuse — within the load tolerance
+/// with the load inside the law's fitted range; closest key first, earliest entry on ties), a
+/// duplicate of a lower-index contact characterized now, or a characterization. Returns the plan
+/// and the indices to characterize. The cache is frozen here, so the plan does not depend on
+/// the number of threads.
+fn plan_iteration(
+    conds: &[(ContactConditions, bool)],
+    keys: &[[f64; 3]],
+    cache: &[CacheEntry],
+    settings: &CharacterizeSettings,
+) -> (Vec<Plan>, Vec<usize>) {
+    let tol = settings.cache_tolerance;
+    let load_tol = settings.load_reuse_tolerance;
+    let mut plan = Vec::with_capacity(conds.len());
+    let mut runs: Vec<usize> = Vec::new();
+    for (i, key) in keys.iter().enumerate() {
+        let w = load_parameter(&conds[i].0);
+        let mut best: Option<(usize, f64)> = None;
+        for (e, entry) in cache.iter().enumerate() {
+            let [dm, dl, dr] = key_components(key, &entry.key);
+            let in_range = w >= entry.w_range[0] && w <= entry.w_range[1];
+            let ok = dl <= tol && dr <= tol && (dm <= tol || (dm <= load_tol && in_range));
+            let d = dm.max(dl).max(dr);
+            if ok && best.map_or(true, |(_, bd)| d < bd) {
+                best = Some((e, d));
+            }
+        }
+        if let Some((e, d)) = best {
+            plan.push(Plan::Cached(e, d));
+            continue;
+        }
+        let mut dup: Option<(usize, f64)> = None;
+        for &r in &runs {
+            let d = key_distance(key, &keys[r]);
+            if d <= tol && dup.map_or(true, |(_, bd)| d < bd) {
+                dup = Some((r, d));
+            }
+        }
+        match dup {
+            Some((r, d)) => plan.push(Plan::Duplicate(r, d)),
+            None => {
+                runs.push(i);
+                plan.push(Plan::Run);
+            }
+        }
+    }
+    (plan, runs)
+}
+
+/// Characterize the contacts `runs` in parallel, collected in index order (None elsewhere).
+fn characterize_runs(
+    ch: &dyn ContactCharacterizer,
+    conds: &[(ContactConditions, bool)],
+    runs: &[usize],
+    iteration: usize,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> Result<Vec<Option<CharacterizedContact>>, CharacterizeError> {
+    let results: Vec<Result<CharacterizedContact, crate::Error>> = runs
+        .par_iter()
+        .map(|&i| {
+            let r = ch.characterize(&conds[i].0);
+            progress(Progress::ContactDone { iteration });
+            r
+        })
+        .collect();
+    let mut fresh: Vec<Option<CharacterizedContact>> = vec![None; conds.len()];
+    for (&i, r) in runs.iter().zip(results) {
+        fresh[i] = Some(r.map_err(|e| contact_error(conds, i, iteration, e))?);
+    }
+    Ok(fresh)
+}
+
+fn contact_error(
+    conds: &[(ContactConditions, bool)],
+    i: usize,
+    iteration: usize,
+    e: crate::Error,
+) -> CharacterizeError {
+    CharacterizeError::Contact {
+        ball: i / 2,
+        race: conds[i].0.race,
+        load: conds[i].0.load,
+        iteration,
+        cause: Box::new(e),
+    }
+}
+
+/// The laws of an iteration and its reuse figures.
+struct Assembled {
+    contacts: Vec<LoopContact>,
+    max_key_distance: f64,
+    max_load_offset: f64,
+    max_relative_residual: f64,
+}
+
+/// Every contact's law by its plan: characterized, or rescaled from the cache or from a
+/// duplicate.
+fn assemble_laws(
+    plan: &[Plan],
+    fresh: &[Option<CharacterizedContact>],
+    cache: &[CacheEntry],
+    conds: &[(ContactConditions, bool)],
+    keys: &[[f64; 3]],
+    iteration: usize,
+) -> Result<Assembled, CharacterizeError> {
+    let missing = |i: usize| {
+        CharacterizeError::Trend(format!("contact {i} was planned but not characterized"))
+    };
+    let mut out = Assembled {
+        contacts: Vec::with_capacity(conds.len()),
+        max_key_distance: 0.0,
+        max_load_offset: 0.0,
+        max_relative_residual: 0.0,
+    };
+    for (i, p) in plan.iter().enumerate() {
+        let wrap = |e: crate::Error| contact_error(conds, i, iteration, e);
+        let (cc, source, dist) = match *p {
+            Plan::Run => (
+                fresh[i].clone().ok_or_else(|| missing(i))?,
+                LawSource::Characterized,
+                0.0,
+            ),
+            Plan::Cached(e, d) => (
+                rescale(&cache[e], &conds[i].0).map_err(wrap)?,
+                LawSource::Cached,
+                d,
+            ),
+            Plan::Duplicate(r, d) => {
+                let entry = CacheEntry::new(
+                    keys[r],
+                    conds[r].0,
+                    fresh[r].clone().ok_or_else(|| missing(r))?,
+                );
+                (
+                    rescale(&entry, &conds[i].0).map_err(wrap)?,
+                    LawSource::Deduplicated,
+                    d,
+                )
+            }
+        };
+        out.max_key_distance = out.max_key_distance.max(dist);
+        if source != LawSource::Characterized {
+            out.max_load_offset = out
+                .max_load_offset
+                .max((conds[i].0.load / cc.load - 1.0).abs());
+        }
+        out.max_relative_residual = out.max_relative_residual.max(cc.max_residual / cc.load);
+        out.contacts.push((cc, conds[i].1, source, dist));
+    }
+    Ok(out)
+}
+
+/// The final contacts at equilibrium `eq`, with the largest load offset of the contacts that
+/// were not floored and the largest relative fit residual.
+fn final_contacts(eq: &Equilibrium, contacts: Vec<LoopContact>) -> (Vec<ContactResult>, f64, f64) {
     let mut results = Vec::with_capacity(contacts.len());
     let (mut max_load_offset, mut max_relative_residual) = (0.0_f64, 0.0_f64);
     for (i, (cc, floored, source, dist)) in contacts.into_iter().enumerate() {
@@ -774,22 +854,7 @@ pub fn characterize_bearing_with_progress(
             state,
         });
     }
-    Ok(BearingCharacterization {
-        converged,
-        iterations: history.len(),
-        max_load_change: change,
-        history,
-        dry,
-        equilibrium: eq,
-        contacts: results,
-        method: ch.method(),
-        settings: *settings,
-        max_key_distance,
-        max_load_offset,
-        max_relative_residual,
-        prediction,
-        seconds: t0.elapsed().as_secs_f64(),
-    })
+    (results, max_load_offset, max_relative_residual)
 }
 
 /// The equilibrium with the method's predictor laws at the dry loads, or None if the method has
@@ -879,7 +944,7 @@ fn predicted_start(
     (eq, Some(record))
 }
 
-fn laws_of(contacts: &[(CharacterizedContact, bool, LawSource, f64)]) -> ContactLaws {
+fn laws_of(contacts: &[LoopContact]) -> ContactLaws {
     let mut inner: Vec<Arc<dyn ContactLaw>> = Vec::new();
     let mut outer: Vec<Arc<dyn ContactLaw>> = Vec::new();
     for (i, c) in contacts.iter().enumerate() {

@@ -129,14 +129,16 @@ pub trait ForceElement: Send + Sync {
 fn prepare(
     state: &mut ElementState,
     bearing: &Bearing,
-    laws: ContactLaws,
+    laws: &ContactLaws,
     race_control: RaceControl,
     input: &ElementInput,
 ) -> Result<(), BearingError> {
     let z = bearing.geometry.ball_count;
     let model = match state.model.as_mut() {
         Some(m) if m.bearing() == bearing && m.race_control() == race_control => {
-            m.set_laws(laws)?;
+            if !m.has_laws(laws) {
+                m.set_laws(laws.clone())?;
+            }
             m
         }
         _ => {
@@ -144,7 +146,7 @@ fn prepare(
             state.loads.clear();
             state.model.insert(BearingModel::new(
                 bearing,
-                &laws,
+                laws,
                 input.inner_speed,
                 input.outer_speed,
                 race_control,
@@ -275,13 +277,7 @@ impl ForceElement for LawElement {
         input: &ElementInput,
         state: &mut ElementState,
     ) -> Result<ElementOutput, crate::Error> {
-        prepare(
-            state,
-            &self.bearing,
-            self.laws.clone(),
-            self.race_control,
-            input,
-        )?;
+        prepare(state, &self.bearing, &self.laws, self.race_control, input)?;
         let f = solve(state, input)?;
         let mut outside_range = Vec::new();
         if let Some(fitted) = &self.fitted {
@@ -693,7 +689,7 @@ impl TrendForceElement {
         }
         let laws = ContactLaws { inner, outer };
         let races = [cache.races[0].clone(), cache.races[1].clone()];
-        prepare(state, &self.bearing, laws, self.model.race_control, input)?;
+        prepare(state, &self.bearing, &laws, self.model.race_control, input)?;
         let f = solve(state, input)?;
         let mut outside_range = Vec::new();
         let mut residual = 0.0_f64;
@@ -704,7 +700,9 @@ impl TrendForceElement {
                     outside_range.push((j, race));
                 }
                 if delta[k] > l.delta_lo && delta[k] < l.delta_hi {
-                    residual = residual.max(l.invert(delta[k]).2);
+                    // The inverted load's approach against the contact's: the inversion residual.
+                    let d = l.race.approach_at(loads[k], l.n);
+                    residual = residual.max((d - delta[k]).abs() / (l.delta_hi - l.delta_lo));
                 }
             }
         }

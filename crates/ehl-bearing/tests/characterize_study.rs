@@ -274,8 +274,8 @@ fn trend_force_element_reproduces_the_characterized_equilibria() {
             .unwrap();
         assert!(r.converged, "fixed point: {}", r.load_change);
         let want = p.result.as_ref().unwrap().reaction.to_array();
-        for k in 0..3 {
-            worst = worst.max((r.force.reaction[k] - want[k]).abs() / want[k].abs());
+        for (got, want) in r.force.reaction[..3].iter().zip(&want[..3]) {
+            worst = worst.max((got - want).abs() / want.abs());
         }
     }
     eprintln!("largest relative force error of the trend force element: {worst:.3e}");

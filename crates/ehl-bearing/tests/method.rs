@@ -180,7 +180,7 @@ proptest! {
             "damping_term", "load_ref", "bogus",
         ]),
         value in prop_oneof![
-            any::<f64>().prop_map(|v| toml::Value::Float(v)),
+            any::<f64>().prop_map(toml::Value::Float),
             any::<i64>().prop_map(toml::Value::Integer),
             any::<bool>().prop_map(toml::Value::Boolean),
             "[a-z]{0,5}".prop_map(toml::Value::String),

@@ -795,6 +795,14 @@ impl BearingModel {
         })
     }
 
+    /// Whether the model's laws are `laws` (the same shared laws, compared by pointer).
+    pub fn has_laws(&self, laws: &ContactLaws) -> bool {
+        let same = |a: &[Arc<dyn ContactLaw>], b: &[Arc<dyn ContactLaw>]| {
+            a.len() == b.len() && a.iter().zip(b).all(|(x, y)| Arc::ptr_eq(x, y))
+        };
+        same(&self.laws.inner, &laws.inner) && same(&self.laws.outer, &laws.outer)
+    }
+
     /// Replace the contact laws (one per ball and raceway); errors if the counts differ from the
     /// bearing's ball count.
     pub fn set_laws(&mut self, laws: ContactLaws) -> Result<(), BearingError> {

@@ -1,0 +1,91 @@
+//! The bearing force element for rotor use, one call with a warm state (the rotor integrator's
+//! case): the seed bearing (7006, 5000 rpm) with fitted laws (with damping terms) and with the
+//! trend model of a synthetic study, each at a displaced position with rates and a turning cage.
+//! Goals (issue 11): ≤ 20 µs fitted laws, ≤ 50 µs trend model.
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use ehl_bearing::bearing::{solve_equilibrium, ContactLaws, Race};
+use ehl_bearing::fit::FittedLaw;
+use ehl_bearing::force_element::{
+    ElementInput, ElementState, ForceElement, LawElement, TrendForceElement,
+};
+use ehl_bearing::hertz::HertzGeometry;
+use ehl_bearing::io::parse_case;
+use ehl_bearing::study::{fit_trends, parse_study, run_point};
+use std::path::Path;
+
+const SEED: &str = include_str!("../../../examples/7006.toml");
+
+fn elements(c: &mut Criterion) {
+    let case = parse_case(SEED, "7006.toml").unwrap();
+    let b = &case.bearing;
+    let a0 = b.geometry.free_contact_angle;
+    // Fitted-looking laws with damping (magnitudes of the seed's; tests/force_element.rs).
+    let mut laws = Vec::new();
+    for _ in 0..b.geometry.ball_count {
+        for race in [Race::Inner, Race::Outer] {
+            let (rx, ry) = b.geometry.curvature_radii(race, a0);
+            let kh = HertzGeometry::new(rx, ry, b.reduced_modulus())
+                .unwrap()
+                .stiffness;
+            let law = FittedLaw::new(kh * 5e-6_f64.powf(0.05), 1.45, 20.0, 1e-6, 12e-6)
+                .unwrap()
+                .with_damping(150.0)
+                .unwrap();
+            laws.push(law);
+        }
+    }
+    let fitted = LawElement::from_fitted(b, case.operating.race_control, &laws).unwrap();
+    let hertz = ContactLaws::hertz(b).unwrap();
+    let q0 = solve_equilibrium(b, &hertz, &case.operating, &case.settings)
+        .unwrap()
+        .displacement;
+    let mut input = ElementInput::at(q0, case.operating.inner_speed, 0.0);
+    input.velocity = [1e-4, -2e-4, 1e-4, 1e-3, -1e-3];
+    let w_cage = fitted.cage_speed(input.inner_speed, 0.0);
+    let dt = 1e-5;
+    for (name, element) in [
+        (
+            "force_element_fitted_7006_warm",
+            &fitted as &dyn ForceElement,
+        ),
+        (
+            "force_element_trend_7006_warm",
+            &trend_element() as &dyn ForceElement,
+        ),
+    ] {
+        let mut state = ElementState::default();
+        let mut step = 0u64;
+        c.bench_function(name, |bench| {
+            bench.iter(|| {
+                // A rotor time step: the position moves a little and the cage turns.
+                step += 1;
+                let mut i = input;
+                let t = step as f64 * dt;
+                i.displacement[1] += 1e-8 * (1e3 * t).sin();
+                i.cage_angle = w_cage * t;
+                element.evaluate(black_box(&i), &mut state).unwrap()
+            })
+        });
+    }
+}
+
+/// The trend model of the synthetic seed study (3 speeds × 3 load scales).
+fn trend_element() -> TrendForceElement {
+    let examples = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples"));
+    let s = parse_study(
+        "case = \"7006.toml\"\nmethod = \"synthetic\"\ninner_speeds_rpm = [3000, 4000, 5000]\nload_scales = [0.5, 1.0, 2.0]\n",
+        "bench",
+        examples,
+    )
+    .unwrap();
+    let rows: Vec<_> = s
+        .points()
+        .iter()
+        .flat_map(|p| run_point(&s, p, &|_| {}).rows())
+        .collect();
+    TrendForceElement::new(fit_trends(&s, &rows).unwrap()).unwrap()
+}
+
+criterion_group!(benches, elements);
+criterion_main!(benches);
