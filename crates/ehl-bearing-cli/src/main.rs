@@ -37,6 +37,14 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    // A closed stdout (e.g. `ehl-bearing study … | head -1`) ends the program quietly, as for
+    // other command-line tools, instead of a panic on the failed write. Finished point files are
+    // safe: every file is written atomically, and a rerun resumes.
+    #[cfg(unix)]
+    // SAFETY: restoring the default disposition of SIGPIPE before any thread starts.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Equilibrium(a) => equilibrium_cmd::run(a),

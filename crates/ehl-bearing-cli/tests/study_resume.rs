@@ -155,3 +155,78 @@ fn point_files_of_another_study_are_refused_or_recomputed_on_request() {
     // On request they are recomputed.
     assert!(ok(run(&b, &["--overwrite"])).contains("3 computed, 0 loaded"));
 }
+
+#[test]
+fn unusable_output_is_refused_before_any_work_and_a_closed_stdout_ends_quietly() {
+    let tmp = tempfile::tempdir().unwrap();
+    let study = study_file(tmp.path(), "hertz", "[3000, 5000]", "[0.5, 1.0]", "");
+    // -o naming an existing file: refused at once, the file untouched.
+    let file = tmp.path().join("a_file");
+    std::fs::write(&file, "keep me").unwrap();
+    let t0 = Instant::now();
+    let o = bin()
+        .args([
+            "study",
+            study.to_str().unwrap(),
+            "-o",
+            file.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("a_file") && err.contains("not a folder"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep me");
+    assert!(t0.elapsed() < Duration::from_secs(10));
+    // A truncated point file (a crash mid-write on a file system without atomic renames) is
+    // recomputed, and the result equals a clean run.
+    let clean = tmp.path().join("clean");
+    let o = bin()
+        .args([
+            "study",
+            study.to_str().unwrap(),
+            "-o",
+            clean.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success());
+    let broken = tmp.path().join("broken");
+    std::fs::create_dir_all(broken.join("points")).unwrap();
+    let name = "points/n3000rpm_s0.5.json";
+    let good = std::fs::read(clean.join(name)).unwrap();
+    std::fs::write(broken.join(name), &good[..good.len() / 2]).unwrap();
+    let o = bin()
+        .args([
+            "study",
+            study.to_str().unwrap(),
+            "-o",
+            broken.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("unreadable point file"));
+    assert_same_tree(&clean, &broken);
+    // stdout closed after its first line: quiet end (no panic message), finished files intact.
+    let piped = tmp.path().join("piped");
+    let mut child = bin()
+        .args([
+            "study",
+            study.to_str().unwrap(),
+            "-o",
+            piped.to_str().unwrap(),
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take()); // the reader goes away at once
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    assert_ne!(out.status.code(), Some(101), "{err}");
+}

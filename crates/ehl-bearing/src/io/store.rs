@@ -54,6 +54,10 @@ impl FsStore {
             ));
         }
         std::fs::create_dir_all(&points).map_err(|e| err("creating", &points, e))?;
+        // Refuse an unwritable folder now, not after the first point's computation.
+        let probe = points.join(format!(".probe-{}", std::process::id()));
+        std::fs::write(&probe, b"").map_err(|e| err("writing into", &points, e))?;
+        std::fs::remove_file(&probe).map_err(|e| err("removing", &probe, e))?;
         Ok(FsStore {
             dir: dir.to_path_buf(),
         })

@@ -1,0 +1,149 @@
+//! Studies through the library (`ehl_bearing::study`) behind the in-memory store: shards give the
+//! same outputs as one run, point records read back into the same value, another study's points
+//! are refused before any work, and outputs need every point.
+
+use ehl_bearing::study::{
+    finish_study, merge_points, parse_study, run_study, MemoryStore, PointRecord, PointStore,
+    RunOptions, Shard, Study, StudyError, StudyEvent,
+};
+use std::path::Path;
+use std::sync::Mutex;
+
+fn study(method: &str, extra: &str) -> Study {
+    let examples = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples"));
+    let text = format!(
+        "case = \"7006.toml\"\nmethod = \"{method}\"\ninner_speeds_rpm = [3000, 4000, 5000]\nload_scales = [0.5, 1.0, 2.0]\n{extra}"
+    );
+    parse_study(&text, "test.toml", examples).unwrap()
+}
+
+fn run(s: &Study, store: &MemoryStore, shard: Shard) -> ehl_bearing::study::StudyRun {
+    run_study(
+        s,
+        store,
+        &RunOptions {
+            shard,
+            overwrite: false,
+        },
+        &|_| {},
+    )
+    .unwrap()
+}
+
+#[test]
+fn shards_in_memory_give_the_outputs_of_one_run() {
+    let s = study("synthetic", "");
+    let one = MemoryStore::default();
+    let r = run(&s, &one, Shard::ALL);
+    assert_eq!((r.points, r.computed, r.loaded), (9, 9, 0));
+    finish_study(&s, &one).unwrap();
+    let shared = MemoryStore::default();
+    let separate: Vec<MemoryStore> = (0..3).map(|_| MemoryStore::default()).collect();
+    for i in 1..=3 {
+        let shard = Shard::new(i, 3).unwrap();
+        assert_eq!(run(&s, &shared, shard).computed, 3);
+        run(&s, &separate[i - 1], shard);
+    }
+    finish_study(&s, &shared).unwrap();
+    let merged = MemoryStore::default();
+    let sources: Vec<&dyn PointStore> = separate.iter().map(|x| x as &dyn PointStore).collect();
+    assert_eq!(merge_points(&s, &merged, &sources).unwrap(), 9);
+    finish_study(&s, &merged).unwrap();
+    let files = |m: &MemoryStore| {
+        (
+            m.points.lock().unwrap().clone(),
+            m.outputs.lock().unwrap().clone(),
+        )
+    };
+    assert_eq!(files(&one), files(&shared));
+    assert_eq!(files(&one), files(&merged));
+    let (_, outputs) = files(&one);
+    for name in ["results.csv", "points.csv", "trends.json"] {
+        assert!(outputs.contains_key(name), "{name}");
+    }
+    // Resuming loads everything.
+    let again = run(&s, &one, Shard::ALL);
+    assert_eq!((again.computed, again.loaded), (0, 9));
+}
+
+#[test]
+fn point_records_read_back_into_the_same_value() {
+    let s = study("synthetic", "");
+    let store = MemoryStore::default();
+    run(&s, &store, Shard::new(1, 9).unwrap());
+    let points = store.points.lock().unwrap().clone();
+    assert_eq!(points.len(), 1);
+    for text in points.values() {
+        let r = PointRecord::from_json(text).unwrap();
+        assert_eq!(&r.to_json(), text);
+        assert_eq!(PointRecord::from_json(&r.to_json()).unwrap(), r);
+        assert!(r.result.as_ref().unwrap().converged);
+        assert_eq!(r.spec.method, s.method);
+        assert_eq!(r.rows().len(), 22);
+    }
+}
+
+#[test]
+fn another_studys_points_are_refused_before_any_work() {
+    let a = study("hertz", "");
+    let store = MemoryStore::default();
+    run(&a, &store, Shard::new(1, 3).unwrap());
+    let before = store.points.lock().unwrap().clone();
+    let b = study("hertz", "[method_options]\nsamples = 11\n");
+    let started = Mutex::new(0);
+    let e = run_study(&b, &store, &RunOptions::default(), &|ev| {
+        if let StudyEvent::PointStarted(_) = ev {
+            *started.lock().unwrap() += 1;
+        }
+    })
+    .unwrap_err();
+    let StudyError::ForeignPoints {
+        count, difference, ..
+    } = &e
+    else {
+        panic!("{e}")
+    };
+    assert_eq!(*count, 3);
+    assert!(difference.starts_with("method"), "{difference}");
+    assert_eq!(*started.lock().unwrap(), 0);
+    assert_eq!(*store.points.lock().unwrap(), before);
+    // With overwrite they are recomputed.
+    let r = run_study(
+        &b,
+        &store,
+        &RunOptions {
+            shard: Shard::ALL,
+            overwrite: true,
+        },
+        &|_| {},
+    )
+    .unwrap();
+    assert_eq!(r.computed, 9);
+}
+
+#[test]
+fn outputs_need_every_point_and_unreadable_points_are_redone() {
+    let s = study("hertz", "");
+    let store = MemoryStore::default();
+    run(&s, &store, Shard::new(2, 3).unwrap());
+    let e = finish_study(&s, &store).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            StudyError::Incomplete {
+                missing: 6,
+                total: 9,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    // A truncated point file is recomputed.
+    let stem = s.points()[1].file_stem();
+    let text = store.load_point(&stem).unwrap().unwrap();
+    store.save_point(&stem, &text[..text.len() / 3]).unwrap();
+    let r = run(&s, &store, Shard::ALL);
+    assert_eq!((r.redone, r.computed, r.loaded), (1, 7, 2));
+    assert_eq!(store.load_point(&stem).unwrap().unwrap(), text);
+    finish_study(&s, &store).unwrap();
+}
