@@ -143,7 +143,7 @@ fn invalid_harmonic_setting_names_the_setting() {
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
-        err.contains("frequency fraction") && err.contains("-0.5"),
+        err.contains("--frequency-fraction") && err.contains("-0.5"),
         "{err}"
     );
 }

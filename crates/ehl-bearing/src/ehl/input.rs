@@ -12,7 +12,8 @@
 //! an error naming the key, the value and the valid range.
 
 use super::{EhlContact, EhlError};
-use crate::material::{reduced_modulus, DensityModel, Lubricant, Solid, ViscosityModel};
+use crate::io::case::{self, RawLubricant, RawSolid};
+use crate::material::{reduced_modulus, Lubricant, Solid};
 use serde::Deserialize;
 
 macro_rules! fail {
@@ -23,33 +24,15 @@ macro_rules! fail {
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct MaterialToml {
-    youngs_modulus_gpa: Option<f64>,
-    poisson_ratio: Option<f64>,
-    density_kg_m3: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct LubricantToml {
-    viscosity_pa_s: Option<f64>,
-    pressure_viscosity_1_pa: Option<f64>,
-    density_kg_m3: Option<f64>,
-    viscosity_model: Option<String>,
-    density_model: Option<String>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 struct ContactToml {
     load_n: f64,
     rx_mm: f64,
     ry_mm: f64,
     sum_velocity_m_s: f64,
     reduced_modulus_gpa: Option<f64>,
-    ball_material: Option<MaterialToml>,
-    ring_material: Option<MaterialToml>,
-    lubricant: Option<LubricantToml>,
+    ball_material: Option<RawSolid>,
+    ring_material: Option<RawSolid>,
+    lubricant: Option<RawLubricant>,
     ball_mass_kg: Option<f64>,
     ball_diameter_mm: Option<f64>,
 }
@@ -72,64 +55,17 @@ fn positive(field: &str, v: f64) -> Result<f64, EhlError> {
     }
 }
 
-fn solid(name: &str, m: &Option<MaterialToml>) -> Result<Solid, EhlError> {
-    let d = Solid::AISI_52100;
-    let Some(m) = m else { return Ok(d) };
-    let e = match m.youngs_modulus_gpa {
-        Some(v) => positive(&format!("{name}.youngs_modulus_gpa"), v)? * 1e9,
-        None => d.youngs_modulus,
-    };
-    let nu = m.poisson_ratio.unwrap_or(d.poisson_ratio);
-    if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
-        fail!("{name}.poisson_ratio = {nu} is invalid: valid range -1 < nu < 0.5");
-    }
-    let rho = match m.density_kg_m3 {
-        Some(v) => positive(&format!("{name}.density_kg_m3"), v)?,
-        None => d.density,
-    };
-    Ok(Solid {
-        youngs_modulus: e,
-        poisson_ratio: nu,
-        density: rho,
-    })
+/// The material and lubricant tables are those of case files, read by the case parser (one
+/// parser, one set of ranges per table).
+fn solid(name: &str, m: &Option<RawSolid>) -> Result<Solid, EhlError> {
+    case::solid(m.as_ref(), name).map_err(|e| EhlError::File(e.to_string()))
 }
 
-fn lubricant(l: &Option<LubricantToml>) -> Result<Lubricant, EhlError> {
-    let d = Lubricant::DEFAULT_MINERAL_OIL;
-    let Some(l) = l else { return Ok(d) };
-    let viscosity = match l.viscosity_pa_s {
-        Some(v) => positive("lubricant.viscosity_pa_s", v)?,
-        None => d.viscosity,
-    };
-    let alpha = l.pressure_viscosity_1_pa.unwrap_or(d.pressure_viscosity);
-    if !(alpha.is_finite() && (0.0..1e-6).contains(&alpha)) {
-        fail!("lubricant.pressure_viscosity_1_pa = {alpha} is invalid: valid range 0 <= alpha < 1e-6 1/Pa");
+fn lubricant(l: &Option<RawLubricant>) -> Result<Lubricant, EhlError> {
+    match l {
+        None => Ok(Lubricant::DEFAULT_MINERAL_OIL),
+        Some(l) => case::lubricant(l, "lubricant").map_err(|e| EhlError::File(e.to_string())),
     }
-    let density = match l.density_kg_m3 {
-        Some(v) => positive("lubricant.density_kg_m3", v)?,
-        None => d.density,
-    };
-    let viscosity_model = match l.viscosity_model.as_deref() {
-        None | Some("roelands") => ViscosityModel::Roelands,
-        Some("barus") => ViscosityModel::Barus,
-        Some(o) => fail!(
-            "lubricant.viscosity_model = \"{o}\" is invalid: valid values \"roelands\", \"barus\""
-        ),
-    };
-    let density_model = match l.density_model.as_deref() {
-        None | Some("dowson-higginson") => DensityModel::DowsonHigginson,
-        Some("incompressible") => DensityModel::Incompressible,
-        Some(o) => fail!(
-            "lubricant.density_model = \"{o}\" is invalid: valid values \"dowson-higginson\", \"incompressible\""
-        ),
-    };
-    Ok(Lubricant {
-        viscosity,
-        pressure_viscosity: alpha,
-        density,
-        viscosity_model,
-        density_model,
-    })
 }
 
 /// Parses and validates a contact file's text (the contact only; see [`parse_contact_file`]).

@@ -379,11 +379,11 @@ pub(crate) fn lubricant(r: &RawLubricant, table: &str) -> Result<Lubricant, Inpu
     }
     if let Some(a) = r.pressure_viscosity_1_pa {
         let key = format!("{table}.pressure_viscosity_1_pa");
-        if !(a.is_finite() && a > 0.0 && a < 1e-6) {
+        if !(a.is_finite() && (0.0..1e-6).contains(&a)) {
             return Err(InputError::field(
                 &key,
                 a,
-                "0 < α < 1e-6 1/Pa (mineral oils: about 1e-8 to 3e-8)",
+                "0 ≤ α < 1e-6 1/Pa (0: isoviscous; mineral oils: about 1e-8 to 3e-8)",
             ));
         }
         l.pressure_viscosity = a;
