@@ -20,6 +20,14 @@
 //! inner ring), the races must apply G·t̂ with G = −J·ω_m·ω_R·sin β, through friction forces
 //! F_i = λ_i·G/D at the inner contact and F_o = −λ_o·G/D at the outer contact, along the contact
 //! tangents τ̂ = (cos α, −sin α). λ_i + λ_o = 2 (outer-race control: λ_i = 0, λ_o = 2).
+//!
+//! # Kinematics
+//! By default ([`Kinematics::OperatingAngles`], the textbook model of Jones and Harris) the ball's
+//! speeds ω_m, ω_R and pitch angle β follow from pure rolling at both contact centres at their own
+//! operating angles α_i, α_o and zero spin at the controlling race, and dry Hertz constants are
+//! evaluated at the operating angles; a separated contact's kinematic angle falls back to the
+//! angle of the line of groove-curvature centres. [`Kinematics::GrooveLine`] is the earlier model.
+//! Equations: docs/bearing.md §1.
 
 // Index loops mirror the matrix formulas here; iterator chains would obscure them.
 #![allow(clippy::needless_range_loop)]
@@ -424,7 +432,14 @@ impl<'a> BearingModel<'a> {
         ]
     }
 
-    fn terms(&self, j: usize, x: [D4; 2], a: [D4; 2], ignore_inner: bool) -> Terms {
+    fn terms(
+        &self,
+        j: usize,
+        x: [D4; 2],
+        a: [D4; 2],
+        ignore_inner: bool,
+        kin: Kinematics,
+    ) -> Terms {
         let geo = &self.bearing.geometry;
         let d = geo.ball_diameter;
         let dm = geo.pitch_diameter;
@@ -453,7 +468,7 @@ impl<'a> BearingModel<'a> {
         // angles at rest; it depends on the ring displacement only.
         let la = (a[0] * a[0] + a[1] * a[1]).sqrt();
         let (gsin, gcos) = (a[0] / la, a[1] / la);
-        let (ksin_i, kcos_i, ksin_o, kcos_o) = match self.kinematics {
+        let (ksin_i, kcos_i, ksin_o, kcos_o) = match kin {
             // Groove-line model: the ball's speeds (ω_m, ω_R, β) are evaluated with both contact
             // angles taken as the groove-line angle (README, "Modelling choices").
             Kinematics::GrooveLine => (gsin, gcos, gsin, gcos),
@@ -562,15 +577,23 @@ impl<'a> BearingModel<'a> {
     }
 
     fn terms_at(&self, j: usize, x: [f64; 2], a: [f64; 2]) -> Terms {
-        self.terms_opt(j, x, a, false)
+        self.terms_opt(j, x, a, false, self.kinematics)
     }
 
-    fn terms_opt(&self, j: usize, x: [f64; 2], a: [f64; 2], ignore_inner: bool) -> Terms {
+    fn terms_opt(
+        &self,
+        j: usize,
+        x: [f64; 2],
+        a: [f64; 2],
+        ignore_inner: bool,
+        kin: Kinematics,
+    ) -> Terms {
         self.terms(
             j,
             [D4::var(x[0], 0), D4::var(x[1], 1)],
             [D4::var(a[0], 2), D4::var(a[1], 3)],
             ignore_inner,
+            kin,
         )
     }
 
@@ -625,18 +648,28 @@ impl<'a> BearingModel<'a> {
         }
         let scale = |t: &Terms| t.qi.abs() + t.qo.abs() + t.fc.abs() + 1e-6;
         let converged = |t: &Terms| t.r[0].v.hypot(t.r[1].v) <= 1e-9 * scale(t);
-        let (mut xs, mut ts) = self.ball_newton(j, a, x, t, false);
+        let kin = self.kinematics;
+        if warm.is_none() && kin == Kinematics::OperatingAngles && t.fc > 0.0 {
+            // Cold start at speed: the groove-line kinematics first (robust from the groove-line
+            // start: the ball's speeds then do not depend on its position), then the textbook
+            // model from there.
+            let tg = self.terms_opt(j, x, a, false, Kinematics::GrooveLine);
+            let (xg, _) = self.ball_newton(j, a, x, tg, false, Kinematics::GrooveLine);
+            x = xg;
+            t = self.terms_at(j, x, a);
+        }
+        let (mut xs, mut ts) = self.ball_newton(j, a, x, t, false, kin);
         if !converged(&ts) {
             // Stalled at the onset of the inner contact, where a nearly unloaded but stiff inner
             // contact makes the Jacobian singular: solve the ball in the outer groove alone. If the
             // inner contact is open there, that is the solution; otherwise restart from it.
-            let t0 = self.terms_opt(j, x, a, true);
-            let (xo, _) = self.ball_newton(j, a, x, t0, true);
+            let t0 = self.terms_opt(j, x, a, true, kin);
+            let (xo, _) = self.ball_newton(j, a, x, t0, true, kin);
             let tf = self.terms_at(j, xo, a);
             (xs, ts) = if converged(&tf) {
                 (xo, tf)
             } else {
-                self.ball_newton(j, a, xo, tf, false)
+                self.ball_newton(j, a, xo, tf, false, kin)
             };
         }
         let (x, t) = (xs, ts);
@@ -680,6 +713,7 @@ impl<'a> BearingModel<'a> {
         x: [f64; 2],
         t: Terms,
         ignore_inner: bool,
+        kin: Kinematics,
     ) -> ([f64; 2], Terms) {
         let mut t = t;
         let scale = |t: &Terms| t.qi.abs() + t.qo.abs() + t.fc.abs() + 1e-6;
@@ -690,9 +724,17 @@ impl<'a> BearingModel<'a> {
         let polar = |x: [f64; 2]| (x[0].hypot(x[1]), x[0].atan2(x[1]));
         let cart = |rho: f64, phi: f64| [rho * phi.sin(), rho * phi.cos()];
         let (mut rho, mut phi) = polar(x);
+        // Consecutive creeping steps (textbook model): accepted, but not a capped full step and
+        // reducing the residual by less than 10 %. Five in a row (near a fold of the per-ball
+        // equations, far from the solution) stop the iteration so that `solve_ball` can restart
+        // from the separated-ball solution instead of creeping for 100 iterations.
+        let mut creeping = 0;
         for _ in 0..100 {
             let res = norm(&t);
             if res <= 1e-13 * scale(&t) {
+                break;
+            }
+            if kin == Kinematics::OperatingAngles && creeping >= 5 {
                 break;
             }
             let (sp, cp) = phi.sin_cos();
@@ -714,10 +756,16 @@ impl<'a> BearingModel<'a> {
                 .min(1.0);
             let mut accepted = false;
             let mut lam = lim;
-            for _ in 0..8 {
+            for k in 0..8 {
                 let (rn, pn) = (rho + lam * step[0], phi + lam * step[1]);
-                let tn = self.terms_opt(j, cart(rn, pn), a, ignore_inner);
+                let tn = self.terms_opt(j, cart(rn, pn), a, ignore_inner, kin);
                 if norm(&tn) < res {
+                    let capped = k == 0 && lim < 1.0;
+                    creeping = if !capped && norm(&tn) > 0.9 * res {
+                        creeping + 1
+                    } else {
+                        0
+                    };
                     (rho, phi, t) = (rn, pn, tn);
                     accepted = true;
                     break;
@@ -745,8 +793,13 @@ impl<'a> BearingModel<'a> {
                         let s1 = (b11 * g[1] - a12 * g[0]) / det;
                         let (rn, pn) = (rho + s0, phi + s1);
                         if rn > 0.0 {
-                            let tn = self.terms_opt(j, cart(rn, pn), a, ignore_inner);
+                            let tn = self.terms_opt(j, cart(rn, pn), a, ignore_inner, kin);
                             if norm(&tn) < res {
+                                creeping = if norm(&tn) > 0.9 * res {
+                                    creeping + 1
+                                } else {
+                                    0
+                                };
                                 (rho, phi, t) = (rn, pn, tn);
                                 accepted = true;
                                 break;
