@@ -260,11 +260,11 @@ fn newton_euler_per_ball_in_3d_at_high_speed() {
 }
 
 /// An independent implementation of the textbook high-speed equations for pure thrust
-/// (docs/bearing.md §2, Jones 1960; Harris, *Rolling Bearing Analysis*), outer-race control,
+/// (docs/bearing.md §1, Jones 1960; Harris, *Rolling Bearing Analysis*), outer-race control,
 /// written from the equations in the docs, not from the solver: Harris' geometry with the ball
 /// centre (X1, X2) and the inner groove centre (A1, A2) = (A sin α0 + δ_a, A cos α0), his explicit
 /// ω_m/ω, ω_R/ω and tan β, M_g = J·ω_R·ω_m·sin β, the λ-form ball equilibrium with the friction
-/// limit of docs/bearing.md §2.4, exact Hertz constants at each operating angle (HertzGeometry),
+/// limit of docs/bearing.md §2.5, exact Hertz constants at each operating angle (HertzGeometry),
 /// and Newton with finite-difference Jacobians.
 struct Textbook {
     z: f64,
@@ -352,11 +352,9 @@ impl Textbook {
         let wr = -self.omega / (gamma * beta.cos() * (po + pi_));
         let fc = 0.5 * self.m * self.dm * wm * wm;
         let mg = self.j * wr * wm * beta.sin();
-        // λ_i = 0, λ_o = 2; friction limited smoothly to μ_max·Q (docs/bearing.md §2.4).
+        // λ_i = 0, λ_o = 2; friction limited smoothly to μ_max·Q (docs/bearing.md §2.5).
         let sat = |f: f64, lim: f64| {
-            if f == 0.0 {
-                0.0
-            } else if lim <= 0.0 {
+            if f == 0.0 || lim <= 0.0 {
                 0.0
             } else {
                 f / (1.0 + (f / lim).powi(8)).powf(0.125)
