@@ -87,6 +87,7 @@ pub fn run(args: &EquilibriumArgs) -> anyhow::Result<()> {
     };
     if args.json {
         let mut v = equilibrium_json(&eq);
+        add_race_control_fields(&mut v, &eq);
         if let Some(f) = &films {
             for (j, b) in v["balls"].as_array_mut().into_iter().flatten().enumerate() {
                 for (k, race) in ["inner", "outer"].iter().enumerate() {
@@ -113,6 +114,33 @@ pub fn run(args: &EquilibriumArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Per contact: the spin-to-roll ratio and the friction the gyroscopic moment needs against the
+/// friction the contact can transmit (μ_max·Q), where race control is in doubt.
+fn add_race_control_fields(v: &mut serde_json::Value, eq: &Equilibrium) {
+    for (b, bj) in eq
+        .balls
+        .iter()
+        .zip(v["balls"].as_array_mut().into_iter().flatten())
+    {
+        for (race, c) in [("inner", &b.inner), ("outer", &b.outer)] {
+            bj[race]["spin_to_roll"] = c.spin_to_roll.into();
+            bj[race]["friction_needed"] = c.friction_needed.into();
+            bj[race]["friction_limit"] = c.friction_limit.into();
+        }
+    }
+}
+
+/// Needed over available friction as a percentage, or "—" for an unloaded contact.
+fn friction_use(c: &ehl_bearing::bearing::ContactState) -> String {
+    if c.friction_limit > 0.0 {
+        format!("{:.0} %", 100.0 * c.friction_needed / c.friction_limit)
+    } else if c.friction_needed > 0.0 {
+        "unloaded".into()
+    } else {
+        "—".into()
+    }
+}
+
 /// Human-readable report in engineering units.
 pub fn table(case: &Case, eq: &Equilibrium) -> String {
     use std::fmt::Write;
@@ -133,10 +161,11 @@ pub fn table(case: &Case, eq: &Equilibrium) -> String {
     );
     let _ = writeln!(
         s,
-        "speeds: inner {:.0} rpm, outer {:.0} rpm; race control {:?}; dry Hertz contacts",
+        "speeds: inner {:.0} rpm, outer {:.0} rpm; race control {:?}; kinematics {:?}; dry Hertz contacts",
         op.inner_speed * rpm,
         op.outer_speed * rpm,
-        op.race_control
+        op.race_control,
+        case.settings.kinematics
     );
     let _ = writeln!(
         s,
@@ -192,6 +221,30 @@ pub fn table(case: &Case, eq: &Equilibrium) -> String {
             b.outer.sum_velocity,
             b.orbital_speed * rpm,
             b.centrifugal_force
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\nrace control (spin/roll: spin-to-roll ratio; friction: what the gyroscopic moment needs, in % of μ_max·Q, μ_max = {})",
+        ehl_bearing::bearing::equilibrium::MU_MAX
+    );
+    let _ = writeln!(
+        s,
+        "{:>4} {:>8} {:>10} {:>10} | {:>10} {:>10} | {:>10} {:>10}",
+        "ball", "β °", "ω_R rpm", "G N·m", "spin/roll i", "spin/roll o", "friction i", "friction o"
+    );
+    for (j, b) in eq.balls.iter().enumerate() {
+        let _ = writeln!(
+            s,
+            "{:>4} {:>8.3} {:>10.0} {:>10.4} | {:>11.4} {:>11.4} | {:>10} {:>10}",
+            j,
+            b.pitch_angle.to_degrees(),
+            b.spin_speed * rpm,
+            b.gyroscopic_moment,
+            b.inner.spin_to_roll,
+            b.outer.spin_to_roll,
+            friction_use(&b.inner),
+            friction_use(&b.outer)
         );
     }
     for w in &eq.warnings {

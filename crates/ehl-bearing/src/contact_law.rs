@@ -22,6 +22,14 @@ pub trait ContactLaw: Send + Sync + std::fmt::Debug {
         let _ = approach;
         0.0
     }
+
+    /// For a law whose force depends on the contact angle α (rad) through the contact's
+    /// curvature (the dry Hertz law of a bearing contact, `bearing::ContactLaws::hertz`): the
+    /// factor c(α) (dimensionless) and dc/dα (1/rad) such that the force at angle α is
+    /// c(α)·`force`(δ). `None` (the default): the law is used as given at every angle.
+    fn angle_factor(&self, _contact_angle: f64) -> Option<(f64, f64)> {
+        None
+    }
 }
 
 /// Dry Hertz law Q = K·δ^1.5 for δ > 0, Q = 0 otherwise.

@@ -18,7 +18,9 @@
 //! equilibrium with the balls: the bearing acts on the shaft with the opposite.
 
 use crate::bearing::{Bearing, ForceResult};
-use crate::bearing::{BearingError, BearingModel, ContactLaws, DynamicForce, Race, RaceControl};
+use crate::bearing::{
+    BearingError, BearingModel, ContactLaws, DynamicForce, Kinematics, Race, RaceControl,
+};
 use crate::characterize::{BearingCharacterization, CharacterizationReport, CharacterizeError};
 use crate::contact_law::ContactLaw;
 use crate::fit::FittedLaw;
@@ -130,12 +132,16 @@ fn prepare(
     state: &mut ElementState,
     bearing: &Bearing,
     laws: &ContactLaws,
-    race_control: RaceControl,
+    (race_control, kinematics): (RaceControl, Kinematics),
     input: &ElementInput,
 ) -> Result<(), BearingError> {
     let z = bearing.geometry.ball_count;
     let model = match state.model.as_mut() {
-        Some(m) if m.bearing() == bearing && m.race_control() == race_control => {
+        Some(m)
+            if m.bearing() == bearing
+                && m.race_control() == race_control
+                && m.kinematics() == kinematics =>
+        {
             if !m.has_laws(laws) {
                 m.set_laws(laws.clone())?;
             }
@@ -144,13 +150,16 @@ fn prepare(
         _ => {
             state.warm = vec![None; z];
             state.loads.clear();
-            state.model.insert(BearingModel::new(
-                bearing,
-                laws,
-                input.inner_speed,
-                input.outer_speed,
-                race_control,
-            )?)
+            state.model.insert(
+                BearingModel::new(
+                    bearing,
+                    laws,
+                    input.inner_speed,
+                    input.outer_speed,
+                    race_control,
+                )?
+                .with_kinematics(kinematics),
+            )
         }
     };
     model.set_speeds(input.inner_speed, input.outer_speed)?;
@@ -176,6 +185,7 @@ pub struct LawElement {
     bearing: Bearing,
     laws: ContactLaws,
     race_control: RaceControl,
+    kinematics: Kinematics,
     /// The fitted laws per ball [inner, outer], for the range flags (None for dry laws).
     fitted: Option<Vec<[FittedLaw; 2]>>,
 }
@@ -188,13 +198,22 @@ impl LawElement {
             bearing: *bearing,
             laws: ContactLaws::hertz(bearing)?,
             race_control,
+            kinematics: Kinematics::default(),
             fitted: None,
         })
     }
 
-    /// Dry Hertz laws for the bearing and race control of `case`.
+    /// Dry Hertz laws for the bearing, race control and kinematics model of `case`.
     pub fn hertz_case(case: &Case) -> Result<Self, crate::Error> {
-        Self::hertz(&case.bearing, case.operating.race_control)
+        Ok(Self::hertz(&case.bearing, case.operating.race_control)?
+            .with_kinematics(case.settings.kinematics))
+    }
+
+    /// The same element with the ball kinematics evaluated by `kinematics` (default: the
+    /// textbook model at the operating contact angles, as the equilibrium's default).
+    pub fn with_kinematics(mut self, kinematics: Kinematics) -> Self {
+        self.kinematics = kinematics;
+        self
     }
 
     /// The fitted laws of a characterization of `case` (the laws of its final equilibrium,
@@ -204,7 +223,10 @@ impl LawElement {
         c: &BearingCharacterization,
     ) -> Result<Self, crate::Error> {
         let laws: Vec<FittedLaw> = c.contacts.iter().map(|r| r.characterized.law).collect();
-        Self::from_fitted(&case.bearing, case.operating.race_control, &laws)
+        Ok(
+            Self::from_fitted(&case.bearing, case.operating.race_control, &laws)?
+                .with_kinematics(case.settings.kinematics),
+        )
     }
 
     /// The fitted laws of a characterization report (e.g. a study point file or
@@ -259,6 +281,7 @@ impl LawElement {
             bearing: *bearing,
             laws: ContactLaws { inner, outer },
             race_control,
+            kinematics: Kinematics::default(),
             fitted: Some(pairs),
         })
     }
@@ -277,7 +300,13 @@ impl ForceElement for LawElement {
         input: &ElementInput,
         state: &mut ElementState,
     ) -> Result<ElementOutput, crate::Error> {
-        prepare(state, &self.bearing, &self.laws, self.race_control, input)?;
+        prepare(
+            state,
+            &self.bearing,
+            &self.laws,
+            (self.race_control, self.kinematics),
+            input,
+        )?;
         let f = solve(state, input)?;
         let mut outside_range = Vec::new();
         if let Some(fitted) = &self.fitted {
@@ -689,7 +718,13 @@ impl TrendForceElement {
         }
         let laws = ContactLaws { inner, outer };
         let races = [cache.races[0].clone(), cache.races[1].clone()];
-        prepare(state, &self.bearing, &laws, self.model.race_control, input)?;
+        prepare(
+            state,
+            &self.bearing,
+            &laws,
+            (self.model.race_control, Kinematics::default()),
+            input,
+        )?;
         let f = solve(state, input)?;
         let mut outside_range = Vec::new();
         let mut residual = 0.0_f64;

@@ -4,7 +4,7 @@
 
 use ehl_bearing::bearing::{
     solve_equilibrium, BallState, Bearing, BearingGeometry, BearingModel, ContactLaws, Control,
-    Equilibrium, EquilibriumSettings, OperatingPoint, RaceControl,
+    Equilibrium, EquilibriumSettings, Kinematics, OperatingPoint, RaceControl,
 };
 use ehl_bearing::material::Solid;
 use proptest::prelude::*;
@@ -36,8 +36,18 @@ fn loads(fx: f64, fy: f64, fz: f64, my: f64, mz: f64, rpm: f64, rc: RaceControl)
 }
 
 fn solve(b: &Bearing, op: &OperatingPoint) -> Equilibrium {
+    solve_kin(b, op, Kinematics::OperatingAngles)
+}
+
+/// Solve with the given kinematics model (the default is the textbook model at the operating
+/// contact angles; `GrooveLine` is the model before issue 14).
+fn solve_kin(b: &Bearing, op: &OperatingPoint, kinematics: Kinematics) -> Equilibrium {
     let laws = ContactLaws::hertz(b).unwrap();
-    solve_equilibrium(b, &laws, op, &EquilibriumSettings::default()).unwrap()
+    let settings = EquilibriumSettings {
+        kinematics,
+        ..Default::default()
+    };
+    solve_equilibrium(b, &laws, op, &settings).unwrap()
 }
 
 fn rel(a: f64, b: f64) -> f64 {
@@ -47,24 +57,41 @@ fn rel(a: f64, b: f64) -> f64 {
 /// Pure thrust at zero speed: Jones' relation (shared/reference/README.md; Harris ch. 7):
 /// F_a = Z·K_n·(A(cos α0/cos α − 1))^1.5·sin α, δ_a = A·sin(α − α0)/cos α, with
 /// 1/K_n^(2/3) = 1/K_i^(2/3) + 1/K_o^(2/3). The relation is exact for the model, so the tolerance
-/// is set by the solver's convergence (1e-11 relative force) and round-off.
+/// is set by the solver's convergence (1e-11 relative force) and round-off. With the Hertz
+/// constants at the free contact angle (groove-line model) K_n is a constant; in the textbook
+/// model K_n = K_n(α) at the operating angle (Harris solves the relation iteratively for it), and
+/// the same relation holds with it.
 #[test]
 fn pure_thrust_matches_jones_relation() {
+    for kin in [Kinematics::GrooveLine, Kinematics::OperatingAngles] {
+        pure_thrust_jones(kin);
+    }
+}
+
+fn pure_thrust_jones(kin: Kinematics) {
     let b = b7006();
     let g = &b.geometry;
     let a0 = g.free_contact_angle;
-    let ki = b
-        .hertz(ehl_bearing::bearing::Race::Inner, a0)
-        .unwrap()
-        .stiffness;
-    let ko = b
-        .hertz(ehl_bearing::bearing::Race::Outer, a0)
-        .unwrap()
-        .stiffness;
-    let kn = (ki.powf(-2.0 / 3.0) + ko.powf(-2.0 / 3.0)).powf(-1.5);
+    let kn = |alpha: f64| {
+        let at = if kin == Kinematics::GrooveLine {
+            a0
+        } else {
+            alpha
+        };
+        let ki = b
+            .hertz(ehl_bearing::bearing::Race::Inner, at)
+            .unwrap()
+            .stiffness;
+        let ko = b
+            .hertz(ehl_bearing::bearing::Race::Outer, at)
+            .unwrap()
+            .stiffness;
+        (ki.powf(-2.0 / 3.0) + ko.powf(-2.0 / 3.0)).powf(-1.5)
+    };
     let a = g.center_distance();
     let z = g.ball_count as f64;
-    let thrust = |alpha: f64| z * kn * (a * (a0.cos() / alpha.cos() - 1.0)).powf(1.5) * alpha.sin();
+    let thrust =
+        |alpha: f64| z * kn(alpha) * (a * (a0.cos() / alpha.cos() - 1.0)).powf(1.5) * alpha.sin();
     for fa in [100.0, 1000.0, 5000.0] {
         // Independent solution of Jones' equation for α by bisection.
         let (mut lo, mut hi) = (a0 + 1e-12, 80f64.to_radians());
@@ -77,9 +104,16 @@ fn pure_thrust_matches_jones_relation() {
             }
         }
         let alpha = 0.5 * (lo + hi);
-        let e = solve(&b, &loads(fa, 0.0, 0.0, 0.0, 0.0, 0.0, RaceControl::Outer));
+        let e = solve_kin(
+            &b,
+            &loads(fa, 0.0, 0.0, 0.0, 0.0, 0.0, RaceControl::Outer),
+            kin,
+        );
         for ball in &e.balls {
-            assert!(rel(ball.inner.contact_angle, alpha) < 1e-9, "α {fa}");
+            assert!(
+                rel(ball.inner.contact_angle, alpha) < 1e-9,
+                "α {fa} {kin:?}"
+            );
             assert!(rel(ball.outer.contact_angle, alpha) < 1e-9);
             assert!(rel(ball.inner.load, fa / (z * alpha.sin())) < 1e-9);
         }
@@ -154,6 +188,17 @@ fn equilibrium_residual_is_at_round_off() {
         for ball in &e.balls {
             check_ball_newton_euler(&b, ball, RaceControl::Outer, op.inner_speed);
         }
+        // The groove-line model too.
+        let e = solve_kin(&b, &op, Kinematics::GrooveLine);
+        for ball in &e.balls {
+            check_ball_newton_euler_kin(
+                &b,
+                ball,
+                RaceControl::Outer,
+                op.inner_speed,
+                Kinematics::GrooveLine,
+            );
+        }
     }
 }
 
@@ -161,6 +206,16 @@ fn equilibrium_residual_is_at_round_off() {
 /// ΣF = 0 and ΣM about the centre = dH/dt = ω_m x̂ × (J·Ω_ball), with Ω_ball = ω_m x̂ + ω_R ê,
 /// computed with plain cross products (independent of the 2-D equations in the solver).
 fn check_ball_newton_euler(b: &Bearing, ball: &BallState, rc: RaceControl, inner_speed: f64) {
+    check_ball_newton_euler_kin(b, ball, rc, inner_speed, Kinematics::OperatingAngles)
+}
+
+fn check_ball_newton_euler_kin(
+    b: &Bearing,
+    ball: &BallState,
+    rc: RaceControl,
+    inner_speed: f64,
+    kin: Kinematics,
+) {
     let cross = |a: [f64; 3], c: [f64; 3]| {
         [
             a[1] * c[2] - a[2] * c[1],
@@ -256,14 +311,29 @@ fn check_ball_newton_euler(b: &Bearing, ball: &BallState, rc: RaceControl, inner
             );
         }
     }
-    // Pure rolling (cage frame) at the contact points of the kinematic angle α_k (the angle of the
-    // line of groove centres, at which the solver evaluates the speeds): surface speeds match.
-    let ak = ball.kinematic_angle;
-    let nk = dvec(ak.sin(), ak.cos());
-    let pi = [-0.5 * d * nk[0], -0.5 * d * nk[1], -0.5 * d * nk[2]];
-    let po = [0.5 * d * nk[0], 0.5 * d * nk[1], 0.5 * d * nk[2]];
-    let rpi = 0.5 * b.geometry.pitch_diameter - 0.5 * d * ak.cos();
-    let rpo = 0.5 * b.geometry.pitch_diameter + 0.5 * d * ak.cos();
+    // Pure rolling (cage frame) at the contact points at which the solver evaluates the speeds:
+    // the groove-line model at the angle α_k of the line of groove centres for both contacts; the
+    // textbook model at each loaded contact's operating angle (a separated inner contact falls
+    // back to α_k): surface speeds match.
+    let (aki, ako) = match kin {
+        Kinematics::GrooveLine => (ball.kinematic_angle, ball.kinematic_angle),
+        Kinematics::OperatingAngles => (
+            if ball.inner.deflection >= 0.0 {
+                ai
+            } else if ball.inner.deflection < -0.01 * (b.geometry.inner_conformity - 0.5) * d {
+                ball.kinematic_angle
+            } else {
+                return; // inside the blend band: no single angle to check
+            },
+            ao,
+        ),
+    };
+    let nki = dvec(aki.sin(), aki.cos());
+    let nko = dvec(ako.sin(), ako.cos());
+    let pi = [-0.5 * d * nki[0], -0.5 * d * nki[1], -0.5 * d * nki[2]];
+    let po = [0.5 * d * nko[0], 0.5 * d * nko[1], 0.5 * d * nko[2]];
+    let rpi = 0.5 * b.geometry.pitch_diameter - 0.5 * d * aki.cos();
+    let rpo = 0.5 * b.geometry.pitch_diameter + 0.5 * d * ako.cos();
     let wb = [
         ball.spin_speed * e_axis[0],
         ball.spin_speed * e_axis[1],
@@ -532,12 +602,20 @@ proptest! {
 fn stiffness_is_the_jacobian_at_equilibrium_and_symmetric_only_at_rest() {
     let b = b7006();
     let laws = ContactLaws::hertz(&b).unwrap();
-    for (rpm, symmetric) in [(0.0, true), (15000.0, false)] {
-        let e = solve(
+    for (rpm, kin, symmetric) in [
+        (0.0, Kinematics::GrooveLine, true),
+        (15000.0, Kinematics::GrooveLine, false),
+        (0.0, Kinematics::OperatingAngles, false),
+        (15000.0, Kinematics::OperatingAngles, false),
+    ] {
+        let e = solve_kin(
             &b,
             &loads(1000.0, 1000.0, 1000.0, 0.0, 0.0, rpm, RaceControl::Outer),
+            kin,
         );
-        let model = BearingModel::new(&b, &laws, rpm * RPM, 0.0, RaceControl::Outer).unwrap();
+        let model = BearingModel::new(&b, &laws, rpm * RPM, 0.0, RaceControl::Outer)
+            .unwrap()
+            .with_kinematics(kin);
         let j = model.evaluate(&e.displacement).unwrap().jacobian;
         let mut asym = 0.0_f64;
         for r in 0..5 {
@@ -546,13 +624,14 @@ fn stiffness_is_the_jacobian_at_equilibrium_and_symmetric_only_at_rest() {
                 asym = asym.max((e.stiffness[r][c] - e.stiffness[c][r]).abs() / e.stiffness[0][0]);
             }
         }
-        // At rest the Hertz model is conservative: the stiffness is symmetric to round-off. At speed
-        // the centrifugal and gyroscopic terms make it (slightly) unsymmetric, and it is not
-        // symmetrized.
+        // At rest the Hertz model with constant K is conservative: the stiffness is symmetric to
+        // round-off. At speed the centrifugal and gyroscopic terms make it (slightly)
+        // unsymmetric, and so does a Hertz constant that follows the contact angle (the force
+        // stays along the normal while K(α) varies: no potential), and it is not symmetrized.
         if symmetric {
             assert!(asym < 1e-9, "{asym}");
         } else {
-            assert!(asym > 1e-7, "{asym}");
+            assert!(asym > 1e-7, "{rpm} {kin:?}: {asym}");
         }
     }
 }
@@ -596,7 +675,7 @@ fn no_spin_at_the_controlling_race_and_epicyclic_speeds_for_any_ring_speeds() {
         let mut op = loads(1000.0, 500.0, 0.0, 0.0, 0.0, 0.0, RaceControl::Outer);
         op.inner_speed = wi * RPM;
         op.outer_speed = wo * RPM;
-        let e = solve(&b, &op);
+        let e = solve_kin(&b, &op, Kinematics::GrooveLine);
         for ball in &e.balls {
             let ak = ball.kinematic_angle;
             let (beta, wm, wr) = (ball.pitch_angle, ball.orbital_speed, ball.spin_speed);
@@ -617,9 +696,10 @@ fn no_spin_at_the_controlling_race_and_epicyclic_speeds_for_any_ring_speeds() {
         }
         // Reversing both ring speeds reverses the kinematics and leaves the loads.
         if (wi, wo) == (-5000.0, 0.0) {
-            let fwd = solve(
+            let fwd = solve_kin(
                 &b,
                 &loads(1000.0, 500.0, 0.0, 0.0, 0.0, 5000.0, RaceControl::Outer),
+                Kinematics::GrooveLine,
             );
             for (a, c) in e.balls.iter().zip(&fwd.balls) {
                 assert!((a.inner.load - c.inner.load).abs() < 1e-9 * c.inner.load);
@@ -631,29 +711,37 @@ fn no_spin_at_the_controlling_race_and_epicyclic_speeds_for_any_ring_speeds() {
 
 #[test]
 fn approximations_are_flagged_at_very_high_speed() {
-    // At 50 000 rpm the seed's contact angles split far from the groove-centre angle at which the
-    // kinematics are evaluated: the result says so.
+    // Groove-line model: at 50 000 rpm the seed's contact angles split far from the groove-centre
+    // angle at which the kinematics are evaluated: the result says so. The textbook model
+    // evaluates them at the contact angles and has no such warning.
     let b = b7006();
-    let e = solve(
-        &b,
-        &loads(
-            1000.0,
-            1000.0,
-            1000.0,
-            0.0,
-            0.0,
-            50000.0,
-            RaceControl::Outer,
-        ),
+    let op = loads(
+        1000.0,
+        1000.0,
+        1000.0,
+        0.0,
+        0.0,
+        50000.0,
+        RaceControl::Outer,
     );
+    let e = solve_kin(&b, &op, Kinematics::GrooveLine);
     assert!(
         e.warnings.iter().any(|w| w.contains("groove-centre angle")),
         "{:?}",
         e.warnings
     );
-    let e = solve(
-        &b,
-        &loads(1000.0, 1000.0, 1000.0, 0.0, 0.0, 5000.0, RaceControl::Outer),
+    let e = solve(&b, &op);
+    assert!(
+        !e.warnings.iter().any(|w| w.contains("groove-centre angle")),
+        "{:?}",
+        e.warnings
     );
-    assert!(e.warnings.is_empty(), "{:?}", e.warnings);
+    for kin in [Kinematics::GrooveLine, Kinematics::OperatingAngles] {
+        let e = solve_kin(
+            &b,
+            &loads(1000.0, 1000.0, 1000.0, 0.0, 0.0, 5000.0, RaceControl::Outer),
+            kin,
+        );
+        assert!(e.warnings.is_empty(), "{:?}", e.warnings);
+    }
 }

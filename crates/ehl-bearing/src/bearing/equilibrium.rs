@@ -20,14 +20,23 @@
 //! inner ring), the races must apply G·t̂ with G = −J·ω_m·ω_R·sin β, through friction forces
 //! F_i = λ_i·G/D at the inner contact and F_o = −λ_o·G/D at the outer contact, along the contact
 //! tangents τ̂ = (cos α, −sin α). λ_i + λ_o = 2 (outer-race control: λ_i = 0, λ_o = 2).
+//!
+//! # Kinematics
+//! By default ([`Kinematics::OperatingAngles`], the textbook model of Jones and Harris) the ball's
+//! speeds ω_m, ω_R and pitch angle β follow from pure rolling at both contact centres at their own
+//! operating angles α_i, α_o and zero spin at the controlling race, and dry Hertz constants are
+//! evaluated at the operating angles; a separated contact's kinematic angle falls back to the
+//! angle of the line of groove-curvature centres. [`Kinematics::GrooveLine`] is the earlier model.
+//! Equations: docs/bearing.md §1.
 
 // Index loops mirror the matrix formulas here; iterator chains would obscure them.
 #![allow(clippy::needless_range_loop)]
 
 use super::geometry::{Bearing, Race};
+use super::hertz_law::OperatingAngleHertzLaw;
 use super::linalg;
 use super::{dual::D4, BearingError};
-use crate::contact_law::{ContactLaw, HertzLaw};
+use crate::contact_law::ContactLaw;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -57,6 +66,26 @@ impl RaceControl {
             RaceControl::NoGyroscopic => (0.0, 0.0),
         }
     }
+}
+
+/// Where the ball kinematics (orbital speed ω_m, roll speed ω_R, pitch angle β) are evaluated,
+/// and whether dry Hertz constants follow the operating contact angle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Kinematics {
+    /// The textbook model (Jones 1960; Harris, *Rolling Bearing Analysis*): the inner rolling
+    /// condition at the inner contact angle α_i, the outer one and the race-control axis at α_o
+    /// (at α_i for inner-race control), and Hertz constants of laws that follow the angle
+    /// ([`super::OperatingAngleHertzLaw`]) at each contact's operating angle. A separated
+    /// contact's kinematic angle falls back smoothly to the angle of the line of groove-curvature
+    /// centres (README, "Modelling choices").
+    #[default]
+    OperatingAngles,
+    /// The model before issue 14: both contacts' kinematics at the angle of the line of
+    /// groove-curvature centres, and every contact law used as given (dry Hertz constants at the
+    /// free contact angle). Close to the textbook model only while the contact angles split by
+    /// about a degree or less (n·d_m below about 0.3 million mm/min).
+    GrooveLine,
 }
 
 /// How one degree of freedom is driven.
@@ -95,18 +124,50 @@ pub struct ContactLaws {
 }
 
 impl ContactLaws {
-    /// Dry Hertz laws Q = K·δ^1.5 with K evaluated at the free contact angle α0 (the change of K
-    /// with the operating contact angle is below 0.5 % for the 7006 between 15° and 20°).
+    /// Dry Hertz laws Q = K_H(α)·δ^1.5 ([`super::OperatingAngleHertzLaw`]): K_H at the free
+    /// contact angle α0 as given, and at each contact's operating angle in the textbook model
+    /// ([`Kinematics::OperatingAngles`], the default). The groove-line model uses K_H(α0).
     pub fn hertz(bearing: &Bearing) -> Result<Self, BearingError> {
-        let a0 = bearing.geometry.free_contact_angle;
-        let ki = bearing.hertz(Race::Inner, a0)?.stiffness;
-        let ko = bearing.hertz(Race::Outer, a0)?.stiffness;
+        bearing.validate()?;
+        let li: Arc<dyn ContactLaw> = Arc::new(OperatingAngleHertzLaw::new(bearing, Race::Inner)?);
+        let lo: Arc<dyn ContactLaw> = Arc::new(OperatingAngleHertzLaw::new(bearing, Race::Outer)?);
         let z = bearing.geometry.ball_count;
         Ok(ContactLaws {
-            inner: (0..z).map(|_| shared(HertzLaw { stiffness: ki })).collect(),
-            outer: (0..z).map(|_| shared(HertzLaw { stiffness: ko })).collect(),
+            inner: (0..z).map(|_| li.clone()).collect(),
+            outer: (0..z).map(|_| lo.clone()).collect(),
         })
     }
+}
+
+/// Gap (fraction of the groove offset (f − 1/2)·D) over which a separated contact's kinematic
+/// angle blends from its operating angle to the groove-line angle (textbook model).
+const SEPARATION_BAND: f64 = 0.01;
+
+/// The angle atan2(s, c) of a unit vector (s, c) given as dual numbers.
+fn angle_of(s: D4, c: D4) -> D4 {
+    let mut d = [0.0; 4];
+    let n2 = s.v * s.v + c.v * c.v;
+    for k in 0..4 {
+        d[k] = (c.v * s.d[k] - s.v * c.d[k]) / n2;
+    }
+    D4 {
+        v: s.v.atan2(c.v),
+        d,
+    }
+}
+
+/// Kinematic angle of a contact with approach `delta`: `alpha` at contact (δ ≥ 0), `theta` at a
+/// gap of `band` or more, a C¹ smoothstep in between.
+fn blend(alpha: D4, theta: D4, delta: D4, band: f64) -> D4 {
+    if delta.v >= 0.0 {
+        return alpha;
+    }
+    if delta.v <= -band {
+        return theta;
+    }
+    let t = (delta + band) / band; // 0 at −band, 1 at contact
+    let w = t.chain(t.v * t.v * (3.0 - 2.0 * t.v), 6.0 * t.v * (1.0 - t.v));
+    theta + w * (alpha - theta)
 }
 
 /// Largest friction coefficient available to resist the gyroscopic moment (a typical EHL
@@ -129,10 +190,6 @@ fn saturate(f: D4, limit: D4) -> D4 {
     f * r.chain(g, dg)
 }
 
-fn shared(law: HertzLaw) -> Arc<dyn ContactLaw> {
-    Arc::new(law)
-}
-
 /// Convergence settings of the equilibrium solver.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct EquilibriumSettings {
@@ -150,6 +207,8 @@ pub struct EquilibriumSettings {
     /// case files that give the bearing by its clearance (deep-groove bearings, shoulders on both
     /// sides) default to −90°, i.e. no limit.
     pub min_contact_angle: f64,
+    /// Kinematics model (default: the textbook model at the operating contact angles).
+    pub kinematics: Kinematics,
 }
 
 impl Default for EquilibriumSettings {
@@ -159,6 +218,7 @@ impl Default for EquilibriumSettings {
             max_iterations: 100,
             max_deflection_ratio: 0.02,
             min_contact_angle: -5f64.to_radians(),
+            kinematics: Kinematics::OperatingAngles,
         }
     }
 }
@@ -184,6 +244,16 @@ pub struct ContactState {
     pub ry: f64,
     /// Sum velocity u_s = u1 + u2 of ball and race surfaces relative to the contact, m/s.
     pub sum_velocity: f64,
+    /// Spin-to-roll ratio ω_s/ω_roll (dimensionless): the ball's angular velocity relative to
+    /// the race, Ω_rel = ω_R·ê − (ω_race − ω_m)·x̂, resolved along the contact normal
+    /// n̂ = (sin α, cos α) (spin) and along the contact tangent τ̂ = (cos α, −sin α) (roll), at
+    /// the operating contact angle; 0 when the roll component vanishes (rings at rest).
+    pub spin_to_roll: f64,
+    /// Friction force the gyroscopic moment needs at this contact, λ·|G|/D, N (before the
+    /// μ_max·Q limit).
+    pub friction_needed: f64,
+    /// Friction the contact can transmit, μ_max·Q, N ([`MU_MAX`]).
+    pub friction_limit: f64,
 }
 
 /// State of one ball.
@@ -198,8 +268,9 @@ pub struct BallState {
     pub spin_speed: f64,
     /// Pitch angle β of the rolling axis, rad.
     pub pitch_angle: f64,
-    /// Angle of the line of groove-curvature centres, rad: the contact angle at which the ball
-    /// speeds are evaluated (equal to both contact angles at rest).
+    /// Angle of the line of groove-curvature centres, rad (equal to both contact angles at
+    /// rest): where the groove-line model evaluates the ball speeds, and the fallback of a
+    /// separated contact in the textbook model.
     pub kinematic_angle: f64,
     /// Centrifugal force F_c = ½·m·d_m·ω_m², N.
     pub centrifugal_force: f64,
@@ -287,6 +358,7 @@ pub struct BearingModel {
     inner_speed: f64,
     outer_speed: f64,
     race_control: RaceControl,
+    kinematics: Kinematics,
     ri: f64,
     ro: f64,
     a0: f64,
@@ -360,6 +432,7 @@ impl BearingModel {
             inner_speed,
             outer_speed,
             race_control,
+            kinematics: Kinematics::default(),
             ri: (g.inner_conformity - 0.5) * d,
             ro: (g.outer_conformity - 0.5) * d,
             a0: g.center_distance(),
@@ -415,6 +488,11 @@ impl BearingModel {
         self.race_control
     }
 
+    /// The kinematics model.
+    pub fn kinematics(&self) -> Kinematics {
+        self.kinematics
+    }
+
     /// Number of balls Z.
     pub fn ball_count(&self) -> usize {
         self.psi.len()
@@ -427,6 +505,13 @@ impl BearingModel {
         self.orbital_guess()
     }
 
+    /// The same model with kinematics model `kinematics` ([`BearingModel::new`] uses the
+    /// default, the textbook model at the operating contact angles).
+    pub fn with_kinematics(mut self, kinematics: Kinematics) -> Self {
+        self.kinematics = kinematics;
+        self
+    }
+
     fn groove_offsets(&self, j: usize, q: &[f64; 5]) -> [f64; 2] {
         let (s, c) = self.psi[j].sin_cos();
         let alpha0 = self.bearing.geometry.free_contact_angle;
@@ -436,7 +521,14 @@ impl BearingModel {
         ]
     }
 
-    fn terms(&self, j: usize, x: [D4; 2], a: [D4; 2], ignore_inner: bool) -> Terms {
+    fn terms(
+        &self,
+        j: usize,
+        x: [D4; 2],
+        a: [D4; 2],
+        ignore_inner: bool,
+        kin: Kinematics,
+    ) -> Terms {
         let geo = &self.bearing.geometry;
         let d = geo.ball_diameter;
         let dm = geo.pitch_diameter;
@@ -459,17 +551,48 @@ impl BearingModel {
             self.laws.inner[j].force(di.v)
         };
         let (fo, dfo) = self.laws.outer[j].force(dout.v);
-        let qi = di.chain(fi, dfi);
-        let qo = dout.chain(fo, dfo);
-        // Kinematic angle: the ball's speeds (ω_m, ω_R, β) are evaluated with both contact angles
-        // taken as the angle of the line of groove-curvature centres, atan(A1/A2). It equals both
-        // contact angles at rest and differs from them by the small centrifugal/gyroscopic split
-        // at speed; unlike the contact angles it stays defined for a ball that leaves a race, and
-        // it depends on the ring displacement only, which keeps each ball's equilibrium well
-        // conditioned (see README, "Modelling choices").
+        let mut qi = di.chain(fi, dfi);
+        let mut qo = dout.chain(fo, dfo);
+        // Angle of the line of groove-curvature centres, atan(A1/A2): equal to both contact
+        // angles at rest; it depends on the ring displacement only.
         let la = (a[0] * a[0] + a[1] * a[1]).sqrt();
-        let (ksin_i, kcos_i) = (a[0] / la, a[1] / la);
-        let (ksin_o, kcos_o) = (ksin_i, kcos_i);
+        let (gsin, gcos) = (a[0] / la, a[1] / la);
+        let (ksin_i, kcos_i, ksin_o, kcos_o) = match kin {
+            // Groove-line model: the ball's speeds (ω_m, ω_R, β) are evaluated with both contact
+            // angles taken as the groove-line angle (README, "Modelling choices").
+            Kinematics::GrooveLine => (gsin, gcos, gsin, gcos),
+            Kinematics::OperatingAngles => {
+                let alpha_i = angle_of(sin_ai, cos_ai);
+                let alpha_o = angle_of(sin_ao, cos_ao);
+                // Hertz constants at the operating contact angles (laws that follow the angle).
+                if let Some((c, dc)) = self.laws.inner[j].angle_factor(alpha_i.v) {
+                    qi = qi * alpha_i.chain(c, dc);
+                }
+                if let Some((c, dc)) = self.laws.outer[j].angle_factor(alpha_o.v) {
+                    qo = qo * alpha_o.chain(c, dc);
+                }
+                // Kinematics at each contact's operating angle. A separated contact has no
+                // physical contact angle (its direction from a groove centre only tens of µm
+                // away is arbitrary once the gap grows): its kinematic angle blends smoothly (C¹)
+                // from the operating angle at contact to the groove-line angle at a gap of
+                // SEPARATION_BAND of the groove offset (f − 1/2)·D.
+                let theta = angle_of(gsin, gcos);
+                // With the inner contact ignored (the separated-ball start of `solve_ball`) the
+                // inner contact is taken as separated.
+                let ki = if ignore_inner {
+                    theta
+                } else {
+                    blend(alpha_i, theta, di, SEPARATION_BAND * self.ri)
+                };
+                let ko = blend(alpha_o, theta, dout, SEPARATION_BAND * self.ro);
+                (
+                    ki.chain(ki.v.sin(), ki.v.cos()),
+                    ki.chain(ki.v.cos(), -ki.v.sin()),
+                    ko.chain(ko.v.sin(), ko.v.cos()),
+                    ko.chain(ko.v.cos(), -ko.v.sin()),
+                )
+            }
+        };
         // Rolling axis ê = (cos β, −sin β): outer control tan β = sin α_o/(cos α_o + γ),
         // inner control tan β = sin α_i/(cos α_i − γ).
         let axis_outer = || {
@@ -545,15 +668,23 @@ impl BearingModel {
     }
 
     fn terms_at(&self, j: usize, x: [f64; 2], a: [f64; 2]) -> Terms {
-        self.terms_opt(j, x, a, false)
+        self.terms_opt(j, x, a, false, self.kinematics)
     }
 
-    fn terms_opt(&self, j: usize, x: [f64; 2], a: [f64; 2], ignore_inner: bool) -> Terms {
+    fn terms_opt(
+        &self,
+        j: usize,
+        x: [f64; 2],
+        a: [f64; 2],
+        ignore_inner: bool,
+        kin: Kinematics,
+    ) -> Terms {
         self.terms(
             j,
             [D4::var(x[0], 0), D4::var(x[1], 1)],
             [D4::var(a[0], 2), D4::var(a[1], 3)],
             ignore_inner,
+            kin,
         )
     }
 
@@ -611,18 +742,28 @@ impl BearingModel {
         }
         let scale = |t: &Terms| t.qi.abs() + t.qo.abs() + t.fc.abs() + 1e-6;
         let converged = |t: &Terms| t.r[0].v.hypot(t.r[1].v) <= 1e-9 * scale(t);
-        let (mut xs, mut ts) = self.ball_newton(j, a, x, t, false);
+        let kin = self.kinematics;
+        if warm.is_none() && kin == Kinematics::OperatingAngles && t.fc > 0.0 {
+            // Cold start at speed: the groove-line kinematics first (robust from the groove-line
+            // start: the ball's speeds then do not depend on its position), then the textbook
+            // model from there.
+            let tg = self.terms_opt(j, x, a, false, Kinematics::GrooveLine);
+            let (xg, _) = self.ball_newton(j, a, x, tg, false, Kinematics::GrooveLine);
+            x = xg;
+            t = self.terms_at(j, x, a);
+        }
+        let (mut xs, mut ts) = self.ball_newton(j, a, x, t, false, kin);
         if !converged(&ts) {
             // Stalled at the onset of the inner contact, where a nearly unloaded but stiff inner
             // contact makes the Jacobian singular: solve the ball in the outer groove alone. If the
             // inner contact is open there, that is the solution; otherwise restart from it.
-            let t0 = self.terms_opt(j, x, a, true);
-            let (xo, _) = self.ball_newton(j, a, x, t0, true);
+            let t0 = self.terms_opt(j, x, a, true, kin);
+            let (xo, _) = self.ball_newton(j, a, x, t0, true, kin);
             let tf = self.terms_at(j, xo, a);
             (xs, ts) = if converged(&tf) {
                 (xo, tf)
             } else {
-                self.ball_newton(j, a, xo, tf, false)
+                self.ball_newton(j, a, xo, tf, false, kin)
             };
         }
         let (x, t) = (xs, ts);
@@ -675,6 +816,7 @@ impl BearingModel {
         x: [f64; 2],
         t: Terms,
         ignore_inner: bool,
+        kin: Kinematics,
     ) -> ([f64; 2], Terms) {
         let mut t = t;
         let scale = |t: &Terms| t.qi.abs() + t.qo.abs() + t.fc.abs() + 1e-6;
@@ -685,9 +827,17 @@ impl BearingModel {
         let polar = |x: [f64; 2]| (x[0].hypot(x[1]), x[0].atan2(x[1]));
         let cart = |rho: f64, phi: f64| [rho * phi.sin(), rho * phi.cos()];
         let (mut rho, mut phi) = polar(x);
+        // Consecutive creeping steps (textbook model): accepted, but not a capped full step and
+        // reducing the residual by less than 10 %. Five in a row (near a fold of the per-ball
+        // equations, far from the solution) stop the iteration so that `solve_ball` can restart
+        // from the separated-ball solution instead of creeping for 100 iterations.
+        let mut creeping = 0;
         for _ in 0..100 {
             let res = norm(&t);
             if res <= 1e-13 * scale(&t) {
+                break;
+            }
+            if kin == Kinematics::OperatingAngles && creeping >= 5 {
                 break;
             }
             let (sp, cp) = phi.sin_cos();
@@ -709,10 +859,16 @@ impl BearingModel {
                 .min(1.0);
             let mut accepted = false;
             let mut lam = lim;
-            for _ in 0..8 {
+            for k in 0..8 {
                 let (rn, pn) = (rho + lam * step[0], phi + lam * step[1]);
-                let tn = self.terms_opt(j, cart(rn, pn), a, ignore_inner);
+                let tn = self.terms_opt(j, cart(rn, pn), a, ignore_inner, kin);
                 if norm(&tn) < res {
+                    let capped = k == 0 && lim < 1.0;
+                    creeping = if !capped && norm(&tn) > 0.9 * res {
+                        creeping + 1
+                    } else {
+                        0
+                    };
                     (rho, phi, t) = (rn, pn, tn);
                     accepted = true;
                     break;
@@ -740,8 +896,13 @@ impl BearingModel {
                         let s1 = (b11 * g[1] - a12 * g[0]) / det;
                         let (rn, pn) = (rho + s0, phi + s1);
                         if rn > 0.0 {
-                            let tn = self.terms_opt(j, cart(rn, pn), a, ignore_inner);
+                            let tn = self.terms_opt(j, cart(rn, pn), a, ignore_inner, kin);
                             if norm(&tn) < res {
+                                creeping = if norm(&tn) > 0.9 * res {
+                                    creeping + 1
+                                } else {
+                                    0
+                                };
                                 (rho, phi, t) = (rn, pn, tn);
                                 accepted = true;
                                 break;
@@ -945,10 +1106,25 @@ impl BearingModel {
             let dm = geo.pitch_diameter;
             let rpi = 0.5 * dm - 0.5 * d * t.cos_ai;
             let rpo = 0.5 * dm + 0.5 * d * t.cos_ao;
+            let (lam_i, lam_o) = self.race_control.lambdas();
             let contact = |race: Race, load: f64, alpha: f64, defl: f64, us: f64| {
                 let (rx, ry) = geo.curvature_radii(race, alpha);
                 let h = self.bearing.hertz(race, alpha)?.contact(load);
+                let (race_speed, lam) = match race {
+                    Race::Inner => (self.inner_speed, lam_i),
+                    Race::Outer => (self.outer_speed, lam_o),
+                };
+                // Ball angular velocity relative to the race (cage frame, axial and radial
+                // components): ω_R·(cos β, −sin β) − (ω_race − ω_m)·(1, 0).
+                let (sb, cb) = t.beta.sin_cos();
+                let w = [t.om_r * cb - (race_speed - t.om_m), -t.om_r * sb];
+                let (sa, ca) = alpha.sin_cos();
+                let spin = w[0] * sa + w[1] * ca;
+                let roll = w[0] * ca - w[1] * sa;
                 Ok::<_, BearingError>(ContactState {
+                    spin_to_roll: if roll != 0.0 { spin / roll } else { 0.0 },
+                    friction_needed: lam * t.gyro.abs() / d,
+                    friction_limit: MU_MAX * load,
                     load,
                     contact_angle: alpha,
                     deflection: defl,
@@ -1022,7 +1198,8 @@ pub fn solve_equilibrium(
         op.inner_speed,
         op.outer_speed,
         op.race_control,
-    )?;
+    )?
+    .with_kinematics(settings.kinematics);
     let geo = &bearing.geometry;
     let lever = 0.5 * geo.pitch_diameter;
     let mut q = [0.0; 5];
@@ -1172,7 +1349,7 @@ pub fn solve_equilibrium(
             reason: "no ball touches the inner race (the loads are zero and centrifugal force holds the balls on the outer race): the ring position is undetermined; apply a load or impose the displacements".into(),
         });
     }
-    let warnings = warnings(&balls);
+    let warnings = warnings(&balls, settings.kinematics);
     let full = model.evaluate_with(&q, &mut warm)?;
     Ok(Equilibrium {
         converged: true,
@@ -1191,8 +1368,17 @@ pub fn solve_equilibrium(
 /// rad.
 const KINEMATIC_ANGLE_WARNING: f64 = 1.0 * std::f64::consts::PI / 180.0;
 
-fn warnings(balls: &[BallState]) -> Vec<String> {
+fn warnings(balls: &[BallState], kinematics: Kinematics) -> Vec<String> {
     let mut out = Vec::new();
+    if kinematics == Kinematics::GrooveLine {
+        kinematic_angle_warning(balls, &mut out);
+    }
+    friction_warnings(balls, &mut out);
+    out
+}
+
+/// Groove-line model: the kinematic angle far from a loaded ball's contact angles.
+fn kinematic_angle_warning(balls: &[BallState], out: &mut Vec<String>) {
     let qmax = balls.iter().map(|b| b.inner.load).fold(0.0, f64::max);
     let (mut worst, mut at) = (0.0_f64, 0);
     for (j, b) in balls.iter().enumerate() {
@@ -1211,6 +1397,10 @@ fn warnings(balls: &[BallState]) -> Vec<String> {
             worst.to_degrees()
         ));
     }
+}
+
+/// Gyroscopic friction near its limit μ_max·Q (the ball pivots).
+fn friction_warnings(balls: &[BallState], out: &mut Vec<String>) {
     for (j, b) in balls.iter().enumerate() {
         for (race, f, q) in [
             ("inner", b.inner_friction, b.inner.load),
@@ -1226,7 +1416,6 @@ fn warnings(balls: &[BallState]) -> Vec<String> {
             }
         }
     }
-    out
 }
 
 /// A solution outside what the bearing can physically carry is an error.
@@ -1236,6 +1425,13 @@ fn check_carried(
     settings: &EquilibriumSettings,
 ) -> Result<(), BearingError> {
     let d = bearing.geometry.ball_diameter;
+    // Loads below this are zero to round-off: a ball that merely touches a race at zero speed
+    // (its position in the gap is arbitrary) has no meaningful contact angle.
+    let zero_load = 1e-12
+        * balls
+            .iter()
+            .map(|b| b.inner.load.max(b.outer.load))
+            .fold(0.0, f64::max);
     for (j, b) in balls.iter().enumerate() {
         for (race, c) in [("inner", &b.inner), ("outer", &b.outer)] {
             if c.deflection > settings.max_deflection_ratio * d {
@@ -1251,7 +1447,8 @@ fn check_carried(
             }
             // The inner contact angle shows the direction of the ring's axial load; the outer one
             // may dip below zero for a lightly loaded ball held by centrifugal force and friction.
-            if race == "inner" && c.load > 0.0 && c.contact_angle < settings.min_contact_angle {
+            if race == "inner" && c.load > zero_load && c.contact_angle < settings.min_contact_angle
+            {
                 return Err(BearingError::Overloaded {
                     reason: format!(
                         "ball {j} {race} contact angle {:.2}° is below the shoulder limit {:.1}°: a single-row angular-contact bearing cannot carry this load (reversed or too little thrust)",

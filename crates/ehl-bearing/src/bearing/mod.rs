@@ -4,13 +4,16 @@
 mod dual;
 pub mod equilibrium;
 pub mod geometry;
+pub mod hertz_law;
 mod linalg;
 
 pub use equilibrium::{
     solve_equilibrium, BallState, BearingModel, ContactLaws, ContactState, Control, DynamicForce,
-    Equilibrium, EquilibriumSettings, ForceResult, OperatingPoint, RaceControl, DOF_NAMES,
+    Equilibrium, EquilibriumSettings, ForceResult, Kinematics, OperatingPoint, RaceControl,
+    DOF_NAMES,
 };
 pub use geometry::{Bearing, BearingGeometry, Race};
+pub use hertz_law::OperatingAngleHertzLaw;
 pub(crate) use linalg::solve as linalg_solve;
 
 use thiserror::Error;

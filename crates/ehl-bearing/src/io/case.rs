@@ -37,11 +37,14 @@
 //! max_iterations = 100
 //! min_contact_angle_deg = -5.0   # shoulder limit of the inner contact angle; -90 with
 //!                                # diametral_clearance_mm (deep-groove bearings)
+//! kinematics = "operating-angles" # ball speeds and Hertz constants at each contact's operating
+//!                                # angle (textbook, default) or "groove-line" (the model before
+//!                                # issue 14; README, "Modelling choices of the bearing model")
 //! ```
 
 use super::InputError;
 use crate::bearing::{
-    Bearing, BearingGeometry, Control, EquilibriumSettings, OperatingPoint, RaceControl,
+    Bearing, BearingGeometry, Control, EquilibriumSettings, Kinematics, OperatingPoint, RaceControl,
 };
 use crate::material::{DensityModel, Lubricant, Solid, ViscosityModel};
 use serde::Deserialize;
@@ -133,6 +136,7 @@ struct RawEquilibrium {
     tolerance: Option<f64>,
     max_iterations: Option<i64>,
     min_contact_angle_deg: Option<f64>,
+    kinematics: Option<String>,
 }
 
 /// Read and validate a case file.
@@ -267,6 +271,19 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
         settings.min_contact_angle = -PI / 2.0;
     }
     if let Some(e) = &raw.equilibrium {
+        if let Some(k) = &e.kinematics {
+            settings.kinematics = match k.as_str() {
+                "operating-angles" => Kinematics::OperatingAngles,
+                "groove-line" => Kinematics::GrooveLine,
+                _ => {
+                    return Err(InputError::field(
+                        "equilibrium.kinematics",
+                        format!("\"{k}\""),
+                        "\"operating-angles\" (default) or \"groove-line\"",
+                    ))
+                }
+            };
+        }
         if let Some(a) = e.min_contact_angle_deg {
             if !(a.is_finite() && (-90.0..=0.0).contains(&a)) {
                 return Err(InputError::field(
