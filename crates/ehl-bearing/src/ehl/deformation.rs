@@ -233,7 +233,14 @@ impl std::fmt::Debug for Deformation {
 
 impl Clone for Deformation {
     fn clone(&self) -> Self {
-        Deformation::with_plan(self.nx, self.ny, self.plan.clone(), self.hx, self.hy, self.scale)
+        Deformation::with_plan(
+            self.nx,
+            self.ny,
+            self.plan.clone(),
+            self.hx,
+            self.hy,
+            self.scale,
+        )
     }
 }
 
