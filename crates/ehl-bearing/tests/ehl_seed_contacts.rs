@@ -55,9 +55,10 @@ fn seed_contacts_converge_in_their_first_start_on_65() {
         let r = solve_steady(&c, &s).expect("solves");
         assert!(r.converged, "{rpm} rpm ball {ball} {race}: not converged");
         assert_eq!(
-            r.attempts, 1,
-            "{rpm} rpm ball {ball} {race}: converged only in start {}",
-            r.attempts
+            r.attempt_log.len(),
+            1,
+            "{rpm} rpm ball {ball} {race}: starts tried {:?}",
+            r.attempt_log
         );
     }
 }
@@ -122,7 +123,7 @@ fn seed_contact_table() {
         total += r.seconds;
         worst = worst.max(r.seconds);
         n += 1;
-        if r.attempts != 1 {
+        if r.attempt_log.len() != 1 {
             not_first += 1;
         }
         if only.is_none() {

@@ -480,7 +480,7 @@ fn finish(
 pub fn solve_steady(c: &EhlContact, s: &EhlSettings) -> Result<EhlSolution, EhlError> {
     let t0 = Instant::now();
     let (pr, sc) = setup(c, s)?;
-    let order = order_for(&sc);
+    let order = order_for(&pr, &sc);
     solve_ordered(c, s, &pr, &sc, &order, Vec::new(), 0, t0)
 }
 
@@ -508,13 +508,45 @@ pub fn solve_steady_starts(
 /// the fallback ladder 1–9, or, for the contacts where start 1 is known to fail, the start
 /// that converges for them first and the others after it in ladder order.
 pub fn start_order(c: &EhlContact, s: &EhlSettings) -> Result<Vec<StartStrategy>, EhlError> {
-    let (_, sc) = setup(c, s)?;
-    Ok(order_for(&sc))
+    let (pr, sc) = setup(c, s)?;
+    Ok(order_for(&pr, &sc))
 }
 
-fn order_for(sc: &Scales) -> Vec<StartStrategy> {
-    let _ = sc;
-    StartStrategy::LADDER.to_vec()
+/// Region where start 1 fails and start 5 (`Conservative`) converges first time: Roelands
+/// viscosity, L ≥ 23 and either Ry/Rx ≥ 30 with M ≤ 1100 or 10 ≤ Ry/Rx < 30 with M ≤ 100.
+/// Measured on the seed bearing's 66 contacts at 257² (`tests/ehl_seed_contacts.rs`,
+/// docs/ehl.md §2): the inner contacts (Ry/Rx 60) with L = 23.9–25.3 and M = 132–1030 and the
+/// outer one with L = 23.4, M = 79 stagnated in start 1 after 12–17 cycles and needed start 2,
+/// 3, 4 or 5 (27–86 cycles in all, up to 39 s); start 5 alone converges for each of them in
+/// 10–19 cycles. Outside the region start 1 converges in 5–11 cycles (L ≤ 22.3 at any M up to
+/// 3200; the outer contacts with L = 23.4 and M ≥ 125; the inner ones with M ≥ 1190), and the
+/// region's contacts where start 1 also converges (two of the inner ones, M 570 and 707) take
+/// 12–13 cycles instead of 6–7. Barus cases keep the ladder order (their large-αp_h fallbacks
+/// are documented in §5.8).
+fn conservative_first(pr: &Problem, sc: &Scales) -> bool {
+    let roelands = pr.lub.viscosity_model == super::ViscosityModel::Roelands;
+    let m_max = if sc.ratio >= 30.0 {
+        1100.0
+    } else if sc.ratio >= 10.0 {
+        100.0
+    } else {
+        return false;
+    };
+    roelands && sc.l >= 23.0 && sc.m <= m_max
+}
+
+fn order_for(pr: &Problem, sc: &Scales) -> Vec<StartStrategy> {
+    if conservative_first(pr, sc) {
+        let mut o = vec![StartStrategy::Conservative];
+        o.extend(
+            StartStrategy::LADDER
+                .iter()
+                .filter(|x| **x != StartStrategy::Conservative),
+        );
+        o
+    } else {
+        StartStrategy::LADDER.to_vec()
+    }
 }
 
 fn record(
@@ -1062,9 +1094,19 @@ pub fn solve_steady_from(
     let h_est = h_estimate(&sc);
     let ta = Instant::now();
     let mut log = Vec::new();
+    // The warm start relaxes with the settings of the contact's first cold start.
+    let order = order_for(&pr, &sc);
+    let ladder = fallback_ladder(s);
+    let ws = match order[0] {
+        StartStrategy::Warm
+        | StartStrategy::LoadContinuation
+        | StartStrategy::AlphaContinuation
+        | StartStrategy::SingleGrid => *s,
+        st => ladder[st.number() - 1],
+    };
     let spent = match iterate(
         &pr,
-        s,
+        &ws,
         Start::Given { p, h0: Some(h0) },
         h_est,
         s.max_cycles,
@@ -1098,7 +1140,6 @@ pub fn solve_steady_from(
             n
         }
     };
-    let order = order_for(&sc);
     solve_ordered(c, s, &pr, &sc, &order, log, spent, t0)
 }
 
