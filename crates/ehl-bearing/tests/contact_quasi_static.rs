@@ -118,7 +118,11 @@ fn family_reuses_kernels_and_plans() {
         assert!(hits > misses, "{hits} kernels reused, {misses} built");
         let b = run(600.0, 10.85);
         let (hits2, misses2) = kernel_cache_stats();
-        println!("second call: {} reused, {} built", hits2 - hits, misses2 - misses);
+        println!(
+            "second call: {} reused, {} built",
+            hits2 - hits,
+            misses2 - misses
+        );
         assert_eq!(misses2, misses, "the second call builds no kernel");
         assert_eq!(a.k, b.k);
         assert_eq!(a.delta_f, b.delta_f);

@@ -7,7 +7,10 @@
 //!
 //!     cargo test --release -p ehl-bearing --test ehl_seed_contacts -- --ignored --nocapture
 
-use ehl_bearing::ehl::{solve_steady, solve_steady_starts, EhlContact, EhlSettings, StartStrategy};
+use ehl_bearing::ehl::{
+    solve_steady, solve_steady_starts, start_order, AttemptOutcome, EhlContact, EhlSettings,
+    StartStrategy,
+};
 use ehl_bearing::material::{reduced_modulus, Lubricant, Solid};
 
 /// (rpm, ball, race, contact) of every row of `benches/seed_contacts.csv`.
@@ -51,9 +54,19 @@ fn seed_contacts_converge_in_their_first_start_on_65() {
         grid: 65,
         ..Default::default()
     };
+    let mut conservative = 0;
     for (rpm, ball, race, c) in seed_contacts().into_iter().filter(|x| x.0 == 5000) {
         let r = solve_steady(&c, &s).expect("solves");
         assert!(r.converged, "{rpm} rpm ball {ball} {race}: not converged");
+        // The start tried is the first of the contact's start order, and it converged.
+        let order = start_order(&c, &s).expect("valid");
+        assert_eq!(r.attempt_log[0].strategy, order[0]);
+        assert_eq!(r.attempt_log[0].outcome, AttemptOutcome::Converged);
+        assert_eq!(r.attempt_log[0].cycles, r.cycles);
+        if order[0] == StartStrategy::Conservative {
+            conservative += 1;
+            assert_eq!(r.attempts, 5);
+        }
         assert_eq!(
             r.attempt_log.len(),
             1,
@@ -61,6 +74,9 @@ fn seed_contacts_converge_in_their_first_start_on_65() {
             r.attempt_log
         );
     }
+    // At 5000 rpm (L = 23.4–25.3) the inner contacts with M ≤ 1100 (balls 4–9) and the outer
+    // one with M ≤ 100 (ball 7) start with the conservative settings (docs/ehl.md §2).
+    assert_eq!(conservative, 7);
 }
 
 #[test]
