@@ -129,11 +129,14 @@ impl KernelPlan {
 /// 1025² one 37 MB). The least recently used kernels are dropped above it.
 const KERNEL_CACHE_BYTES: usize = 96 << 20;
 
+/// Cache key: grid shape (nx, ny) and the bits of the cell size (hx, hy).
+type KernelKey = (usize, usize, u64, u64);
+
 /// Per-thread store of kernels and FFT plans, keyed by the grid shape and the cell size.
 struct KernelCache {
     planner: FftPlanner<f64>,
     /// (nx, ny, hx bits, hy bits) → kernel, most recently used last.
-    entries: Vec<((usize, usize, u64, u64), Arc<KernelPlan>)>,
+    entries: Vec<(KernelKey, Arc<KernelPlan>)>,
     enabled: bool,
     hits: u64,
     misses: u64,
