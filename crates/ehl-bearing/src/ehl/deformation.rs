@@ -189,8 +189,9 @@ pub fn kernel_cache_stats() -> (u64, u64) {
 }
 
 /// Turns the calling thread's kernel cache on (default) or off, empties it and resets its
-/// counters. Off, every [`Deformation::new`] builds its kernel and plans afresh (the behaviour
-/// before the cache; for before/after benchmarks). Results are identical either way.
+/// counters. Off, every [`Deformation::new`] builds its kernel afresh (the behaviour before the
+/// cache; the FFT plans still come from the thread's planner; for before/after benchmarks).
+/// Results are identical either way.
 pub fn set_kernel_cache(enabled: bool) {
     KERNELS.with(|c| {
         let mut c = c.borrow_mut();
