@@ -38,7 +38,7 @@ fn quasi_static(c: &mut Criterion) {
     g.finish();
 }
 
-/// The quasi-static family at 257² with the kernel/plan cache off (the solver before it) and on.
+/// The quasi-static family at 257² with the kernel cache off (kernels rebuilt as before) and on.
 fn quasi_static_cache(c: &mut Criterion) {
     let contact = seed_contact();
     let mut s = QuasiStaticSettings::default();

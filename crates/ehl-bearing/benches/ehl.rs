@@ -4,8 +4,8 @@
 //!   (converged below the discretization error);
 //! - the seed's most loaded 7006 inner-race contact (600 N, 5000 rpm, Ry/Rx = 60.5);
 //! - the circular case on 129, 257, 513 and 1025 points per side (cost per grid point);
-//! - the seed contact at 257² with the kernel/plan cache off (every level, start and call builds
-//!   its DC-FFT kernel and FFT plans: the solver before it) and on;
+//! - the seed contact and the circular case at 257² with the kernel cache off (every level,
+//!   start and call builds its DC-FFT kernel, as before the cache) and on;
 //! - the 22 contacts of the seed bearing at 5000 rpm (`benches/seed_contacts.csv`), 257², one
 //!   after the other (`seed_22`; about 25 s per sample).
 
