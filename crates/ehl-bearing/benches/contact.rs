@@ -2,6 +2,8 @@
 //! at 5000 rpm (600 N, Rx = 2.9487 mm, Ry = 178.5 mm, u_s = 10.85 m/s; M ≈ 2360, L ≈ 25; 7 mm
 //! steel ball).
 //! - quasi-static: 7 steady EHL solutions over w0·(1 ± 0.2) on 129 × 129, LM fit;
+//! - quasi-static at 257² with the DC-FFT kernel/plan cache off and on (before/after keeping
+//!   plans);
 //! - harmonic: steady start and ±5 % solutions (ω_n), then 2 settling + 1 recorded periods of
 //!   64 transient steps at Ω = 0.1·ω_n on 129 × 129, LM fit with the damping term.
 
@@ -10,6 +12,7 @@ use ehl_bearing::contact::{
     ball_mass, characterize_harmonic, characterize_quasi_static, HarmonicSettings,
     QuasiStaticSettings,
 };
+use ehl_bearing::ehl::deformation::set_kernel_cache;
 use ehl_bearing::ehl::EhlContact;
 use ehl_bearing::material::{reduced_modulus, Lubricant, Solid};
 
@@ -35,6 +38,24 @@ fn quasi_static(c: &mut Criterion) {
     g.finish();
 }
 
+/// The quasi-static family at 257² with the kernel cache off (kernels rebuilt as before) and on.
+fn quasi_static_cache(c: &mut Criterion) {
+    let contact = seed_contact();
+    let mut s = QuasiStaticSettings::default();
+    s.ehl.grid = 257;
+    let mut g = c.benchmark_group("contact_kernel_cache");
+    g.sample_size(10);
+    for on in [false, true] {
+        set_kernel_cache(on);
+        let name = if on { "on" } else { "off" };
+        g.bench_function(format!("quasi_static_257_{name}"), |b| {
+            b.iter(|| characterize_quasi_static(black_box(&contact), &s).unwrap())
+        });
+    }
+    set_kernel_cache(true);
+    g.finish();
+}
+
 fn harmonic(c: &mut Criterion) {
     let contact = seed_contact();
     let s = HarmonicSettings::default();
@@ -48,5 +69,5 @@ fn harmonic(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, quasi_static, harmonic);
+criterion_group!(benches, quasi_static, quasi_static_cache, harmonic);
 criterion_main!(benches);

@@ -3,13 +3,18 @@
 //! - circular contact M = 20, L = 10, Roelands + Dowson–Higginson, 257 × 257, default tolerances
 //!   (converged below the discretization error);
 //! - the seed's most loaded 7006 inner-race contact (600 N, 5000 rpm, Ry/Rx = 60.5);
-//! - the circular case on 65, 129, 257 and 513 points per side (cost versus grid size).
+//! - the circular case on 129, 257, 513 and 1025 points per side (cost per grid point);
+//! - the seed contact and the circular case at 257² with the kernel cache off (every level,
+//!   start and call builds its DC-FFT kernel, as before the cache) and on;
+//! - the 22 contacts of the seed bearing at 5000 rpm (`benches/seed_contacts.csv`), 257², one
+//!   after the other (`seed_22`; about 25 s per sample).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use ehl_bearing::ehl::deformation::set_kernel_cache;
 use ehl_bearing::ehl::{
     solve_moes, solve_steady, DensityModel, EhlContact, EhlSettings, MoesCase, ViscosityModel,
 };
-use ehl_bearing::material::Lubricant;
+use ehl_bearing::material::{reduced_modulus, Lubricant, Solid};
 use std::hint::black_box;
 
 fn circular() -> MoesCase {
@@ -69,7 +74,7 @@ fn bench_seed(c: &mut Criterion) {
 fn bench_grid(c: &mut Criterion) {
     let mut g = c.benchmark_group("ehl_grid_size");
     g.sample_size(10);
-    for grid in [65, 129, 257, 513] {
+    for grid in [129, 257, 513, 1025] {
         let s = EhlSettings {
             grid,
             ..Default::default()
@@ -85,5 +90,90 @@ fn bench_grid(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench_circular, bench_seed, bench_grid);
+fn seed_600n() -> EhlContact {
+    EhlContact {
+        load: 600.0,
+        rx: 2.9487e-3,
+        ry: 178.5e-3,
+        sum_velocity: 10.85,
+        e_reduced: 208e9 / 0.91,
+        lubricant: Lubricant::DEFAULT_MINERAL_OIL,
+    }
+}
+
+fn bench_cache(c: &mut Criterion) {
+    let mut g = c.benchmark_group("ehl_kernel_cache");
+    g.sample_size(10);
+    let s = EhlSettings::default();
+    for on in [false, true] {
+        set_kernel_cache(on);
+        let name = if on { "on" } else { "off" };
+        g.bench_function(BenchmarkId::new("7006_inner_257", name), |b| {
+            b.iter(|| {
+                let r = solve_steady(black_box(&seed_600n()), &s).expect("solves");
+                assert!(r.converged);
+                r.h_central
+            })
+        });
+        g.bench_function(BenchmarkId::new("circular_257", name), |b| {
+            b.iter(|| {
+                let r = solve_moes(black_box(&circular()), &s).expect("solves");
+                assert!(r.converged);
+                r.h_central
+            })
+        });
+    }
+    set_kernel_cache(true);
+    g.finish();
+}
+
+/// The seed bearing's contacts at 5000 rpm (rows of `seed_contacts.csv`).
+fn seed_contacts_5000() -> Vec<EhlContact> {
+    let e = reduced_modulus(&Solid::AISI_52100, &Solid::AISI_52100);
+    include_str!("seed_contacts.csv")
+        .lines()
+        .filter(|l| l.starts_with("5000,"))
+        .map(|l| {
+            let f: Vec<f64> = l
+                .split(',')
+                .skip(3)
+                .map(|v| v.parse().expect("number"))
+                .collect();
+            EhlContact {
+                load: f[0],
+                rx: f[1],
+                ry: f[2],
+                sum_velocity: f[3],
+                e_reduced: e,
+                lubricant: Lubricant::DEFAULT_MINERAL_OIL,
+            }
+        })
+        .collect()
+}
+
+fn bench_seed_22(c: &mut Criterion) {
+    let contacts = seed_contacts_5000();
+    assert_eq!(contacts.len(), 22);
+    let mut g = c.benchmark_group("ehl_seed_22");
+    g.sample_size(10);
+    let s = EhlSettings::default();
+    g.bench_function("5000rpm_257", |b| {
+        b.iter(|| {
+            for ct in &contacts {
+                let r = solve_steady(black_box(ct), &s).expect("solves");
+                assert!(r.converged);
+            }
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(
+    benches,
+    bench_circular,
+    bench_seed,
+    bench_grid,
+    bench_cache,
+    bench_seed_22
+);
 criterion_main!(benches);

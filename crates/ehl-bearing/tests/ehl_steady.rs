@@ -341,6 +341,16 @@ fn assert_converged_in_start(x: &EhlSolution, start: usize) {
 fn barus_large_alpha_converges_by_alpha_continuation() {
     let x = solve_moes(&barus(20.0, 25.0, 1.0), &settings(129)).unwrap();
     assert_converged_in_start(&x, 8);
+    // Every start is in the log, in ladder order; only the last one converged, and the cycles
+    // of all of them add up to the reported total.
+    let log = &x.attempt_log;
+    assert_eq!(log.len(), 8, "{log:?}");
+    for (k, a) in log.iter().enumerate() {
+        assert_eq!(a.strategy, StartStrategy::LADDER[k]);
+        assert_eq!(a.strategy.number(), k + 1);
+        assert_eq!(a.outcome == AttemptOutcome::Converged, k == 7, "{a:?}");
+    }
+    assert_eq!(log.iter().map(|a| a.cycles).sum::<usize>(), x.cycles);
     // Force balance from the returned pressure field: ∬p dx dy = w = (2π/3)·p_h·a_x·a_y.
     let f = &x.fields;
     let (dx, dy) = (f.x[1] - f.x[0], f.y[1] - f.y[0]);

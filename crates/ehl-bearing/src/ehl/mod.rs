@@ -25,7 +25,7 @@ use thiserror::Error;
 
 pub use crate::material::{DensityModel, ViscosityModel};
 pub(crate) use steady::validate_settings;
-pub use steady::{solve_moes, solve_steady, solve_steady_from};
+pub use steady::{solve_moes, solve_steady, solve_steady_from, solve_steady_starts, start_order};
 pub use transient::{TransientSolver, TransientStep};
 
 /// Errors of the EHL solver.
@@ -114,7 +114,10 @@ pub struct EhlSettings {
     pub tol_residual: f64,
     /// Convergence: relative force-balance error |∬p − w|/w below this (default 1e-5).
     pub tol_force: f64,
-    /// Convergence: relative change of h_c and h0 over the last cycle below this (default 1e-5).
+    /// Convergence: relative change of h_c and h0 over the last cycle below this (default 1e-4:
+    /// with the residual criterion the measured iteration error of H_c is then ≤ 8e-5 and of δ
+    /// ≤ 5e-6, 20–200× below the 257² discretization error; 1e-5 before, which cost 1–4 more
+    /// cycles per solution, docs/ehl.md §2).
     pub tol_film: f64,
     /// Cycle type (default W).
     pub cycle: CycleType,
@@ -151,7 +154,7 @@ impl Default for EhlSettings {
             max_cycles: 40,
             tol_residual: 1e-4,
             tol_force: 1e-5,
-            tol_film: 1e-5,
+            tol_film: 1e-4,
             cycle: CycleType::W,
             pre_sweeps: 2,
             post_sweeps: 1,
@@ -303,6 +306,97 @@ pub struct EhlSolution {
     /// an unconverged result: the start whose iterate is returned (the one with the lowest
     /// residual), not the number of starts tried.
     pub attempts: usize,
+    /// Every start tried, in order, with its outcome (the last one produced this result, or,
+    /// for an unconverged result, none converged). Empty in results written before it existed.
+    #[serde(default)]
+    pub attempt_log: Vec<EhlAttempt>,
     /// Fields on the finest grid.
     pub fields: EhlFields,
+}
+
+/// A start strategy of the steady solver (docs/ehl.md §2). [`StartStrategy::number`] is the
+/// value [`EhlSolution::attempts`] reports when that start produced the result.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum StartStrategy {
+    /// 0: from a previous solution (`solve_steady_from`), the given settings (a converged warm
+    /// start reports `attempts` = 1, the given settings).
+    Warm,
+    /// 1: Hertzian full-multigrid start, the given settings.
+    Given,
+    /// 2: H0 gain × 0.4.
+    SmallH0Gain,
+    /// 3: Jacobi-distributive zone widened (threshold ≥ 1).
+    WideJacobi,
+    /// 4: 2 and 3, ω_JD ≤ 0.15.
+    WideJacobiSmallSteps,
+    /// 5: H0 gain × 0.2, wide Jacobi-distributive zone, ω_JD ≤ 0.15, ω_GS ≤ 0.3.
+    Conservative,
+    /// 6: the given settings with ω_GS ≤ 0.1 (strongly under-relaxed Gauss–Seidel lines).
+    DampedLines,
+    /// 7: load continuation with the settings of start 5.
+    LoadContinuation,
+    /// 8: continuation in the pressure–viscosity coefficient from α/4.
+    AlphaContinuation,
+    /// 9: the best iterate of a failed α-continuation relaxed on the finest grid alone.
+    SingleGrid,
+}
+
+impl StartStrategy {
+    /// The classic fallback order, starts 1 to 9.
+    pub const LADDER: [StartStrategy; 9] = [
+        StartStrategy::Given,
+        StartStrategy::SmallH0Gain,
+        StartStrategy::WideJacobi,
+        StartStrategy::WideJacobiSmallSteps,
+        StartStrategy::Conservative,
+        StartStrategy::DampedLines,
+        StartStrategy::LoadContinuation,
+        StartStrategy::AlphaContinuation,
+        StartStrategy::SingleGrid,
+    ];
+
+    /// Start number: 0 (warm) or 1–9, as in [`EhlSolution::attempts`].
+    pub fn number(self) -> usize {
+        match self {
+            StartStrategy::Warm => 0,
+            s => {
+                1 + StartStrategy::LADDER
+                    .iter()
+                    .position(|x| *x == s)
+                    .expect("every cold strategy is in the ladder")
+            }
+        }
+    }
+}
+
+/// How one start ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AttemptOutcome {
+    /// All convergence criteria met.
+    Converged,
+    /// Stopped at the cycle limit without meeting the criteria.
+    CycleLimit,
+    /// Stopped because the residual gained less than a factor 2 in 6 cycles.
+    Stagnated,
+    /// Non-finite iterate, residual 100× above its best, or an absurd film.
+    Diverged,
+    /// Not run: its precondition was missing (start 9 needs an iterate of start 8).
+    Skipped,
+}
+
+/// One start of the steady solver and its outcome.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct EhlAttempt {
+    /// The start strategy.
+    pub strategy: StartStrategy,
+    /// How it ended.
+    pub outcome: AttemptOutcome,
+    /// Multigrid cycles on the finest grid spent in it (continuation steps included).
+    pub cycles: usize,
+    /// Lowest (diverged) or last relative Reynolds residual (dimensionless; NaN if none).
+    pub residual: f64,
+    /// Wall time spent in it, s.
+    pub seconds: f64,
 }

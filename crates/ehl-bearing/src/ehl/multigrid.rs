@@ -184,10 +184,16 @@ impl Level {
                 let hh = h0 + 0.5 * self.x[i] * self.x[i] + yy + self.w[idx];
                 self.h[idx] = hh;
                 let p = self.p[idx];
-                let r = pr.rho(p);
+                // ρ̄(0) = η̄(0) = 1 exactly in every model: skip the pow/exp of the rheology
+                // at the (many) unloaded and cavitated nodes.
+                let (r, eta) = if p > 0.0 {
+                    (pr.rho(p), pr.eta(p))
+                } else {
+                    (1.0, 1.0)
+                };
                 self.rho[idx] = r;
                 let hp = hh.max(0.0);
-                self.eps[idx] = r * hp * hp * hp / (pr.eta(p) * pr.lambda);
+                self.eps[idx] = r * hp * hp * hp / (eta * pr.lambda);
             }
         }
     }
@@ -361,7 +367,7 @@ impl Level {
             let n = nx - 2;
             bsave.copy_from_slice(&band);
             rsave.copy_from_slice(&rhs);
-            if !solve_band(&mut band, &mut rhs[1..nx - 1], n, BAND) {
+            if !solve_band::<BAND>(&mut band, &mut rhs[1..nx - 1], n) {
                 continue;
             }
             // Projected solve: Gauss–Seidel points that would become negative are held at zero
@@ -381,7 +387,7 @@ impl Level {
             if clamp {
                 band.copy_from_slice(&bsave);
                 rhs.copy_from_slice(&rsave);
-                if !solve_band(&mut band, &mut rhs[1..nx - 1], n, BAND) {
+                if !solve_band::<BAND>(&mut band, &mut rhs[1..nx - 1], n) {
                     continue;
                 }
             }
@@ -418,32 +424,36 @@ impl Level {
     }
 }
 
-/// Solves a banded system in place (no pivoting): `a` holds n rows of 2b+1 entries, row r's
-/// entry for column c at a[r·(2b+1) + c − r + b]. The solution overwrites `x`.
-fn solve_band(a: &mut [f64], x: &mut [f64], n: usize, b: usize) -> bool {
-    let nb = 2 * b + 1;
+/// Solves a banded system in place (no pivoting): `a` holds n rows of 2B+1 entries, row r's
+/// entry for column c at a[r·(2B+1) + c − r + B]. The solution overwrites `x`. The half
+/// bandwidth is a constant so that the inner loops unroll.
+fn solve_band<const B: usize>(a: &mut [f64], x: &mut [f64], n: usize) -> bool {
+    let nb = 2 * B + 1;
     for r in 0..n {
-        let piv = a[r * nb + b];
+        let piv = a[r * nb + B];
         if piv.abs() <= 1e-300 || !piv.is_finite() {
             return false;
         }
-        for rr in r + 1..(r + b + 1).min(n) {
-            let f = a[rr * nb + (r + b - rr)] / piv;
+        let xr = x[r];
+        let end = (r + B + 1).min(n);
+        for rr in r + 1..end {
+            let f = a[rr * nb + (r + B - rr)] / piv;
             if f == 0.0 {
                 continue;
             }
-            for c in r..(r + b + 1).min(n) {
-                a[rr * nb + (c + b - rr)] -= f * a[r * nb + (c + b - r)];
+            // Column r of row rr becomes zero and is never read again: start at r + 1.
+            for c in r + 1..end {
+                a[rr * nb + (c + B - rr)] -= f * a[r * nb + (c + B - r)];
             }
-            x[rr] -= f * x[r];
+            x[rr] -= f * xr;
         }
     }
     for r in (0..n).rev() {
         let mut s = x[r];
-        for c in r + 1..(r + b + 1).min(n) {
-            s -= a[r * nb + (c + b - r)] * x[c];
+        for c in r + 1..(r + B + 1).min(n) {
+            s -= a[r * nb + (c + B - r)] * x[c];
         }
-        x[r] = s / a[r * nb + b];
+        x[r] = s / a[r * nb + B];
         if !x[r].is_finite() {
             return false;
         }
