@@ -66,6 +66,14 @@ pub struct ContactArgs {
     pub output: Option<PathBuf>,
 }
 
+/// Settling and recorded periods of a harmonic fit (0, 0 otherwise).
+fn settling_recorded(f: &ContactFit) -> (usize, usize) {
+    match &f.excitation {
+        ehl_bearing::contact::Excitation::Harmonic(h) => (h.settling_periods, h.recorded_periods),
+        _ => (0, 0),
+    }
+}
+
 /// The result as JSON, SI units.
 pub fn fit_json(f: &ContactFit) -> serde_json::Value {
     serde_json::json!({
@@ -110,8 +118,8 @@ fn table(f: &ContactFit) -> String {
             f.std_errors.c.unwrap_or(f64::NAN)
         );
     }
-    if f.method == "harmonic" {
-        let e = &f.excitation;
+    if let ehl_bearing::contact::Excitation::Harmonic(h) = &f.excitation {
+        let e = serde_json::to_value(h).unwrap_or_default();
         let g = |k: &str| e[k].as_f64().unwrap_or(f64::NAN);
         let _ = writeln!(
             s,
@@ -260,7 +268,10 @@ fn plot_history(f: &ContactFit, dir: &std::path::Path) -> Result<()> {
         &dir.join("time_history"),
         &format!(
             "Harmonic excitation, {} settling + {} recorded periods (M = {:.0}, L = {:.1})",
-            f.excitation["settling_periods"], f.excitation["recorded_periods"], f.moes_m, f.moes_l
+            settling_recorded(f).0,
+            settling_recorded(f).1,
+            f.moes_m,
+            f.moes_l
         ),
         "time t (ms)",
         &panels,

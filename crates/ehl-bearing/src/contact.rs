@@ -97,8 +97,9 @@ pub struct ContactFit {
     pub moes_l: f64,
     /// Ry/Rx.
     pub ry_over_rx: f64,
-    /// Method settings (amplitude, points, grid, …) as written into every result.
-    pub excitation: serde_json::Value,
+    /// How the samples were produced: the method's settings and, for the harmonic method, the
+    /// excitation's measured figures (written into every result).
+    pub excitation: Excitation,
     /// True when every EHL solution converged and the fit converged.
     pub converged: bool,
     /// Wall time, s.
@@ -115,6 +116,69 @@ pub struct ContactFit {
     /// The fitted law, ready for the bearing model.
     #[serde(skip)]
     pub law: FittedLaw,
+}
+
+/// How a contact's samples were produced (SI), as written into every result.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "method", rename_all = "kebab-case")]
+pub enum Excitation {
+    /// A family of steady solutions over w0·(1 ± ε).
+    QuasiStatic {
+        /// Relative load amplitude ε.
+        amplitude: f64,
+        /// Number of steady solutions.
+        points: usize,
+        /// EHL grid (nodes per side).
+        grid: usize,
+    },
+    /// A transient run under w0·(1 + ε·sin Ωt) with the ball's equation of motion.
+    Harmonic(HarmonicExcitation),
+}
+
+/// The harmonic method's excitation and what was measured of it (SI).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct HarmonicExcitation {
+    /// Relative load amplitude ε.
+    pub amplitude: f64,
+    /// Excitation frequency Ω, rad/s.
+    pub frequency_rad_s: f64,
+    /// Ω/ω_n (dimensionless).
+    pub frequency_over_natural: f64,
+    /// Linearized natural frequency ω_n = √(k/m) of the lubricated contact, rad/s.
+    pub natural_frequency_rad_s: f64,
+    /// The dry Hertz contact's natural frequency, rad/s.
+    pub natural_frequency_hertz_rad_s: f64,
+    /// Secant stiffness of the steady solutions at w0·(1 ± 5 %), N/m.
+    pub linearized_stiffness_n_m: f64,
+    /// Mass on the contact, kg.
+    pub mass_kg: f64,
+    /// Settling periods run before recording.
+    pub settling_periods: usize,
+    /// Periods recorded and fitted.
+    pub recorded_periods: usize,
+    /// Time steps per period.
+    pub steps_per_period: usize,
+    /// Time step, s.
+    pub time_step_s: f64,
+    /// Time step over the transit time a_x/u_m (dimensionless).
+    pub time_step_over_transit: f64,
+    /// Whether the damping term c·δ̇ was fitted.
+    pub damping_term: bool,
+    /// EHL grid (nodes per side).
+    pub grid: usize,
+    /// Per-step film convergence tolerance.
+    pub step_tol_film: f64,
+    /// Largest number of FAS cycles per step.
+    pub max_cycles_per_step: usize,
+    /// Steps that stopped at the cycle limit.
+    pub steps_not_converged: usize,
+    /// Largest relative Reynolds residual of a step.
+    pub max_step_residual: f64,
+    /// Mean FAS cycles per step.
+    pub cycles_per_step: f64,
+    /// Relative difference between the last settling period and the recorded one (the periodic
+    /// state's error).
+    pub periodicity: f64,
 }
 
 fn sample(s: &EhlSolution, load: f64) -> ContactSample {
@@ -218,12 +282,11 @@ pub fn characterize_quasi_static(
         moes_m: centre.moes_m,
         moes_l: centre.moes_l,
         ry_over_rx: centre.ry_over_rx,
-        excitation: serde_json::json!({
-            "method": "quasi-static",
-            "amplitude": s.amplitude,
-            "points": s.points,
-            "grid": s.ehl.grid,
-        }),
+        excitation: Excitation::QuasiStatic {
+            amplitude: s.amplitude,
+            points: s.points,
+            grid: s.ehl.grid,
+        },
         converged: fit.converged && samples.iter().all(|x| x.converged),
         seconds: t0.elapsed().as_secs_f64(),
         samples,
@@ -508,28 +571,27 @@ pub fn characterize_harmonic(
         moes_m: centre.moes_m,
         moes_l: centre.moes_l,
         ry_over_rx: centre.ry_over_rx,
-        excitation: serde_json::json!({
-            "method": "harmonic",
-            "amplitude": s.amplitude,
-            "frequency_rad_s": omega,
-            "frequency_over_natural": omega / omega_n,
-            "natural_frequency_rad_s": omega_n,
-            "natural_frequency_hertz_rad_s": omega_n_hertz,
-            "linearized_stiffness_n_m": k_lin,
-            "mass_kg": mass,
-            "settling_periods": s.settling_periods,
-            "recorded_periods": s.recorded_periods,
-            "steps_per_period": n_per,
-            "time_step_s": dt,
-            "time_step_over_transit": solver.dt_dimensionless(),
-            "damping_term": s.damping_term,
-            "grid": s.ehl.grid,
-            "step_tol_film": s.step_tol_film,
-            "max_cycles_per_step": s.max_cycles_per_step,
-            "steps_not_converged": not_converged,
-            "max_step_residual": max_res,
-            "cycles_per_step": cycles as f64 / total as f64,
-            "periodicity": periodicity,
+        excitation: Excitation::Harmonic(HarmonicExcitation {
+            amplitude: s.amplitude,
+            frequency_rad_s: omega,
+            frequency_over_natural: omega / omega_n,
+            natural_frequency_rad_s: omega_n,
+            natural_frequency_hertz_rad_s: omega_n_hertz,
+            linearized_stiffness_n_m: k_lin,
+            mass_kg: mass,
+            settling_periods: s.settling_periods,
+            recorded_periods: s.recorded_periods,
+            steps_per_period: n_per,
+            time_step_s: dt,
+            time_step_over_transit: solver.dt_dimensionless(),
+            damping_term: s.damping_term,
+            grid: s.ehl.grid,
+            step_tol_film: s.step_tol_film,
+            max_cycles_per_step: s.max_cycles_per_step,
+            steps_not_converged: not_converged,
+            max_step_residual: max_res,
+            cycles_per_step: cycles as f64 / total as f64,
+            periodicity,
         }),
         converged: fit.converged && not_converged == 0,
         seconds: t0.elapsed().as_secs_f64(),
