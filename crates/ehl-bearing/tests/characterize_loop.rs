@@ -101,9 +101,10 @@ fn hertz_characterizer_reproduces_the_dry_equilibrium() {
         );
         assert!(c.characterized.delta_f.abs() < 1e-9 * c.state.load);
     }
-    // Against the dry equilibrium, whose Hertz constants are taken at the free contact angle
-    // (ContactLaws::hertz) while the loop's are at each contact's operating angle (19–21°): K
-    // differs by < 0.03 % (equilibrium.rs doc: < 0.5 % between 15° and 20°), the loads by less.
+    // Against the dry equilibrium, whose Hertz constants follow each contact's operating angle
+    // (ContactLaws::hertz, docs/bearing.md), while the loop's fitted laws keep the constant of the
+    // angle they were characterized at (the previous iteration's, within a small fraction of a
+    // degree): the loads agree to the fit precision and that small angle change.
     let dry = r
         .dry
         .balls
