@@ -7,16 +7,10 @@ use ehl_bearing::characterize::{
     CharacterizeSettings, ContactRow, Progress,
 };
 use ehl_bearing::io::{read_case, Case};
-use ehl_bearing::method::Method;
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::Value;
 use std::io::IsTerminal;
 use std::path::PathBuf;
-
-/// The method `name` at its defaults, or an error listing the methods.
-pub fn method(name: &str) -> anyhow::Result<Method> {
-    Method::parse(name, None).map_err(|e| anyhow::anyhow!("--method: {e}"))
-}
 
 /// Run `f` on a rayon pool of `threads` threads (the global pool, sized by RAYON_NUM_THREADS or
 /// the number of cores, when None).
@@ -83,10 +77,10 @@ pub fn contact_progress(multi: &MultiProgress) -> (ProgressBar, impl Fn(Progress
 pub struct CharacterizeArgs {
     /// Case file (TOML), e.g. examples/7006.toml.
     pub case: PathBuf,
-    /// Characterization method: quasi-static (EHL, default), harmonic (EHL), hertz (dry
-    /// reference).
-    #[arg(long, default_value = "quasi-static")]
-    pub method: String,
+    /// Characterization method: quasi-static (EHL), harmonic (EHL), hertz (dry reference).
+    /// Default: the case file's `method` (with its [method_options]), else quasi-static.
+    #[arg(long)]
+    pub method: Option<String>,
     /// Print JSON in SI units instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -153,7 +147,9 @@ pub fn contacts_csv(c: &BearingCharacterization) -> String {
 /// Run `characterize`.
 pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
     let case = read_case(&args.case)?;
-    let ch = method(&args.method)?;
+    let ch = case
+        .method_or(args.method.as_deref())
+        .map_err(|e| anyhow::anyhow!("--method: {e}"))?;
     let settings = CharacterizeSettings {
         tolerance: args.tolerance,
         max_iterations: args.max_iterations,

@@ -2,7 +2,7 @@
 //! [-o DIR] [--json]`: the lubricated bearing's linearized 5×5 stiffness and damping at each
 //! speed, beside the dry stiffness, in SI; and ROSS's bearing table.
 
-use crate::characterize_cmd::{contact_progress, method, progress_container, with_threads};
+use crate::characterize_cmd::{contact_progress, progress_container, with_threads};
 use anyhow::Context;
 use ehl_bearing::characterize::CharacterizeSettings;
 use ehl_bearing::coefficients::{
@@ -20,10 +20,10 @@ pub struct CoefficientsArgs {
     /// Inner-ring speeds in rpm, comma separated (default: the case's speed).
     #[arg(long, value_delimiter = ',')]
     pub speeds: Vec<f64>,
-    /// Characterization method at each speed: quasi-static (default), harmonic (gives the
-    /// damping c·δ̇ of every contact), hertz (dry).
-    #[arg(long, default_value = "quasi-static", conflicts_with = "trends")]
-    pub method: String,
+    /// Characterization method at each speed: quasi-static, harmonic (gives the damping c·δ̇
+    /// of every contact), hertz (dry). Default: the case file's `method`, else quasi-static.
+    #[arg(long, conflicts_with = "trends")]
+    pub method: Option<String>,
     /// Use a study's trend curves (trends.json) instead of characterizing: no EHL run, no damping.
     #[arg(long)]
     pub trends: Option<PathBuf>,
@@ -58,7 +58,9 @@ pub fn run(args: &CoefficientsArgs) -> anyhow::Result<()> {
             from_element(&case, &speeds, &element, "trends")?
         }
         None => {
-            let m = method(&args.method)?;
+            let m = case
+                .method_or(args.method.as_deref())
+                .map_err(|e| anyhow::anyhow!("--method: {e}"))?;
             let multi = progress_container();
             let (bar, callback) = contact_progress(&multi);
             let r = with_threads(args.threads, || {

@@ -195,3 +195,39 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn case_files_carry_a_method_that_the_command_line_can_override() {
+    let seed = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/7006.toml"
+    ))
+    .unwrap();
+    let with = |head: &str| ehl_bearing::io::parse_case(&format!("{head}\n{seed}"), "t.toml");
+    let c = with("method = \"harmonic\"\n[method_options]\nsteps_per_period = 32").unwrap();
+    let Some(Method::Harmonic(h)) = c.method else {
+        panic!("{:?}", c.method)
+    };
+    assert_eq!(h.steps_per_period, 32);
+    assert_eq!(c.method_or(None).unwrap(), Method::Harmonic(h));
+    assert_eq!(c.method_or(Some("harmonic")).unwrap(), Method::Harmonic(h));
+    assert_eq!(c.method_or(Some("hertz")).unwrap().name(), "hertz");
+    assert!(c
+        .method_or(Some("magic"))
+        .unwrap_err()
+        .to_string()
+        .contains("magic"));
+    let plain = with("").unwrap();
+    assert_eq!(plain.method, None);
+    assert_eq!(plain.method_or(None).unwrap(), Method::default());
+    // Errors name the key, the value and the range; options without a method are refused.
+    let e = with("method = \"quasi-static\"\n[method_options]\ngrid = 100").unwrap_err();
+    assert!(e.to_string().contains("method_options.grid"), "{e}");
+    let e = with("[method_options]\ngrid = 257").unwrap_err();
+    assert!(e.to_string().contains("method"), "{e}");
+    let e = with("method = \"fast\"").unwrap_err();
+    assert!(
+        e.to_string().contains("fast") && e.to_string().contains("quasi-static"),
+        "{e}"
+    );
+}

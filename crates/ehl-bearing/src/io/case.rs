@@ -1,6 +1,10 @@
 //! Bearing case files.
 //!
 //! ```toml
+//! method = "quasi-static"        # optional: the method `characterize` uses unless --method is
+//!                                # given ("quasi-static" default, "harmonic", "hertz")
+//! [method_options]               # optional, its options (Method::parse), e.g. grid = 257
+//!
 //! [bearing]
 //! name = "7006 15°"              # optional
 //! ball_count = 11
@@ -66,11 +70,54 @@ pub struct Case {
     pub operating: OperatingPoint,
     /// Equilibrium solver settings.
     pub settings: EquilibriumSettings,
+    /// Characterization method given in the file (`method`, `[method_options]`), if any.
+    pub method: Option<crate::method::Method>,
+    /// The file's `[method_options]` table as given (so that a command-line override of the
+    /// method name can apply the same options).
+    pub method_options: Option<toml::Table>,
+}
+
+impl Case {
+    /// The method to characterize this case with: `name` if given (with the file's
+    /// `[method_options]` when `name` is the file's own method), else the file's method, else the
+    /// default (quasi-static).
+    pub fn method_or(&self, name: Option<&str>) -> Result<crate::method::Method, InputError> {
+        match (name, &self.method) {
+            (Some(n), Some(m)) if n == m.name() => Ok(*m),
+            (Some(n), _) => crate::method::Method::parse(n, None).map_err(method_input_error),
+            (None, Some(m)) => Ok(*m),
+            (None, None) => Ok(crate::method::Method::default()),
+        }
+    }
+}
+
+/// A method error as an input error naming the key of the file.
+pub(crate) fn method_input_error(e: crate::method::MethodError) -> InputError {
+    use crate::method::{Method, MethodError};
+    match e {
+        MethodError::Setting {
+            field,
+            value,
+            expected,
+        } => InputError::Field {
+            field,
+            value,
+            expected,
+        },
+        MethodError::UnknownMethod { name } => InputError::Field {
+            field: "method".into(),
+            value: name,
+            expected: format!("one of {}", Method::NAMES.join(", ")),
+        },
+        MethodError::Law(m) => InputError::field("method", "", m),
+    }
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawCase {
+    method: Option<String>,
+    method_options: Option<toml::Table>,
     bearing: RawBearing,
     ball_material: Option<RawSolid>,
     ring_material: Option<RawSolid>,
@@ -154,6 +201,18 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
         path: origin.to_string(),
         message: e.to_string().trim_end().to_string(),
     })?;
+    let method = match (&raw.method, &raw.method_options) {
+        (Some(name), options) => Some(
+            crate::method::Method::parse(name, options.as_ref()).map_err(method_input_error)?,
+        ),
+        (None, Some(_)) => {
+            return Err(InputError::Missing {
+                field: "method".into(),
+                hint: "[method_options] is given: name its method (method = \"quasi-static\", \"harmonic\" or \"hertz\")".into(),
+            })
+        }
+        (None, None) => None,
+    };
     let b = &raw.bearing;
     let ball_count = require(
         b.ball_count,
@@ -326,6 +385,8 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
         lubricant_given,
         operating,
         settings,
+        method,
+        method_options: raw.method_options.clone(),
     })
 }
 

@@ -139,7 +139,8 @@ pub fn parse_study(text: &str, origin: &str, base_dir: &Path) -> Result<Study, I
         }
     };
     let name = raw.method.unwrap_or_else(|| Method::NAMES[0].into());
-    let method = Method::parse(&name, raw.method_options.as_ref()).map_err(method_input_error)?;
+    let method = Method::parse(&name, raw.method_options.as_ref())
+        .map_err(crate::io::case::method_input_error)?;
     let method_options = raw.method_options;
     let list = |v: Option<Vec<f64>>,
                 key: &str,
@@ -300,27 +301,6 @@ impl Study {
             .into_iter()
             .filter(|p| shard.contains(p.index))
             .collect()
-    }
-}
-
-/// A method error as an input error of the study file (the key under `method_options`).
-fn method_input_error(e: MethodError) -> InputError {
-    match e {
-        MethodError::Setting {
-            field,
-            value,
-            expected,
-        } => InputError::Field {
-            field,
-            value,
-            expected,
-        },
-        MethodError::UnknownMethod { name } => InputError::Field {
-            field: "method".into(),
-            value: name,
-            expected: format!("one of {}", Method::NAMES.join(", ")),
-        },
-        MethodError::Law(m) => InputError::field("method", "", m),
     }
 }
 
