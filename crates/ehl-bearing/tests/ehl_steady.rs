@@ -426,7 +426,7 @@ fn contact_file_parsing() {
     let bad = text.replace("poisson_ratio = 0.3", "poisson_ratio = 0.7");
     let e = input::parse_contact_toml(&bad).unwrap_err().to_string();
     assert!(
-        e.contains("poisson_ratio") && e.contains("0.7") && e.contains("valid range"),
+        e.contains("poisson_ratio") && e.contains("0.7") && e.contains("−1 < ν < 0.5"),
         "{e}"
     );
     let bad = text.replace("load_n = 600.0", "load_n = -5.0");

@@ -81,10 +81,13 @@ impl Case {
     /// The method to characterize this case with: `name` if given (with the file's
     /// `[method_options]` when `name` is the file's own method), else the file's method, else the
     /// default (quasi-static).
-    pub fn method_or(&self, name: Option<&str>) -> Result<crate::method::Method, InputError> {
+    pub fn method_or(
+        &self,
+        name: Option<&str>,
+    ) -> Result<crate::method::Method, crate::method::MethodError> {
         match (name, &self.method) {
             (Some(n), Some(m)) if n == m.name() => Ok(*m),
-            (Some(n), _) => crate::method::Method::parse(n, None).map_err(method_input_error),
+            (Some(n), _) => crate::method::Method::parse(n, None),
             (None, Some(m)) => Ok(*m),
             (None, None) => Ok(crate::method::Method::default()),
         }
