@@ -255,7 +255,7 @@ pub struct ContactResult {
 }
 
 /// One iteration of the loop.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct IterationRecord {
     /// Iteration number (1-based).
     pub iteration: usize,
@@ -276,12 +276,14 @@ pub struct IterationRecord {
     pub max_relative_residual: f64,
     /// Newton iterations of the equilibrium with the fitted laws.
     pub equilibrium_iterations: usize,
-    /// Wall-clock time of the iteration, s.
+    /// Wall-clock time of the iteration, s (not serialized: files that are compared between
+    /// runs hold no timings; [`IterationSummary`] adds it where wanted).
+    #[serde(skip)]
     pub seconds: f64,
 }
 
 /// The load prediction that started the loop ([`CharacterizeSettings::predict_loads`]).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PredictionRecord {
     /// Contacts predicted.
     pub contacts: usize,
@@ -296,7 +298,9 @@ pub struct PredictionRecord {
     pub equilibrium_iterations: usize,
     /// Why the predicted equilibrium failed, if it did (the loop then starts from the dry one).
     pub error: Option<String>,
-    /// Wall-clock time of the prediction, s.
+    /// Wall-clock time of the prediction, s (not serialized; [`PredictionSummary`] adds it
+    /// where wanted).
+    #[serde(skip)]
     pub seconds: f64,
 }
 
@@ -1161,46 +1165,25 @@ fn no_time(s: &Option<f64>) -> bool {
     s.is_none()
 }
 
-/// One iteration of the loop as written to files ([`IterationRecord`] with its time optional).
+/// One iteration of the loop as written to files: the record, and its time only where timings
+/// are wanted.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct IterationSummary {
-    /// Iteration number (1-based).
-    pub iteration: usize,
-    /// Largest relative change of the contact loads against the previous equilibrium.
-    pub max_load_change: f64,
-    /// Contacts characterized in this iteration.
-    pub characterized: usize,
-    /// Contacts whose law was reused.
-    pub reused: usize,
-    /// Largest relative key distance of a reused law (0 if none).
-    pub max_key_distance: f64,
-    /// Largest relative offset between a contact's load and the load its reused law was
-    /// characterized at (0 if none reused).
-    pub max_load_offset: f64,
-    /// Largest fit residual of the laws relative to their characterization loads.
-    pub max_relative_residual: f64,
-    /// Newton iterations of the equilibrium with the fitted laws.
-    pub equilibrium_iterations: usize,
+    /// The iteration (its `seconds` field is not written; see `seconds` here).
+    #[serde(flatten)]
+    pub record: IterationRecord,
     /// Wall-clock time, s (absent in reproducible files).
     #[serde(default, skip_serializing_if = "no_time")]
     pub seconds: Option<f64>,
 }
 
-/// The load prediction as written to files ([`PredictionRecord`] with its time optional).
+/// The load prediction as written to files: the record, and its time only where timings are
+/// wanted.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PredictionSummary {
-    /// Contacts predicted.
-    pub contacts: usize,
-    /// Predictor solutions that stopped short of their tolerance.
-    pub not_converged: usize,
-    /// Contacts whose predictor failed (kept their dry law for the prediction).
-    pub failed: usize,
-    /// Largest relative change of the contact loads from the dry to the predicted equilibrium.
-    pub max_load_change: f64,
-    /// Newton iterations of the predicted equilibrium.
-    pub equilibrium_iterations: usize,
-    /// Why the predicted equilibrium failed, if it did.
-    pub error: Option<String>,
+    /// The prediction (its `seconds` field is not written; see `seconds` here).
+    #[serde(flatten)]
+    pub record: PredictionRecord,
     /// Wall-clock time, s (absent in reproducible files).
     #[serde(default, skip_serializing_if = "no_time")]
     pub seconds: Option<f64>,
@@ -1263,26 +1246,14 @@ impl BearingCharacterization {
             method: self.method,
             settings: self.settings,
             prediction: self.prediction.as_ref().map(|p| PredictionSummary {
-                contacts: p.contacts,
-                not_converged: p.not_converged,
-                failed: p.failed,
-                max_load_change: p.max_load_change,
-                equilibrium_iterations: p.equilibrium_iterations,
-                error: p.error.clone(),
+                record: p.clone(),
                 seconds: t(p.seconds),
             }),
             history: self
                 .history
                 .iter()
                 .map(|h| IterationSummary {
-                    iteration: h.iteration,
-                    max_load_change: h.max_load_change,
-                    characterized: h.characterized,
-                    reused: h.reused,
-                    max_key_distance: h.max_key_distance,
-                    max_load_offset: h.max_load_offset,
-                    max_relative_residual: h.max_relative_residual,
-                    equilibrium_iterations: h.equilibrium_iterations,
+                    record: *h,
                     seconds: t(h.seconds),
                 })
                 .collect(),

@@ -146,7 +146,8 @@ pub fn points_csv(records: &[PointRecord], trend_errors: &[Option<f64>]) -> Stri
             Some(r) => {
                 let q = r.displacement.to_array();
                 let dry = r.dry_displacement.to_array();
-                let characterizations: usize = r.history.iter().map(|h| h.characterized).sum();
+                let characterizations: usize =
+                    r.history.iter().map(|h| h.record.characterized).sum();
                 cells.extend([
                     r.converged.to_string(),
                     r.iterations.to_string(),
