@@ -181,7 +181,7 @@ pub fn write_fields(r: &EhlSolution, dir: &Path) -> Result<()> {
         let path = dir.join(name);
         std::fs::write(&path, s).with_context(|| format!("writing {}", path.display()))?;
     }
-    crate::fields_plot::plot_fields(r, dir)
+    crate::plot::fields::plot_fields(r, dir)
 }
 
 /// Runs `ehl-bearing ehl`.

@@ -4,7 +4,6 @@ mod characterize_cmd;
 mod contact_cmd;
 mod ehl_cmd;
 mod equilibrium_cmd;
-mod fields_plot;
 mod plot;
 mod study_cmd;
 

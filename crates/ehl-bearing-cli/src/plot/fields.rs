@@ -3,7 +3,7 @@
 //! Coordinates in Hertz semi-axes (X = x/a_x rolling, Y = y/a_y transverse), so the Hertz contact is
 //! the unit circle whatever the ellipticity.
 
-use crate::plot::{dual_axis_chart, heatmap_with, HeatmapOptions, Series};
+use super::{dual_axis_chart, heatmap_with, HeatmapOptions, Series};
 use anyhow::{ensure, Result};
 use ehl_bearing::ehl::EhlSolution;
 use std::path::Path;
