@@ -189,6 +189,7 @@ pub mod contact;
 pub mod fields;
 mod heatmap;
 mod panel;
+pub mod study;
 #[cfg(test)]
 mod tests;
 
