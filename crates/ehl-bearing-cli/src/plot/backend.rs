@@ -318,3 +318,57 @@ impl<'a> DrawingBackend for Png<'a> {
         result
     }
 }
+
+/// Lines of `title` wrapped at word boundaries to `width` pixels at font size `size` (an
+/// explicit "\n" also breaks).
+pub(crate) fn wrap_title(title: &str, size: f64, width: f32) -> Vec<String> {
+    let mut lines = Vec::new();
+    for para in title.split('\n') {
+        let mut cur = String::new();
+        for word in para.split(' ') {
+            let trial = if cur.is_empty() {
+                word.to_string()
+            } else {
+                format!("{cur} {word}")
+            };
+            if !cur.is_empty() && text_box(&trial, size).0 > width {
+                lines.push(std::mem::replace(&mut cur, word.to_string()));
+            } else {
+                cur = trial;
+            }
+        }
+        lines.push(cur);
+    }
+    lines
+}
+
+/// Draws `title` centred at the top of `root`, wrapped to the figure width (the font shrinks
+/// from the title size to 80 % of it if that saves a line), and returns the area below it.
+pub(crate) fn title_area<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    title: &str,
+) -> Result<DrawingArea<DB, Shift>> {
+    let (w, _) = root.dim_in_pixel();
+    let width = w.saturating_sub(2 * MARGIN) as f32;
+    let mut size = TITLE_SIZE as f64;
+    let mut lines = wrap_title(title, size, width);
+    let small = 0.8 * TITLE_SIZE as f64;
+    let fewer = wrap_title(title, small, width);
+    if fewer.len() < lines.len() {
+        size = small;
+        lines = fewer;
+    }
+    let line_h = (size * 1.25).ceil() as u32;
+    let top = 8 + line_h * lines.len() as u32 + 6;
+    let (head, rest) = root.split_vertically(top);
+    let style = TextStyle::from((FONT, size).into_font()).pos(Pos::new(HPos::Center, VPos::Top));
+    for (k, line) in lines.iter().enumerate() {
+        head.draw_text(
+            line,
+            &style,
+            ((w / 2) as i32, (8 + line_h * k as u32) as i32),
+        )
+        .map_err(drawing)?;
+    }
+    Ok(rest)
+}

@@ -75,9 +75,7 @@ pub(crate) struct LineFig<'a> {
 
 impl Figure for LineFig<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
-        let area = root
-            .titled(self.title, (FONT, TITLE_SIZE))
-            .map_err(drawing)?;
+        let area = title_area(root, self.title)?;
         draw_panel(&area, &self.panel)
     }
 }
@@ -168,9 +166,7 @@ struct StackedFig<'a> {
 impl Figure for StackedFig<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
         let n = self.panels.len();
-        let area = root
-            .titled(self.title, (FONT, TITLE_SIZE))
-            .map_err(drawing)?;
+        let area = title_area(root, self.title)?;
         let (_, h) = area.dim_in_pixel();
         // Plot heights in the given proportions: the bottom panel also holds the x labels.
         let inner = h as f64 - X_AREA as f64;
@@ -214,8 +210,20 @@ pub fn dual_axis_chart(
     stem: &Path,
     title: &str,
     x_label: &str,
+    left: (&str, &[Series]),
+    right: (&str, &[Series]),
+) -> Result<()> {
+    dual_axis_chart_with(stem, title, x_label, left, right, &DualOptions::default())
+}
+
+/// [`dual_axis_chart`] with explicit ranges of x and of either y axis.
+pub fn dual_axis_chart_with(
+    stem: &Path,
+    title: &str,
+    x_label: &str,
     (left_label, left): (&str, &[Series]),
     (right_label, right): (&str, &[Series]),
+    options: &DualOptions,
 ) -> Result<()> {
     ensure!(
         !left.is_empty() || !right.is_empty(),
@@ -226,14 +234,14 @@ pub fn dual_axis_chart(
     let x = Axis::fit(
         left.iter().chain(right).flat_map(|s| s.x.iter().copied()),
         false,
-        None,
+        options.x_range,
     )?
     .ok_or_else(|| anyhow!("dual-axis chart '{title}': no finite data to plot"))?;
-    let fit_y = |series: &[Series]| {
-        Axis::fit(series.iter().flat_map(|s| points_in_x(s, &x)), false, None)
+    let fit_y = |series: &[Series], range: Option<(f64, f64)>| {
+        Axis::fit(series.iter().flat_map(|s| points_in_x(s, &x)), false, range)
             .map(|a| a.unwrap_or(Axis::new(0.0, 1.0, false)))
     };
-    let (y_left, y_right) = (fit_y(left)?, fit_y(right)?);
+    let (y_left, y_right) = (fit_y(left, options.y_left)?, fit_y(right, options.y_right)?);
     let tag = |series: &[Series], side: &str| -> Vec<Series> {
         series
             .iter()
@@ -275,9 +283,7 @@ pub(crate) struct DualFig<'a> {
 
 impl Figure for DualFig<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
-        let area = root
-            .titled(self.title, (FONT, TITLE_SIZE))
-            .map_err(drawing)?;
+        let area = title_area(root, self.title)?;
         let (x, mut yl, mut yr) = (self.x, self.y_left, self.y_right);
         let left_area = y_label_area(&yl, self.left_label);
         let right_ticks = widest_tick(&yr);

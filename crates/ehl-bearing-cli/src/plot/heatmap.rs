@@ -112,9 +112,7 @@ pub(crate) struct HeatFig<'a> {
 
 impl Figure for HeatFig<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
-        let area = root
-            .titled(self.title, (FONT, TITLE_SIZE))
-            .map_err(drawing)?;
+        let area = title_area(root, self.title)?;
         draw_heatmap(&area, &self.spec)
     }
 }

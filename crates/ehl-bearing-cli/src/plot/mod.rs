@@ -156,6 +156,17 @@ pub struct StackedOptions {
     pub heights: Vec<f64>,
 }
 
+/// Options of [`dual_axis_chart_with`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct DualOptions {
+    /// Explicit x range `(min, max)`; automatic when `None`.
+    pub x_range: Option<(f64, f64)>,
+    /// Explicit range of the left y axis; automatic when `None`.
+    pub y_left: Option<(f64, f64)>,
+    /// Explicit range of the right y axis; automatic when `None`.
+    pub y_right: Option<(f64, f64)>,
+}
+
 /// Options of [`heatmap_with`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct HeatmapOptions {

@@ -117,8 +117,13 @@ where
 pub(crate) fn segments(s: &Series, x: &Axis, y: &Axis) -> Vec<Vec<(f64, f64)>> {
     let mut out = Vec::new();
     let mut cur = Vec::new();
+    // Points outside an axis range (explicit ranges) break the line: plotters does not clip.
+    let within = |v: f64, a: &Axis| {
+        let tol = 1e-9 * (a.hi - a.lo).abs();
+        v >= a.lo - tol && v <= a.hi + tol
+    };
     for (&a, &b) in s.x.iter().zip(&s.y) {
-        if x.accepts(a) && y.accepts(b) {
+        if x.accepts(a) && y.accepts(b) && within(a, x) && within(b, y) {
             cur.push((a, b));
         } else if !cur.is_empty() {
             out.push(std::mem::take(&mut cur));
