@@ -193,8 +193,8 @@ pub fn characterize_quasi_static(
     )?;
     // One domain for the whole family: the automatic inlet depends on the load (through Moes M,
     // with a kink at M = 1000), so a family solved on per-load domains carries a discretization
-    // error that changes shape along it, which the fit absorbs into d and ΔF (docs/contact.md §
-    // "Smoothness over a study").
+    // error that changes shape along it, which the fit absorbs into d and ΔF (measured in
+    // docs/gallery.md, "Smoothness of the fitted parameters").
     let ehl = family_domain(&s.ehl, &centre);
     sols[mid] = Some(centre);
     for k in (0..mid).rev().chain(mid + 1..n) {

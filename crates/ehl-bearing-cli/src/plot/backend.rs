@@ -322,6 +322,10 @@ impl<'a> DrawingBackend for Png<'a> {
 /// Lines of `title` wrapped at word boundaries to `width` pixels at font size `size` (an
 /// explicit "\n" also breaks).
 pub(crate) fn wrap_title(title: &str, size: f64, width: f32) -> Vec<String> {
+    // "a = 1 mm" and "x ± e" stay on one line.
+    let title = title
+        .replace(" = ", "\u{a0}=\u{a0}")
+        .replace(" ± ", "\u{a0}±\u{a0}");
     let mut lines = Vec::new();
     for para in title.split('\n') {
         let mut cur = String::new();

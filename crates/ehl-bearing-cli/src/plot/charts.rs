@@ -4,6 +4,7 @@ use super::*;
 
 /// A 2-D line/scatter chart written as `<stem>.svg` and `<stem>.png`
 /// ([`FIGURE_WIDTH`] × [`FIGURE_HEIGHT`] px), with automatic axis ranges.
+#[allow(dead_code)] // generic API, used by the tests
 pub fn line_chart(
     stem: &Path,
     title: &str,
@@ -22,6 +23,7 @@ pub fn line_chart(
 }
 
 /// [`line_chart`] with options: logarithmic axes and explicit ranges.
+#[allow(dead_code)] // generic API, used by the tests
 pub fn line_chart_with(
     stem: &Path,
     title: &str,
@@ -84,6 +86,7 @@ impl Figure for LineFig<'_> {
 /// written as `<stem>.svg` and `<stem>.png` ([`FIGURE_WIDTH`] ×
 /// [`stacked_height`] px). Each panel is `(y label, series)`; a panel with no
 /// finite point is drawn empty, but at least one panel must have data.
+#[allow(dead_code)] // generic API, used by the tests
 pub fn stacked_charts(
     stem: &Path,
     title: &str,
@@ -206,6 +209,7 @@ impl Figure for StackedFig<'_> {
 /// on from the left ones to the right ones; the legend (always shown for
 /// labelled series) marks which axis each series belongs to. Either side may be
 /// empty, but not both.
+#[allow(dead_code)] // generic API, used by the tests
 pub fn dual_axis_chart(
     stem: &Path,
     title: &str,

@@ -130,6 +130,7 @@ impl Series {
 
 /// Options of [`line_chart_with`].
 #[derive(Clone, Debug, Default, PartialEq)]
+#[allow(dead_code)] // generic API, used by the tests
 pub struct ChartOptions {
     /// Logarithmic x axis (non-positive x values are skipped).
     pub x_log: bool,

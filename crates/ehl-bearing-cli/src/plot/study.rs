@@ -108,13 +108,13 @@ pub fn study_figures(dir: &Path, rows: &[ResultRow], trends: Option<&TrendModel>
                             .iter()
                             .map(|&n| q.iter().map(|&qi| clip(t.k_at(qi, omega(n)))).collect())
                             .collect();
-                        // One curve when the speeds' curves coincide within 1 %.
+                        // One curve when the speeds' curves coincide within 5 % (they would hide each other).
                         let spread = used
                             .iter()
                             .flat_map(|c| c.iter().zip(&used[0]).map(|(a, b)| (a / b - 1.0).abs()))
                             .filter(|v| v.is_finite())
                             .fold(0.0_f64, f64::max);
-                        if spread < 0.01 {
+                        if spread < 0.05 {
                             series.push(Series::line(
                                 format!(
                                     "K used by the force element, (Q − ΔF)/δ^d (speeds within {:.1} %)",
@@ -133,11 +133,39 @@ pub fn study_figures(dir: &Path, rows: &[ResultRow], trends: Option<&TrendModel>
                             }
                         }
                     }
-                    "d_vs_load" => series.push(Series::line(
-                        format!("trend {} ({}, all speeds)", t.d.formula, r2(&t.d)),
-                        q.clone(),
-                        curve(&t.d, 0.0),
-                    )),
+                    "d_vs_load" => {
+                        series.push(Series::line(
+                            format!("trend {} ({}, all speeds)", t.d.formula, r2(&t.d)),
+                            q.clone(),
+                            curve(&t.d, 0.0),
+                        ));
+                        // The same form fitted per speed, to show whether the data separate.
+                        for &n in &speeds {
+                            let pts: Vec<(f64, f64)> = rows
+                                .iter()
+                                .filter(|r| r.speed_rpm == n && r.contact.race == race)
+                                .map(|r| (r.contact.characterized_load_n, r.contact.d))
+                                .collect();
+                            if let Some((p0, p1, r2)) = hertz_limit_fit(&pts) {
+                                let (lo, hi) =
+                                    pts.iter().fold((f64::INFINITY, 0.0_f64), |(a, b), p| {
+                                        (a.min(p.0), b.max(p.0))
+                                    });
+                                let qs: Vec<f64> = (0..=60)
+                                    .map(|i| lo * (hi / lo).powf(i as f64 / 60.0))
+                                    .collect();
+                                let mut s = Series::line(
+                                    format!(
+                                        "{n} rpm alone: d = 1.5 − {p0:.3}·Q^(−{p1:.3}), R² = {r2:.3} (figure only)"
+                                    ),
+                                    qs.clone(),
+                                    qs.iter().map(|&q| clip(1.5 - p0 * q.powf(-p1))).collect(),
+                                );
+                                s.style = super::SeriesStyle::Dashed;
+                                series.push(s);
+                            }
+                        }
+                    }
                     _ => {
                         for &n in &speeds {
                             series.push(Series::line(
@@ -174,4 +202,41 @@ pub fn study_figures(dir: &Path, rows: &[ResultRow], trends: Option<&TrendModel>
         .with_context(|| format!("plotting {stem}"))?;
     }
     Ok(())
+}
+
+/// d = 1.5 − p0·Q^(−p1) fitted to (Q, d) points by linear least squares on
+/// ln(1.5 − d) = ln p0 − p1·ln Q (points with d ≥ 1.5 skipped); returns p0, p1 and the R² of d.
+fn hertz_limit_fit(pts: &[(f64, f64)]) -> Option<(f64, f64, f64)> {
+    let xy: Vec<(f64, f64)> = pts
+        .iter()
+        .filter(|(q, d)| *q > 0.0 && *d < 1.5)
+        .map(|(q, d)| (q.ln(), (1.5 - d).ln()))
+        .collect();
+    let n = xy.len() as f64;
+    if xy.len() < 3 {
+        return None;
+    }
+    let (mx, my) = (
+        xy.iter().map(|p| p.0).sum::<f64>() / n,
+        xy.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let sxx: f64 = xy.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxy: f64 = xy.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    if sxx <= 0.0 {
+        return None;
+    }
+    let slope = sxy / sxx;
+    let (p0, p1) = ((my - slope * mx).exp(), -slope);
+    let mean_d = pts.iter().map(|p| p.1).sum::<f64>() / pts.len() as f64;
+    let ss_tot: f64 = pts.iter().map(|p| (p.1 - mean_d).powi(2)).sum();
+    let ss_res: f64 = pts
+        .iter()
+        .map(|&(q, d)| (d - (1.5 - p0 * q.powf(-p1))).powi(2))
+        .sum();
+    let r2 = if ss_tot > 0.0 {
+        1.0 - ss_res / ss_tot
+    } else {
+        f64::NAN
+    };
+    (p0.is_finite() && p1.is_finite()).then_some((p0, p1, r2))
 }
