@@ -9,6 +9,7 @@ use super::*;
 /// size works (513 × 513 included); the SVG embeds it as one PNG image.
 /// Non-finite cells are grey. Axes use equal scales (see [`HeatmapOptions`]).
 #[allow(clippy::too_many_arguments)]
+#[allow(dead_code)] // generic API, used by the tests
 pub fn heatmap(
     stem: &Path,
     title: &str,

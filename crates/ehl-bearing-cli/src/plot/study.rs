@@ -108,16 +108,18 @@ pub fn study_figures(dir: &Path, rows: &[ResultRow], trends: Option<&TrendModel>
                             .iter()
                             .map(|&n| q.iter().map(|&qi| clip(t.k_at(qi, omega(n)))).collect())
                             .collect();
-                        // One curve when the speeds' curves coincide within 5 % (they would hide each other).
+                        // One curve when the speeds' curves would lie on top of each other
+                        // (within 2 % of the axis span).
+                        let span = y_range.map_or(f64::NAN, |(a, b)| b - a);
                         let spread = used
                             .iter()
-                            .flat_map(|c| c.iter().zip(&used[0]).map(|(a, b)| (a / b - 1.0).abs()))
+                            .flat_map(|c| c.iter().zip(&used[0]).map(|(a, b)| (a - b).abs() / span))
                             .filter(|v| v.is_finite())
                             .fold(0.0_f64, f64::max);
-                        if spread < 0.05 {
+                        if spread < 0.02 {
                             series.push(Series::line(
                                 format!(
-                                    "K used by the force element, (Q − ΔF)/δ^d (speeds within {:.1} %)",
+                                    "K used by the force element, (Q − ΔF)/δ^d (all speeds: within {:.1} % of the axis)",
                                     100.0 * spread
                                 ),
                                 q.clone(),
