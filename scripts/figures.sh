@@ -38,7 +38,7 @@ run() {
   t=$(tail -1 "$OUT/$name.time")
   after=$(cut -d' ' -f1-3 /proc/loadavg)
   read -r wall user sys <<< "$t"
-  echo "| \`${*#"$BIN"}\` | $wall | $(echo "$user + $sys" | bc) | $before | $after |" >> "$LOG"
+  echo "| \`${*#"$BIN"}\` | $wall | $(echo "$user + $sys" | bc | sed "s/^\./0./") | $before | $after |" >> "$LOG"
   echo "$name: $wall s wall"
 }
 
