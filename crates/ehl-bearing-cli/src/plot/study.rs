@@ -56,6 +56,20 @@ pub fn study_figures(dir: &Path, rows: &[ResultRow], trends: Option<&TrendModel>
         .map(|n| format!("{n}"))
         .collect::<Vec<_>>()
         .join(" / ");
+    // The case, from the trend model: method and bearing.
+    let case = trends.map_or(String::new(), |m| {
+        let b = &m.bearing;
+        format!(
+            " — {} method; {} balls of {:.2} mm, pitch {:.1} mm, α0 = {:.1}°, f_i = {}, f_o = {}",
+            m.method,
+            b.ball_count,
+            b.ball_diameter_m * 1e3,
+            b.pitch_diameter_m * 1e3,
+            b.free_contact_angle_rad.to_degrees(),
+            b.inner_conformity,
+            b.outer_conformity
+        )
+    });
     type Get = fn(&ResultRow) -> f64;
     let figures: [(&str, &str, &str, Get); 3] = [
         ("k_vs_load", "Stiffness K", "K (N/m^d)", |r| r.contact.k),
@@ -187,7 +201,7 @@ pub fn study_figures(dir: &Path, rows: &[ResultRow], trends: Option<&TrendModel>
         }
         stacked_charts_with(
             &dir.join(stem),
-            &format!("{title} against contact load, {speeds_text} rpm"),
+            &format!("{title} against contact load, {speeds_text} rpm{case}"),
             if x_log {
                 "contact load Q (N), log scale"
             } else {
@@ -241,4 +255,23 @@ fn hertz_limit_fit(pts: &[(f64, f64)]) -> Option<(f64, f64, f64)> {
         f64::NAN
     };
     (p0.is_finite() && p1.is_finite()).then_some((p0, p1, r2))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::hertz_limit_fit;
+
+    #[test]
+    fn hertz_limit_fit_recovers_an_exact_law() {
+        let pts: Vec<(f64, f64)> = [27.0, 60.0, 150.0, 400.0, 1100.0]
+            .iter()
+            .map(|&q: &f64| (q, 1.5 - 4.2 * q.powf(-0.73)))
+            .collect();
+        let (p0, p1, r2) = hertz_limit_fit(&pts).unwrap();
+        // Exact data: the log-linear least squares is exact up to round-off.
+        assert!((p0 / 4.2 - 1.0).abs() < 1e-10, "p0 = {p0}");
+        assert!((p1 - 0.73).abs() < 1e-10, "p1 = {p1}");
+        assert!((r2 - 1.0).abs() < 1e-12, "R² = {r2}");
+        assert!(hertz_limit_fit(&pts[..2]).is_none());
+    }
 }

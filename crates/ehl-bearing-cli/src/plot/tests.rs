@@ -541,3 +541,19 @@ fn demo() {
     )
     .unwrap();
 }
+
+#[test]
+fn titles_wrap_within_the_width_and_keep_equations_together() {
+    let title = "Contact law, quasi-static method — w0 = 600.0 N, u_s = 10.85 m/s, a = 1.390 mm, \
+                 b = 0.103 mm, p_h = 2.01 GPa (M = 2362, L = 25.3)";
+    let lines = wrap_title(title, 26.0, 970.0);
+    assert!(lines.len() >= 2, "{lines:?}");
+    for l in &lines {
+        assert!(text_box(l, 26.0).0 <= 970.0, "too wide: {l}");
+        assert!(
+            !l.ends_with('=') && !l.starts_with('='),
+            "split at '=': {lines:?}"
+        );
+    }
+    assert_eq!(wrap_title("short", 26.0, 970.0), vec!["short".to_string()]);
+}
