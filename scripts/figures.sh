@@ -56,7 +56,7 @@ cp "$OUT/contact_harmonic/time_history.png" "$FIG/contact_7006_inner_harmonic_ti
 # The main command of the README.
 run characterize "$BIN" characterize examples/7006.toml
 # The seed study (4 load scales × 3 speeds).
-pts=$(ls "$OUT/study_7006/points" 2>/dev/null | wc -l)
+pts=$( (ls "$OUT/study_7006/points" 2>/dev/null || true) | wc -l)
 run study "$BIN" study examples/study_7006.toml -o "$OUT/study_7006"
 echo "(study: $pts points were already in $OUT/study_7006 before the run)" >> "$LOG"
 for f in d_vs_load delta_f_vs_load k_vs_load; do
@@ -64,7 +64,7 @@ for f in d_vs_load delta_f_vs_load k_vs_load; do
 done
 cp "$OUT/study_7006/trends.json" "$FIG/study_7006_quasi_static_trends.json"
 if [ -z "${SKIP_HARMONIC:-}" ]; then
-  pts=$(ls "$OUT/study_7006_harmonic/points" 2>/dev/null | wc -l)
+  pts=$( (ls "$OUT/study_7006_harmonic/points" 2>/dev/null || true) | wc -l)
   run study_harmonic "$BIN" study examples/study_7006_harmonic.toml -o "$OUT/study_7006_harmonic"
   echo "(harmonic study: $pts points were already in $OUT/study_7006_harmonic before the run)" >> "$LOG"
   for f in d_vs_load delta_f_vs_load k_vs_load; do
