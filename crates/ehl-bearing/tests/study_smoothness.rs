@@ -8,9 +8,9 @@
 //!   contact at 5000 rpm, families centred at 300…420 N — across Moes M = 1000, where the
 //!   automatic inlet stops shrinking; before the family shared one domain, d fell from 1.451 to
 //!   1.438 and ΔF from 28.6 to 25.7 N there.
-//! - `seed_study_fits_are_smooth_in_load` (`#[ignore]`, ≈ 6 min on 2 idle cores, 15 min on a
-//!   loaded machine): the whole seed study, `cargo test --release -p ehl-bearing --test
-//!   study_smoothness -- --ignored`.
+//! - `seed_study_fits_are_smooth_in_load` (`#[ignore]`, 412 s at load average 2–3.6 on 2 cores, 15 min on a
+//!   loaded machine): the whole seed study, `cargo test -p ehl-bearing --test study_smoothness
+//!   -- --ignored` (the test profile is optimized).
 
 use ehl_bearing::characterize::QuasiStaticCharacterizer;
 use ehl_bearing::contact::{characterize_quasi_static, QuasiStaticSettings};
@@ -118,7 +118,7 @@ fn family_fits_are_smooth_across_the_inlet_kink() {
 }
 
 #[test]
-#[ignore = "the whole seed study, ≈ 6–15 min: cargo test --release -p ehl-bearing --test study_smoothness -- --ignored"]
+#[ignore = "the whole seed study, ≈ 6–15 min: cargo test -p ehl-bearing --test study_smoothness -- --ignored"]
 fn seed_study_fits_are_smooth_in_load() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/study_7006.toml");
     let study = read_study(&path).unwrap();
