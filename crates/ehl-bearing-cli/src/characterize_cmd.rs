@@ -4,7 +4,7 @@
 use anyhow::{bail, Context};
 use ehl_bearing::characterize::{
     characterization_json, characterize_bearing_with_progress, BearingCharacterization,
-    CharacterizeSettings, ContactRow, Progress,
+    CharacterizeSettings, ContactRow, LawSource, Progress,
 };
 use ehl_bearing::io::{read_case, Case};
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -198,15 +198,12 @@ pub fn table(case: &Case, c: &BearingCharacterization) -> String {
     let op = &case.operating;
     let _ = writeln!(
         s,
-        "{}: inner {:.0} rpm, outer {:.0} rpm; method {}{}",
+        "{}: inner {:.0} rpm, outer {:.0} rpm; method {}: {}",
         case.name.as_deref().unwrap_or("bearing"),
         op.inner_speed * rpm,
         op.outer_speed * rpm,
         c.method,
-        c.method
-            .grid()
-            .map(|g| format!(" (EHL grid {g}²)"))
-            .unwrap_or_default()
+        settings_summary(&serde_json::to_value(c.method).unwrap_or_default()["settings"])
     );
     if !case.lubricant_given {
         let _ = writeln!(
@@ -306,10 +303,28 @@ pub fn table(case: &Case, c: &BearingCharacterization) -> String {
             cc.moes_l,
             cc.ry_over_rx,
             r.load_offset,
-            format!("{:?}", r.source).to_lowercase(),
+            match r.source {
+                LawSource::Characterized => "this iter.",
+                LawSource::Cached => "earlier iter.",
+                LawSource::Deduplicated => "same iter.",
+            },
             if cc.law.outside_fit_range(r.state.deflection) { " (outside fit range)" } else { "" }
         );
     }
+    let per_iteration: Vec<String> = c
+        .history
+        .iter()
+        .map(|h| format!("{} in iteration {}", h.characterized, h.iteration))
+        .collect();
+    let _ = writeln!(
+        s,
+        "source: the iteration the final law was characterized in, relative to the last one \
+         (\"earlier iter.\": reused while the load stayed within {:.1} % of its characterization \
+         load, column Q/w0−1, or within the cache tolerance of another contact's law). \
+         Characterized: {}.",
+        100.0 * c.settings.load_reuse_tolerance,
+        per_iteration.join(", ")
+    );
     let names = ["x µm", "y µm", "z µm", "θy mdeg", "θz mdeg"];
     let _ = writeln!(s, "\n{:<9} {:>14} {:>14}", "DOF", "EHL", "dry");
     for (k, name) in names.iter().enumerate() {
@@ -352,4 +367,50 @@ pub fn table(case: &Case, c: &BearingCharacterization) -> String {
         );
     }
     s
+}
+
+/// The method settings in words (the full set is in the JSON output).
+fn settings_summary(v: &Value) -> String {
+    let num = |p: &str| v.pointer(p).and_then(Value::as_f64);
+    let ehl = |base: &str| -> String {
+        let grid = num(&format!("{base}/grid")).map_or("?".into(), |g| format!("{g}"));
+        let inlet = num(&format!("{base}/inlet"))
+            .map_or("automatic domain".into(), |x| format!("inlet {x} a_x"));
+        format!(
+            "{grid}² grid, {inlet}, tolerances residual {:e}, force {:e}, film {:e}",
+            num(&format!("{base}/tol_residual")).unwrap_or(f64::NAN),
+            num(&format!("{base}/tol_force")).unwrap_or(f64::NAN),
+            num(&format!("{base}/tol_film")).unwrap_or(f64::NAN)
+        )
+    };
+    if let (Some(a), Some(n), Some(_)) = (num("/amplitude"), num("/points"), v.get("ehl")) {
+        return format!(
+            "{n} steady EHL solutions over w0·(1 ± {a}), {}",
+            ehl("/ehl")
+        );
+    }
+    if let (Some(a), Some(_)) = (num("/amplitude"), v.get("frequency")) {
+        let freq = match v.get("frequency") {
+            Some(Value::Object(m)) => m
+                .iter()
+                .map(|(k, x)| match k.as_str() {
+                    "fraction-of-natural" => format!("Ω = {x}·ω_n"),
+                    _ => format!("Ω = {x} rad/s"),
+                })
+                .collect::<Vec<_>>()
+                .join(""),
+            _ => "Ω ?".into(),
+        };
+        return format!(
+            "w0·(1 + {a}·sin Ωt), {freq}, {} settling + {} recorded periods, {} steps per period, {}",
+            num("/settling_periods").unwrap_or(f64::NAN),
+            num("/recorded_periods").unwrap_or(f64::NAN),
+            num("/steps_per_period").unwrap_or(f64::NAN),
+            ehl("/ehl")
+        );
+    }
+    if let (Some(a), Some(n)) = (num("/amplitude"), num("/samples")) {
+        return format!("{n} Hertz samples over w0·(1 ± {a})");
+    }
+    v.to_string()
 }

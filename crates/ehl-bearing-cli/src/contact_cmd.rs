@@ -66,14 +66,6 @@ pub struct ContactArgs {
     pub output: Option<PathBuf>,
 }
 
-/// Settling and recorded periods of a harmonic fit (0, 0 otherwise).
-fn settling_recorded(f: &ContactFit) -> (usize, usize) {
-    match &f.excitation {
-        ehl_bearing::contact::Excitation::Harmonic(h) => (h.settling_periods, h.recorded_periods),
-        _ => (0, 0),
-    }
-}
-
 /// The result as JSON, SI units.
 pub fn fit_json(f: &ContactFit) -> serde_json::Value {
     serde_json::json!({
@@ -178,104 +170,6 @@ fn table(f: &ContactFit) -> String {
         f.seconds
     );
     s
-}
-
-/// Q against δ: the EHL samples, the fitted law over and below the fitted range (with its
-/// extension), and the dry Hertz law of the same contact for comparison.
-fn plot_fit(f: &ContactFit, c: &ehl::EhlContact, dir: &std::path::Path) -> Result<()> {
-    use crate::plot::{line_chart, Series};
-    use ehl_bearing::ContactLaw;
-    let um = 1e6;
-    let [lo, hi] = f.delta_range;
-    let span = hi - lo;
-    let (a, b) = ((lo - 0.6 * span).max(0.3 * lo), hi + 0.3 * span);
-    let xs: Vec<f64> = (0..=200).map(|i| a + (b - a) * i as f64 / 200.0).collect();
-    let hertz = ehl_bearing::hertz::HertzGeometry::new(c.rx, c.ry, c.e_reduced)?;
-    let data = if f.method == "harmonic" {
-        let rec = &f.history[f.settling_steps..];
-        Series::markers(
-            "transient EHL, film force ∬p dA (recorded periods)",
-            rec.iter().map(|s| s.approach * um).collect(),
-            rec.iter().map(|s| s.film_force).collect(),
-        )
-    } else {
-        Series::markers(
-            "EHL steady solutions",
-            f.samples.iter().map(|s| s.approach * um).collect(),
-            f.samples.iter().map(|s| s.load).collect(),
-        )
-    };
-    let series = vec![
-        data,
-        Series::line(
-            format!(
-                "fit K·δ^d + ΔF{}, d = {:.4}, ΔF = {:.2} N",
-                if f.c.is_some() { " (δ̇ = 0)" } else { "" },
-                f.d,
-                f.delta_f
-            ),
-            xs.iter().map(|x| x * um).collect(),
-            xs.iter().map(|&x| f.law.force(x).0).collect(),
-        ),
-        Series::line(
-            "dry Hertz K_H·δ^1.5",
-            xs.iter().map(|x| x * um).collect(),
-            xs.iter().map(|&x| hertz.load_at(x)).collect(),
-        ),
-    ];
-    line_chart(
-        &dir.join("force_approach"),
-        &format!(
-            "Contact law, {} method (M = {:.0}, L = {:.1}, Ry/Rx = {:.1})",
-            f.method, f.moes_m, f.moes_l, f.ry_over_rx
-        ),
-        "approach δ (µm)",
-        "contact force Q (N)",
-        &series,
-    )
-}
-
-/// δ(t) above Q(t) (film force and external load) of the harmonic method.
-fn plot_history(f: &ContactFit, dir: &std::path::Path) -> Result<()> {
-    use crate::plot::{stacked_charts, Series};
-    let t: Vec<f64> = f.history.iter().map(|s| s.time * 1e3).collect();
-    let panels = vec![
-        (
-            "approach δ (µm)".to_string(),
-            vec![Series::line(
-                "δ(t)",
-                t.clone(),
-                f.history.iter().map(|s| s.approach * 1e6).collect(),
-            )],
-        ),
-        (
-            "force (N)".to_string(),
-            vec![
-                Series::line(
-                    "film force ∬p dA",
-                    t.clone(),
-                    f.history.iter().map(|s| s.film_force).collect(),
-                ),
-                Series::line(
-                    "external load w(t)",
-                    t,
-                    f.history.iter().map(|s| s.load).collect(),
-                ),
-            ],
-        ),
-    ];
-    stacked_charts(
-        &dir.join("time_history"),
-        &format!(
-            "Harmonic excitation, {} settling + {} recorded periods (M = {:.0}, L = {:.1})",
-            settling_recorded(f).0,
-            settling_recorded(f).1,
-            f.moes_m,
-            f.moes_l
-        ),
-        "time t (ms)",
-        &panels,
-    )
 }
 
 /// The time history as CSV, SI units, one row per step.
@@ -426,10 +320,10 @@ pub fn run(args: &ContactArgs) -> Result<()> {
             dir.join("fit.json"),
             serde_json::to_string_pretty(&fit_json(&fit))?,
         )?;
-        plot_fit(&fit, &c, dir)?;
+        crate::plot::contact::force_approach(&fit, &c, dir)?;
         if !fit.history.is_empty() {
             std::fs::write(dir.join("history.csv"), history_csv(&fit))?;
-            plot_history(&fit, dir)?;
+            crate::plot::contact::time_history(&fit, &c, dir)?;
         }
     }
     if args.json {

@@ -2,7 +2,7 @@
 //! or in Moes' dimensionless parameters.
 //!
 //! ```text
-//! ehl-bearing ehl CONTACT.toml [--json] [--grid N] [--fields DIR]
+//! ehl-bearing ehl CONTACT.toml [--json] [--grid N] [--fields DIR]   # DIR: fields as CSV + 4 figures
 //! ehl-bearing ehl --moes-m M --moes-l L [--ry-over-rx R] [--viscosity barus|roelands]
 //!                 [--density incompressible|dowson-higginson] [--grid N] [--json]
 //! ```
@@ -60,7 +60,11 @@ pub struct EhlArgs {
     /// Largest number of multigrid cycles (default from the solver settings, 40).
     #[arg(long)]
     pub max_cycles: Option<usize>,
-    /// Write pressure.csv and film.csv (long format x_m,y_m,value; Pa and m) into this directory.
+    /// Write into this directory pressure.csv and film.csv (long format x_m,y_m,value; Pa and m)
+    /// and four figures, each as .png and .svg: pressure_map and film_map (zoomed to the contact,
+    /// Hertz ellipse overlaid), centreline_rolling (p/p_h and h along Y = 0) and
+    /// centreline_transverse (along X = 0, grid nodes marked, cell sizes in the title); see
+    /// docs/gallery.md.
     #[arg(long, value_name = "DIR")]
     pub fields: Option<PathBuf>,
     /// Moes load parameter M = W·U^(-3/4) (dimensionless mode).
@@ -181,7 +185,7 @@ pub fn write_fields(r: &EhlSolution, dir: &Path) -> Result<()> {
         let path = dir.join(name);
         std::fs::write(&path, s).with_context(|| format!("writing {}", path.display()))?;
     }
-    crate::fields_plot::plot_fields(r, dir)
+    crate::plot::fields::plot_fields(r, dir)
 }
 
 /// Runs `ehl-bearing ehl`.

@@ -5,7 +5,6 @@ mod coefficients_cmd;
 mod contact_cmd;
 mod ehl_cmd;
 mod equilibrium_cmd;
-mod fields_plot;
 mod plot;
 mod study_cmd;
 

@@ -16,12 +16,10 @@
 //! in one go, was resumed, or ran as shards, and whatever the number of threads.
 
 use crate::characterize_cmd::{contact_progress, progress_container, with_threads};
-use crate::plot::{stacked_charts, Series};
-use anyhow::Context;
 use ehl_bearing::io::FsStore;
 use ehl_bearing::study::{
     finish_study, merge_points, read_study, run_study, PointStore, ResultRow, RunOptions, Shard,
-    Study, StudyEvent, StudyOutputs, TrendCurve, TrendModel,
+    Study, StudyEvent, StudyOutputs, TrendModel,
 };
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
@@ -309,86 +307,5 @@ fn finish(study: &Study, store: &FsStore) -> anyhow::Result<()> {
 /// load each law was characterized at (within the load reuse tolerance of the equilibrium load),
 /// the abscissa of the trend curves.
 fn plots(dir: &Path, rows: &[ResultRow], trends: Option<&TrendModel>) -> anyhow::Result<()> {
-    let mut speeds: Vec<f64> = Vec::new();
-    for r in rows {
-        if !speeds.contains(&r.speed_rpm) {
-            speeds.push(r.speed_rpm);
-        }
-    }
-    type Get = fn(&ResultRow) -> f64;
-    let figures: [(&str, &str, &str, Get); 3] = [
-        ("k_vs_load", "Stiffness K", "K (N/m^d)", |r| r.contact.k),
-        ("d_vs_load", "Nonlinear index d", "d (–)", |r| r.contact.d),
-        (
-            "delta_f_vs_load",
-            "Lift at zero approach ΔF",
-            "ΔF (N)",
-            |r| r.contact.delta_f_n,
-        ),
-    ];
-    for (stem, title, y_label, get) in figures {
-        let mut panels = Vec::new();
-        for race in ["inner", "outer"] {
-            let mut series = Vec::new();
-            for &n in &speeds {
-                let mut pts: Vec<(f64, f64)> = rows
-                    .iter()
-                    .filter(|r| {
-                        r.speed_rpm == n && r.contact.race == race && !r.contact.load_floored
-                    })
-                    .map(|r| (r.contact.characterized_load_n, get(r)))
-                    .collect();
-                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-                let (x, y): (Vec<f64>, Vec<f64>) = pts.into_iter().unzip();
-                series.push(Series::markers(format!("{n} rpm"), x, y));
-            }
-            if let Some(m) = trends {
-                let t = if race == "inner" { &m.inner } else { &m.outer };
-                let [lo, hi] = t.load_range_n;
-                let q: Vec<f64> = (0..=60)
-                    .map(|i| lo * (hi / lo).powf(i as f64 / 60.0))
-                    .collect();
-                let curve = |c: &TrendCurve, n: f64| q.iter().map(|&qi| c.eval(qi, n)).collect();
-                let omega = |rpm: f64| (rpm * std::f64::consts::PI / 30.0).abs();
-                match stem {
-                    "k_vs_load" => {
-                        series.push(Series::line(
-                            "power fit K = p0·Q^p1",
-                            q.clone(),
-                            curve(&t.k, 0.0),
-                        ));
-                        for &n in &speeds {
-                            let k = q.iter().map(|&qi| t.k_at(qi, omega(n))).collect();
-                            series.push(Series::line(
-                                format!("K used: (Q − ΔF)/δ^d, {n} rpm"),
-                                q.clone(),
-                                k,
-                            ));
-                        }
-                    }
-                    "d_vs_load" => {
-                        series.push(Series::line("trend d(Q)", q.clone(), curve(&t.d, 0.0)))
-                    }
-                    _ => {
-                        for &n in &speeds {
-                            series.push(Series::line(
-                                format!("trend ΔF(Q, {n} rpm)"),
-                                q.clone(),
-                                curve(&t.delta_f, omega(n)),
-                            ));
-                        }
-                    }
-                }
-            }
-            panels.push((format!("{race}: {y_label}"), series));
-        }
-        stacked_charts(
-            &dir.join(stem),
-            &format!("{title} against contact load"),
-            "contact load Q (N)",
-            &panels,
-        )
-        .with_context(|| format!("plotting {stem}"))?;
-    }
-    Ok(())
+    crate::plot::study::study_figures(dir, rows, trends)
 }
