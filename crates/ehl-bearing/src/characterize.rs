@@ -1245,15 +1245,20 @@ impl BearingCharacterization {
             max_relative_residual: self.max_relative_residual,
             method: self.method,
             settings: self.settings,
+            // The records' own time is not serialized; it travels in `seconds` (0 inside, so a
+            // report reads back into the same value).
             prediction: self.prediction.as_ref().map(|p| PredictionSummary {
-                record: p.clone(),
+                record: PredictionRecord {
+                    seconds: 0.0,
+                    ..p.clone()
+                },
                 seconds: t(p.seconds),
             }),
             history: self
                 .history
                 .iter()
                 .map(|h| IterationSummary {
-                    record: *h,
+                    record: IterationRecord { seconds: 0.0, ..*h },
                     seconds: t(h.seconds),
                 })
                 .collect(),
