@@ -432,10 +432,6 @@ impl ContactCharacterizer for HertzCharacterizer {
     fn method(&self) -> Method {
         Method::Hertz(*self)
     }
-
-    fn name(&self) -> &str {
-        "hertz"
-    }
 }
 
 /// A synthetic characterizer with known, smooth load and speed dependence, for testing trend
@@ -525,10 +521,6 @@ impl ContactCharacterizer for SyntheticCharacterizer {
     fn method(&self) -> Method {
         Method::Synthetic(*self)
     }
-
-    fn name(&self) -> &str {
-        "synthetic"
-    }
 }
 
 /// The EHL quasi-static method ([`crate::contact::characterize_quasi_static`]: a family of steady
@@ -557,10 +549,6 @@ impl ContactCharacterizer for QuasiStaticCharacterizer {
 
     fn method(&self) -> Method {
         Method::QuasiStatic(self.settings)
-    }
-
-    fn name(&self) -> &str {
-        "quasi-static"
     }
 
     fn predictor(&self) -> Option<&dyn LoadPredictor> {
@@ -637,10 +625,6 @@ impl ContactCharacterizer for HarmonicCharacterizer {
 
     fn method(&self) -> Method {
         Method::Harmonic(self.settings)
-    }
-
-    fn name(&self) -> &str {
-        "harmonic"
     }
 
     fn predictor(&self) -> Option<&dyn LoadPredictor> {
