@@ -2,6 +2,8 @@
 // Index loops mirror the matrix formulas in these checks.
 #![allow(clippy::needless_range_loop)]
 
+mod bearing_common;
+use bearing_common::fd_jacobian;
 use ehl_bearing::bearing::{
     solve_equilibrium, BallState, Bearing, BearingGeometry, BearingModel, ContactLaws, Control,
     Equilibrium, EquilibriumSettings, Kinematics, OperatingPoint, RaceControl,
@@ -548,23 +550,6 @@ fn loads_the_bearing_cannot_carry_are_errors_with_residual_or_reason() {
     );
 }
 
-fn fd_jacobian(model: &BearingModel, q: &[f64; 5]) -> [[f64; 5]; 5] {
-    let mut jac = [[0.0; 5]; 5];
-    for c in 0..5 {
-        let h = if c < 3 { 1e-10 } else { 4e-9 };
-        let mut qp = *q;
-        let mut qm = *q;
-        qp[c] += h;
-        qm[c] -= h;
-        let fp = model.evaluate(&qp).unwrap().reaction;
-        let fm = model.evaluate(&qm).unwrap().reaction;
-        for r in 0..5 {
-            jac[r][c] = (fp[r] - fm[r]) / (2.0 * h);
-        }
-    }
-    jac
-}
-
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(24))]
     /// The analytic (dual-number + implicit-function) Jacobian equals central finite differences
@@ -587,7 +572,7 @@ proptest! {
         let model = BearingModel::new(&b, &laws, rpm * RPM, 0.0, rc).unwrap();
         let q = [x, y, z, ty, tz];
         let an = model.evaluate(&q).unwrap().jacobian;
-        let fd = fd_jacobian(&model, &q);
+        let fd = fd_jacobian(&model, &q, 4e-9);
         for c in 0..5 {
             let colmax = (0..5).map(|r| an[r][c].abs()).fold(0.0, f64::max);
             for r in 0..5 {

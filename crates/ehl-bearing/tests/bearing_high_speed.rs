@@ -4,6 +4,8 @@
 // Index loops mirror the matrix formulas in these checks.
 #![allow(clippy::needless_range_loop)]
 
+mod bearing_common;
+use bearing_common::fd_jacobian;
 use ehl_bearing::bearing::equilibrium::MU_MAX;
 use ehl_bearing::bearing::{
     solve_equilibrium, BallState, Bearing, BearingModel, ContactLaws, Control, Equilibrium,
@@ -610,23 +612,6 @@ fn kinematics_key_in_case_files() {
     assert!(parse_case(&bad, "bad").is_err());
 }
 
-fn fd_jacobian(model: &BearingModel, q: &[f64; 5]) -> [[f64; 5]; 5] {
-    let mut jac = [[0.0; 5]; 5];
-    for c in 0..5 {
-        let h = if c < 3 { 1e-10 } else { 2e-9 };
-        let mut qp = *q;
-        let mut qm = *q;
-        qp[c] += h;
-        qm[c] -= h;
-        let fp = model.evaluate(&qp).unwrap().reaction;
-        let fm = model.evaluate(&qm).unwrap().reaction;
-        for r in 0..5 {
-            jac[r][c] = (fp[r] - fm[r]) / (2.0 * h);
-        }
-    }
-    jac
-}
-
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(16))]
     /// The exact Jacobian equals central finite differences for the 218 at 15000 rpm (contact
@@ -650,7 +635,7 @@ proptest! {
         let model = BearingModel::new(&b, &laws, 15000.0 * RPM, 0.0, rc).unwrap().with_kinematics(kin);
         let q = [x, y, z, ty, tz];
         let an = model.evaluate(&q).unwrap().jacobian;
-        let fd = fd_jacobian(&model, &q);
+        let fd = fd_jacobian(&model, &q, 2e-9);
         for c in 0..5 {
             let colmax = (0..5).map(|r| an[r][c].abs()).fold(0.0, f64::max);
             for r in 0..5 {

@@ -12,7 +12,7 @@
 
 use super::geometry::{Bearing, Race};
 use super::BearingError;
-use crate::contact_law::ContactLaw;
+use crate::contact_law::{ContactLaw, HertzLaw};
 use std::f64::consts::PI;
 use std::sync::Arc;
 
@@ -109,22 +109,24 @@ impl OperatingAngleHertzLaw {
     }
 }
 
-impl ContactLaw for OperatingAngleHertzLaw {
-    fn force(&self, approach: f64) -> (f64, f64) {
-        if approach > 0.0 {
-            let s = approach.sqrt();
-            (self.stiffness * approach * s, 1.5 * self.stiffness * s)
-        } else {
-            (0.0, 0.0)
+impl OperatingAngleHertzLaw {
+    /// The plain Hertz law with this law's constant at its reference angle.
+    fn at_reference(&self) -> HertzLaw {
+        HertzLaw {
+            stiffness: self.stiffness,
         }
+    }
+}
+
+impl ContactLaw for OperatingAngleHertzLaw {
+    /// The dry Hertz law at the reference angle ([`HertzLaw`]); the angle enters through
+    /// [`ContactLaw::angle_factor`].
+    fn force(&self, approach: f64) -> (f64, f64) {
+        self.at_reference().force(approach)
     }
 
     fn approach_at(&self, load: f64) -> Option<f64> {
-        if load >= 0.0 && load.is_finite() {
-            Some((load / self.stiffness).powf(2.0 / 3.0))
-        } else {
-            None
-        }
+        self.at_reference().approach_at(load)
     }
 
     fn angle_factor(&self, contact_angle: f64) -> Option<(f64, f64)> {
