@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# All the project's tests: the README's test command, run by CI (.ci/run).
+# Formatting, lints and the Rust tests; further stages (Python package, Slurm route) are added below as they land.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+echo "== cargo fmt --check"
+cargo fmt --all -- --check
+echo "== cargo clippy"
+cargo clippy --all-targets -- -D warnings
+echo "== cargo test"
+cargo test --workspace
