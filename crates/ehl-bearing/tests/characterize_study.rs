@@ -355,12 +355,11 @@ fn trend_force_element_jacobian_is_close_to_finite_differences() {
     assert!(worst_fd < 1e-3, "{worst_fd}");
 }
 
-#[test]
-fn approach_trend_recovers_a_hertz_minus_film_law() {
+/// Manufactured rows: δ = 1.0e-7·Q^0.665 − 1.6e-8·Q^(−0.055)·n^0.656 (the form and magnitudes
+/// the EHL study of docs/study.md gives), d = `d_of(Q, n)`, ΔF = 0.1·Q^0.22·n^0.7, at 3000, 4000
+/// and 5000 rpm and 12 loads from 25 to 600 N per race.
+fn manufactured_rows(d_of: impl Fn(f64, f64) -> f64) -> Vec<ResultRow> {
     use ehl_bearing::characterize::ContactRow;
-    // Manufactured rows: δ = 1.0e-7·Q^0.665 − 1.6e-8·Q^(−0.055)·n^0.656 (the form and magnitudes
-    // the EHL study of docs/study.md gives), d = 1.5 − 3·Q^(−0.7), ΔF = 0.1·Q^0.22·n^0.7.
-    let s = study("").unwrap();
     let truth = [1.0e-7, 0.665, 1.6e-8, -0.055, 0.656];
     let mut rows = Vec::new();
     for rpm in [3000.0, 4000.0, 5000.0] {
@@ -370,7 +369,7 @@ fn approach_trend_recovers_a_hertz_minus_film_law() {
             for race in ["inner", "outer"] {
                 let delta =
                     truth[0] * q.powf(truth[1]) - truth[2] * q.powf(truth[3]) * n.powf(truth[4]);
-                let d = 1.5 - 3.0 * q.powf(-0.7);
+                let d = d_of(q, n);
                 let df = 0.1 * q.powf(0.22) * n.powf(0.7);
                 rows.push(ResultRow {
                     speed_rpm: rpm,
@@ -414,6 +413,15 @@ fn approach_trend_recovers_a_hertz_minus_film_law() {
             }
         }
     }
+    rows
+}
+
+#[test]
+fn approach_trend_recovers_a_hertz_minus_film_law() {
+    // d = 1.5 − 3·Q^(−0.7): no speed term.
+    let s = study("").unwrap();
+    let truth = [1.0e-7, 0.665, 1.6e-8, -0.055, 0.656];
+    let rows = manufactured_rows(|q, _| 1.5 - 3.0 * q.powf(-0.7));
     let m = fit_trends(&s, &rows).unwrap();
     for t in [&m.inner, &m.outer] {
         assert_eq!(t.approach.form, "hertz_minus_film", "{:?}", t.approach);
@@ -430,4 +438,29 @@ fn approach_trend_recovers_a_hertz_minus_film_law() {
         let k = (q - 0.1 * q.powf(0.22) * n.powf(0.7)) / delta.powf(d);
         assert!((t.k_at(q, n) / k - 1.0).abs() < 1e-4);
     }
+}
+
+/// d separating by speed (1.5 − d grows with n, as in the seed study at light load): the trend
+/// takes the speed term and recovers it; the K the force element uses follows.
+#[test]
+fn d_trend_takes_a_speed_term_where_the_data_separate_by_speed() {
+    let s = study("").unwrap();
+    let d_of = |q: f64, n: f64| 1.5 - 0.05 * q.powf(-0.4) * n.powf(0.35);
+    let m = fit_trends(&s, &manufactured_rows(d_of)).unwrap();
+    for t in [&m.inner, &m.outer] {
+        assert_eq!(t.d.form, "hertz_limit_speed", "{:?}", t.d);
+        let want = [0.05, 0.4, 0.35];
+        for (p, w) in t.d.params.iter().zip(want) {
+            assert!((p / w - 1.0).abs() < 1e-6, "{:?}", t.d.params);
+        }
+        // d and ∂d/∂Q at a point between the data.
+        let (q, n) = (77.0, 450.0);
+        let (d, dd) = t.d.eval_dq(q, n);
+        assert!((d - d_of(q, n)).abs() < 1e-9);
+        let fd = (t.d.eval(q * (1.0 + 1e-6), n) - t.d.eval(q * (1.0 - 1e-6), n)) / (2e-6 * q);
+        assert!((dd / fd - 1.0).abs() < 1e-6, "{dd} vs {fd}");
+    }
+    // The same data with the speed term removed keep the one-variable form.
+    let m = fit_trends(&s, &manufactured_rows(|q, _| 1.5 - 0.05 * q.powf(-0.4))).unwrap();
+    assert_eq!(m.inner.d.form, "hertz_limit");
 }

@@ -149,13 +149,27 @@ pub fn study_figures(dir: &Path, rows: &[ResultRow], trends: Option<&TrendModel>
                             }
                         }
                     }
+                    "d_vs_load" if t.d.form == "hertz_limit_speed" => {
+                        // The library's trend has a speed term (the data separate by speed).
+                        for &n in &speeds {
+                            series.push(Series::line(
+                                format!("trend d(Q, {n} rpm)"),
+                                q.clone(),
+                                curve(&t.d, omega(n)),
+                            ));
+                        }
+                        if let Some(s) = series.last_mut() {
+                            s.label = format!("{} — {}: {}", s.label, t.d.formula, r2(&t.d));
+                        }
+                    }
                     "d_vs_load" => {
                         series.push(Series::line(
                             format!("trend {} ({}, all speeds)", t.d.formula, r2(&t.d)),
                             q.clone(),
                             curve(&t.d, 0.0),
                         ));
-                        // The same form fitted per speed, to show whether the data separate.
+                        // The same form fitted per speed, to show that the data do not separate
+                        // by more than the trend's speed-term test admits.
                         for &n in &speeds {
                             let pts: Vec<(f64, f64)> = rows
                                 .iter()
