@@ -5,7 +5,7 @@
 //!
 //! Sources: the coupled characterization at each speed ([`from_characterization`]: the fitted
 //! laws of the final equilibrium, damping from the harmonic method's c·δ̇ terms), or a study's
-//! trend curves ([`from_trends`]: no EHL run; no damping, as the trends carry none). The dry
+//! trend curves ([`from_element`] with a [`crate::force_element::TrendForceElement`]: no EHL run; no damping, as the trends carry none). The dry
 //! Hertz stiffness at the same loads is given beside, for comparison.
 //!
 //! Axes: ours x axial, y and z radial, θy and θz tilts about +y and +z. ROSS's are x and y

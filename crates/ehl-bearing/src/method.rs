@@ -259,7 +259,7 @@ pub trait ContactCharacterizer: Sync + Send {
 }
 
 /// A cheap approximate law of a contact near a load, used by the loop (with
-/// [`CharacterizeSettings::predict_loads`]) to predict the lubricated loads before the first
+/// [`crate::characterize::CharacterizeSettings::predict_loads`]) to predict the lubricated loads before the first
 /// characterization. It only moves the point where the first characterization is centred; the
 /// result is still the loop's fixed point with the characterized laws. Must be deterministic.
 pub trait LoadPredictor: Sync + Send {
@@ -592,8 +592,8 @@ pub fn predict_steady(
 /// force balance and film change; dimensionless).
 pub const PREDICTOR_TOLERANCE: f64 = 1e-2;
 
-/// The harmonic method ([`characterize_harmonic`](crate::contact::characterize_harmonic)) as a
-/// [`ContactCharacterizer`](ContactCharacterizer) for the coupled loop: each
+/// The harmonic method ([`crate::contact::characterize_harmonic`]) as a
+/// [`ContactCharacterizer`] for the coupled loop: each
 /// contact is excited with its own ball mass ([`ContactConditions::ball_mass`](ContactConditions)).
 /// The fitted law's damping term (if any) is kept in the law but plays no part in the quasi-static
 /// bearing equilibrium (δ̇ = 0 there).
@@ -634,7 +634,7 @@ impl ContactCharacterizer for HarmonicCharacterizer {
 
 impl LoadPredictor for HarmonicCharacterizer {
     /// The steady predictor of the quasi-static method
-    /// ([`predict_steady`](predict_steady)) with this method's grid and domain.
+    /// ([`predict_steady`]) with this method's grid and domain.
     fn predict(&self, c: &ContactConditions) -> Result<PredictedLaw, crate::Error> {
         predict_steady(c, &self.settings.ehl)
     }

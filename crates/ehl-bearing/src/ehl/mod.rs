@@ -235,7 +235,7 @@ impl MoesCase {
 }
 
 /// Pressure and film fields on the finest grid, SI units. Arrays are row-major with x fastest:
-/// value at (x[i], y[j]) is at index i + nx·j.
+/// value at (x\[i\], y\[j\]) is at index i + nx·j.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct EhlFields {
     /// Rolling-direction coordinates of the grid nodes, m (contact centre at 0).

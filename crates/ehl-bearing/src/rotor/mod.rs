@@ -1,5 +1,5 @@
 //! A linear rotor (finite-element matrices M, C, G, K, e.g. from ROSS) on nonlinear bearings
-//! ([`ForceElement`]s): static equilibrium, linearization, and time response at constant speed
+//! ([`crate::force_element::ForceElement`]s): static equilibrium, linearization, and time response at constant speed
 //! or in a run-up, with the bearing forces treated implicitly.
 //!
 //! Equation of motion, rotor DOFs q (n), SI:
