@@ -3,13 +3,13 @@
 //! trend model of a synthetic study, each at a displaced position with rates and a turning cage.
 //! Goals (issue 11): ≤ 20 µs fitted laws, ≤ 50 µs trend model.
 
+mod common;
+
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use ehl_bearing::bearing::{solve_equilibrium, ContactLaws, Race};
-use ehl_bearing::fit::FittedLaw;
+use ehl_bearing::bearing::{solve_equilibrium, ContactLaws};
 use ehl_bearing::force_element::{
     ElementInput, ElementState, ForceElement, LawElement, TrendForceElement,
 };
-use ehl_bearing::hertz::HertzGeometry;
 use ehl_bearing::io::parse_case;
 use ehl_bearing::study::{fit_trends, parse_study, run_point};
 use std::path::Path;
@@ -19,22 +19,7 @@ const SEED: &str = include_str!("../../../examples/7006.toml");
 fn elements(c: &mut Criterion) {
     let case = parse_case(SEED, "7006.toml").unwrap();
     let b = &case.bearing;
-    let a0 = b.geometry.free_contact_angle;
-    // Fitted-looking laws with damping (magnitudes of the seed's; tests/force_element.rs).
-    let mut laws = Vec::new();
-    for _ in 0..b.geometry.ball_count {
-        for race in [Race::Inner, Race::Outer] {
-            let (rx, ry) = b.geometry.curvature_radii(race, a0);
-            let kh = HertzGeometry::new(rx, ry, b.reduced_modulus())
-                .unwrap()
-                .stiffness;
-            let law = FittedLaw::new(kh * 5e-6_f64.powf(0.05), 1.45, 20.0, 1e-6, 12e-6)
-                .unwrap()
-                .with_damping(150.0)
-                .unwrap();
-            laws.push(law);
-        }
-    }
+    let laws = common::seed_fitted_laws(b);
     let fitted = LawElement::from_fitted(b, case.operating.race_control, &laws).unwrap();
     let hertz = ContactLaws::hertz(b).unwrap();
     let q0 = solve_equilibrium(b, &hertz, &case.operating, &case.settings)

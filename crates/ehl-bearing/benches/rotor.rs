@@ -4,11 +4,10 @@
 //! h = 20 µs. One benchmark iteration simulates 0.01 s (500 steps); the goal of issue 12 is 1 s of
 //! simulated time in under 5 s, i.e. ≤ 50 ms per iteration here (≤ 100 µs per step).
 
+mod common;
+
 use criterion::{criterion_group, criterion_main, Criterion};
-use ehl_bearing::bearing::Race;
-use ehl_bearing::fit::FittedLaw;
 use ehl_bearing::force_element::{ForceElement, LawElement};
-use ehl_bearing::hertz::HertzGeometry;
 use ehl_bearing::io::parse_case;
 use ehl_bearing::rotor::{
     BearingSite, RotorMatrices, RotorModel, SpeedProfile, TimeOptions, Unbalance,
@@ -17,27 +16,11 @@ use std::sync::Arc;
 
 const SEED: &str = include_str!("../../../examples/7006.toml");
 
-/// Fitted-looking laws with damping, magnitudes of the seed's (as benches/force_element.rs).
+/// The seed bearing with fitted-looking laws and damping terms (`common::seed_fitted_laws`).
 fn element() -> LawElement {
     let case = parse_case(SEED, "7006.toml").unwrap();
-    let b = &case.bearing;
-    let a0 = b.geometry.free_contact_angle;
-    let mut laws = Vec::new();
-    for _ in 0..b.geometry.ball_count {
-        for race in [Race::Inner, Race::Outer] {
-            let (rx, ry) = b.geometry.curvature_radii(race, a0);
-            let kh = HertzGeometry::new(rx, ry, b.reduced_modulus())
-                .unwrap()
-                .stiffness;
-            laws.push(
-                FittedLaw::new(kh * 5e-6_f64.powf(0.05), 1.45, 20.0, 1e-6, 12e-6)
-                    .unwrap()
-                    .with_damping(150.0)
-                    .unwrap(),
-            );
-        }
-    }
-    LawElement::from_fitted(b, case.operating.race_control, &laws).unwrap()
+    let laws = common::seed_fitted_laws(&case.bearing);
+    LawElement::from_fitted(&case.bearing, case.operating.race_control, &laws).unwrap()
 }
 
 /// A chain of 8 nodes (6 DOFs each) joined by springs: 2e7 N/m laterally and axially, 2e4

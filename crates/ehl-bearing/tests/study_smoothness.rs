@@ -153,7 +153,10 @@ fn seed_study_fits_are_smooth_in_load() {
     if let Some(dir) = std::env::var_os("STUDY_DIR") {
         let store = ehl_bearing::io::FsStore::open(Path::new(&dir)).unwrap();
         for p in study.points() {
-            let text = store.load_point(&p.file_stem()).unwrap().expect("point file");
+            let text = store
+                .load_point(&p.file_stem())
+                .unwrap()
+                .expect("point file");
             let v = ehl_bearing::study::PointRecord::from_json(&text).unwrap();
             assert!(v.error.is_none(), "{:?}", v.error);
             rows.extend(v.rows());
