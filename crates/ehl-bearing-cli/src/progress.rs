@@ -673,7 +673,7 @@ impl StudyStatus {
             );
         }
         let todo = self.shards_to_run();
-        if !todo.is_empty() && c.in_flight == 0 && (c.interrupted > 0 || c.pending > 0) {
+        if !todo.is_empty() {
             out += &format!(
                 "\n  shards with points left and no live process: {} (resubmit: ehl-bearing study sbatch … --submit)",
                 todo.iter()

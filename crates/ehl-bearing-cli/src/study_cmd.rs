@@ -25,7 +25,7 @@ use ehl_bearing::study::{
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::{Mutex, OnceLock};
 use std::time::Instant;
 
 /// Arguments of `study`.
@@ -149,8 +149,20 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
         shard: args.shard.unwrap_or(Shard::ALL),
         overwrite: args.overwrite,
     };
-    progress::ensure_plan(output, study_path, &study, options.shard.count)?;
-    let markers = progress::ShardMarkers::start(output, options.shard)?;
+    // Progress markers (DIR/.progress) are started once the run has checked the folder (a
+    // refused run leaves it untouched).
+    let markers: OnceLock<Option<progress::ShardMarkers>> = OnceLock::new();
+    let start_markers = || {
+        let started = progress::ensure_plan(output, study_path, &study, options.shard.count)
+            .and_then(|()| progress::ShardMarkers::start(output, options.shard));
+        match started {
+            Ok(m) => Some(m),
+            Err(e) => {
+                eprintln!("warning: progress markers not written ({e:#}); `study status` will not see this run");
+                None
+            }
+        }
+    };
     let t0 = Instant::now();
     let terminal = std::io::stderr().is_terminal();
     let bar = point_bar(study.shard_points(options.shard).len() as u64);
@@ -164,13 +176,16 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
             to_compute,
             redone,
         } => {
+            markers.get_or_init(start_markers);
             bar.set_position((points - to_compute) as u64);
             if redone > 0 {
                 eprintln!("{redone} unreadable point file(s) (e.g. truncated by a crash) will be recomputed");
             }
         }
         StudyEvent::PointStarted(p) => {
-            markers.point_started(&p.file_stem());
+            if let Some(Some(m)) = markers.get() {
+                m.point_started(&p.file_stem());
+            }
             bar.set_message(format!("{} rpm × {}", p.inner_speed_rpm, p.load_scale));
             if delay > 0 {
                 std::thread::sleep(std::time::Duration::from_millis(delay));
@@ -183,7 +198,9 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
             error,
             seconds,
         } => {
-            markers.point_done(&point.file_stem());
+            if let Some(Some(m)) = markers.get() {
+                m.point_done(&point.file_stem());
+            }
             bar.inc(1);
             let mut n = done.lock().unwrap_or_else(|p| p.into_inner());
             *n += 1;
@@ -209,7 +226,9 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     contacts_bar.finish_and_clear();
     bar.finish_and_clear();
     let outcome = report_run(run, &study, study_path, &store, &options, t0);
-    markers.finish(&outcome);
+    if let Some(Some(m)) = markers.into_inner() {
+        m.finish(&outcome);
+    }
     outcome?;
     if options.shard.count > 1 {
         println!(
