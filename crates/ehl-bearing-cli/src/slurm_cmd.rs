@@ -51,6 +51,10 @@ pub struct SbatchArgs {
     /// left and no live task are submitted.
     #[arg(long)]
     pub submit: bool,
+    /// With --submit: a running shard of another host whose heartbeat is older than this counts
+    /// as interrupted and is resubmitted, s; from 30 to 86400 (as `study status`).
+    #[arg(long, default_value_t = progress::DEFAULT_STALE_AFTER_S)]
+    pub stale_after_s: u64,
     /// The sbatch command (default: sbatch on the PATH).
     #[arg(long, default_value = "sbatch")]
     pub sbatch: String,
@@ -120,6 +124,12 @@ pub fn validate(args: &SbatchArgs, points: usize) -> anyhow::Result<()> {
         anyhow::bail!(
             "--time-limit-min {}: expected minutes from 1 to 525600 (a year)",
             args.time_limit_min
+        );
+    }
+    if !(30..=86_400).contains(&args.stale_after_s) {
+        anyhow::bail!(
+            "--stale-after-s {}: expected seconds from 30 to 86400",
+            args.stale_after_s
         );
     }
     if let Some(p) = &args.partition {
@@ -377,7 +387,7 @@ pub fn run(args: &SbatchArgs) -> anyhow::Result<()> {
         );
         return Ok(());
     }
-    let status = progress::read_status(&output, progress::DEFAULT_STALE_AFTER_S)?;
+    let status = progress::read_status(&output, args.stale_after_s)?;
     let live: Vec<String> = status
         .shards
         .iter()

@@ -155,7 +155,11 @@ fn sbatch_refuses_bad_options_naming_them() {
     let tmp = tempfile::tempdir().unwrap();
     let study = hertz_study(tmp.path());
     let out = tmp.path().join("o");
-    let cases: [(&[&str], &[&str]); 10] = [
+    let cases: [(&[&str], &[&str]); 11] = [
+        (
+            &["--stale-after-s", "10"],
+            &["--stale-after-s 10", "30 to 86400"],
+        ),
         (&["--shards", "0"], &["--shards 0", "1 to 12"]),
         (&["--shards", "13"], &["--shards 13", "1 to 12"]),
         (
