@@ -19,10 +19,12 @@
 #     `ehl-bearing study sbatch … --shards 3 --cpus-per-task 1 --submit` (3 array tasks + the
 #     dependent merge job), waits (bounded), checks every job COMPLETED and `diff -r` of the two
 #     output folders;
-#  5. fault test: the quasi-static array again, task 2 cancelled with scancel while its point is in
+#  5. a failing task (a foreign point file in its shard): FAILED, message in its log and in
+#     `study status`, merge not run; after removing the cause, the resubmission runs that task only;
+#  6. fault test: the quasi-static array again, task 2 cancelled with scancel while its point is in
 #     flight; `study status` must show the shard interrupted and the merge job must not have run;
 #     resubmitting must submit task 2 only, and the merged folder must again equal the single run;
-#  6. stops every daemon it started (trap on EXIT) and removes the temporary folder
+#  7. stops every daemon it started (trap on EXIT) and removes the temporary folder
 #     (KEEP_SLURM_TMP=1 keeps it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -104,6 +106,39 @@ study_on_slurm() {
 }
 
 study_on_slurm hertz "$SEED_STUDY" hertz
+
+# A task that fails (here: its folder holds a point file of another study under one of its point
+# names) exits non-zero with the message in its log; the merge does not run; status shows the
+# shard failed; once the cause is removed, the resubmission submits that task only.
+log "failing task: hertz array with a foreign point file in shard 1"
+FAILING=$TMP/failing
+mkdir -p "$FAILING/points"
+sed 's/"load_scale": 0.5,/"load_scale": 0.75,/' "$TMP/ref-hertz/points/n3000rpm_s0.5.json" >"$FAILING/points/n3000rpm_s0.5.json"
+cmp -s "$FAILING/points/n3000rpm_s0.5.json" "$TMP/ref-hertz/points/n3000rpm_s0.5.json" &&
+    fail "failing task: could not alter the point file"
+out=$(run_bin study sbatch "$SEED_STUDY" -o "$FAILING" --method hertz --shards 3 \
+    --cpus-per-task 1 --time-limit-min 30 --submit) || fail "failing task: study sbatch --submit failed: $out"
+parse_submission "$out"
+wait_jobs "$JOB_LIMIT" "$ARRAY_ID" "$MERGE_ID"
+[ "$(job_states "${ARRAY_ID}_1")" = FAILED ] || fail "failing task: task 1 ended as $(job_states "${ARRAY_ID}_1"), expected FAILED"
+expect_completed "failing task: tasks 2 and 3" "${ARRAY_ID}_2" "${ARRAY_ID}_3"
+[ "$(job_states "$MERGE_ID" 2>/dev/null || echo gone)" != COMPLETED ] || fail "failing task: the merge job ran"
+grep -q "^error: .*different study" "$FAILING.slurm/logs/"*"-${ARRAY_ID}_1.out" ||
+    fail "failing task: the log of task 1 does not give the error"
+status=$(run_bin study status "$FAILING")
+if [ "$(awk '$1 == "1/3" { print $2 }' <<<"$status")" != failed ] || ! grep -q "failed: .*different study" <<<"$status"; then
+    fail "failing task: study status does not show shard 1/3 failed with its message: $status"
+fi
+rm "$FAILING/points/n3000rpm_s0.5.json"
+out=$(run_bin study sbatch "$SEED_STUDY" -o "$FAILING" --method hertz --shards 3 \
+    --cpus-per-task 1 --time-limit-min 30 --submit) || fail "failing task: resubmission failed: $out"
+parse_submission "$out"
+[ "$ARRAY_TASKS" = 1 ] || fail "failing task: resubmission submitted tasks $ARRAY_TASKS, expected only 1"
+wait_jobs "$JOB_LIMIT" "$ARRAY_ID" "$MERGE_ID"
+expect_completed "failing task: resubmitted task and merge" "$ARRAY_ID" "$MERGE_ID"
+diff -r "$TMP/ref-hertz" "$FAILING" || fail "failing task: the merged folder differs from the single run"
+log "failing task: FAILED with its message in the log and the status; only task 1 resubmitted; identical merge"
+
 study_on_slurm quasi-static "$QS_STUDY" quasi-static
 
 # ---------------------------------------------------------------- 5. fault test

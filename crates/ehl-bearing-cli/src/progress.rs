@@ -300,6 +300,28 @@ impl Drop for ShardMarkers {
     }
 }
 
+/// Record that a run of `shard` failed before it started its markers (e.g. the folder holds
+/// another study's points), if the folder is tracked (`plan.json` exists, as after `study
+/// sbatch`); an untracked folder is left untouched.
+pub fn record_early_failure(out: &Path, shard: Shard, error: &anyhow::Error) {
+    if !progress_dir(out).join("plan.json").is_file() {
+        return;
+    }
+    let t = now_s();
+    let marker = json!({
+        "shard": shard.to_string(),
+        "state": "failed",
+        "host": hostname(),
+        "pid": std::process::id(),
+        "slurm_job": slurm_job(),
+        "started_unix_s": t,
+        "heartbeat_unix_s": t,
+        "finished_unix_s": t,
+        "message": format!("{error:#}"),
+    });
+    write_json(&shard_file(out, shard), &marker).ok();
+}
+
 /// State of a point in the output folder.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PointState {

@@ -226,8 +226,10 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     contacts_bar.finish_and_clear();
     bar.finish_and_clear();
     let outcome = report_run(run, &study, study_path, &store, &options, t0);
-    if let Some(Some(m)) = markers.into_inner() {
-        m.finish(&outcome);
+    match (markers.into_inner(), &outcome) {
+        (Some(Some(m)), _) => m.finish(&outcome),
+        (None, Err(e)) => progress::record_early_failure(output, options.shard, e),
+        _ => {}
     }
     outcome?;
     if options.shard.count > 1 {

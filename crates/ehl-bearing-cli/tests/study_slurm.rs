@@ -531,3 +531,45 @@ fn status_counts_points_per_shard_from_the_markers() {
     let e = err(run(&["study", "status", s(&tmp.path().join("nothing"))]));
     assert!(e.contains("not the output folder of a study"), "{e}");
 }
+
+#[test]
+fn a_shard_refused_before_any_work_is_shown_failed_with_its_message() {
+    let tmp = tempfile::tempdir().unwrap();
+    let study = hertz_study(tmp.path());
+    let out = tmp.path().join("o");
+    let other = tmp.path().join("other");
+    ok(run(&["study", s(&study), "-o", s(&other)]));
+    ok(run(&[
+        "study",
+        "sbatch",
+        s(&study),
+        "-o",
+        s(&out),
+        "--shards",
+        "3",
+    ]));
+    // Shard 2/3 holds point 2 (3000 rpm × 1); put another study's file under its name.
+    let name = "points/n3000rpm_s1.json";
+    let text = std::fs::read_to_string(other.join(name)).unwrap();
+    let foreign = text.replacen("\"load_scale\": 1.0,", "\"load_scale\": 1.25,", 1);
+    assert_ne!(text, foreign);
+    std::fs::write(out.join(name), foreign).unwrap();
+    let e = err(run(&["study", s(&study), "-o", s(&out), "--shard", "2/3"]));
+    assert!(e.contains("different study"), "{e}");
+    let st: Value =
+        serde_json::from_str(&ok(run(&["study", "status", s(&out), "--json"]))).unwrap();
+    let sh = &st["shards"][1];
+    assert_eq!(sh["state"], "failed", "{st}");
+    assert!(
+        sh["message"].as_str().unwrap().contains("different study"),
+        "{st}"
+    );
+    // Its other 3 points were not computed, so the shard is one to resubmit.
+    assert_eq!(sh["pending"], 3, "{st}");
+    let text = ok(run(&["study", "status", s(&out)]));
+    assert!(text.contains("no live process: 1,2,3 "), "{text}");
+    assert!(
+        text.contains("failed: ") && text.contains("different study"),
+        "{text}"
+    );
+}
