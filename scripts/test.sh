@@ -11,3 +11,5 @@ echo "== cargo doc (broken links are errors)"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --quiet
 echo "== cargo test"
 cargo test --workspace
+echo "== Slurm route (scripts/test_slurm.sh; SKIPPED without root or Debian's slurm-wlm/munge)"
+scripts/test_slurm.sh

@@ -6,6 +6,8 @@ mod contact_cmd;
 mod ehl_cmd;
 mod equilibrium_cmd;
 mod plot;
+mod progress;
+mod slurm_cmd;
 mod study_cmd;
 
 use clap::{Parser, Subcommand};

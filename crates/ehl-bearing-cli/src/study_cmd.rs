@@ -16,6 +16,7 @@
 //! in one go, was resumed, or ran as shards, and whatever the number of threads.
 
 use crate::characterize_cmd::{contact_progress, progress_container, with_threads};
+use crate::progress;
 use ehl_bearing::io::FsStore;
 use ehl_bearing::study::{
     finish_study, merge_points, read_study, run_study, PointStore, ResultRow, RunOptions, Shard,
@@ -24,7 +25,7 @@ use ehl_bearing::study::{
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::{Mutex, OnceLock};
 use std::time::Instant;
 
 /// Arguments of `study`.
@@ -69,6 +70,26 @@ pub enum StudyCommand {
     /// write results.csv, points.csv, trends.json and the plots; fails, listing the first
     /// missing point, unless every point is done.
     Merge(MergeArgs),
+    /// Write a Slurm job-array script for the study (one array task per shard, all writing into
+    /// the shared output folder) and the dependent merge job's script; `--submit` submits both.
+    Sbatch(crate::slurm_cmd::SbatchArgs),
+    /// Points done, failed, in flight, interrupted and pending, per shard, read from an output
+    /// folder (its point files and the progress markers in DIR/.progress).
+    Status(StatusArgs),
+}
+
+/// Arguments of `study status`.
+#[derive(clap::Args)]
+pub struct StatusArgs {
+    /// The study's output folder.
+    pub dir: PathBuf,
+    /// Print JSON (for programs) instead of a table.
+    #[arg(long)]
+    pub json: bool,
+    /// A running shard of another host counts as interrupted when its heartbeat (rewritten every
+    /// 20 s) is older than this, s; from 30 to 86400. On this host the process id decides.
+    #[arg(long, default_value_t = crate::progress::DEFAULT_STALE_AFTER_S)]
+    pub stale_after_s: u64,
 }
 
 /// Arguments of `study merge`.
@@ -109,8 +130,11 @@ fn load_study(path: &Path, method: Option<&str>) -> anyhow::Result<Study> {
 
 /// Run `study` (or `study merge`).
 pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
-    if let Some(StudyCommand::Merge(m)) = &args.command {
-        return merge(m);
+    match &args.command {
+        Some(StudyCommand::Merge(m)) => return merge(m),
+        Some(StudyCommand::Sbatch(a)) => return crate::slurm_cmd::run(a),
+        Some(StudyCommand::Status(a)) => return status(a),
+        None => {}
     }
     let (Some(study_path), Some(output)) = (&args.study, &args.output) else {
         anyhow::bail!("give a study file and -o DIR (or `study merge`)");
@@ -125,6 +149,20 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
         shard: args.shard.unwrap_or(Shard::ALL),
         overwrite: args.overwrite,
     };
+    // Progress markers (DIR/.progress) are started once the run has checked the folder (a
+    // refused run leaves it untouched).
+    let markers: OnceLock<Option<progress::ShardMarkers>> = OnceLock::new();
+    let start_markers = || {
+        let started = progress::ensure_plan(output, study_path, &study, options.shard.count)
+            .and_then(|()| progress::ShardMarkers::start(output, options.shard));
+        match started {
+            Ok(m) => Some(m),
+            Err(e) => {
+                eprintln!("warning: progress markers not written ({e:#}); `study status` will not see this run");
+                None
+            }
+        }
+    };
     let t0 = Instant::now();
     let terminal = std::io::stderr().is_terminal();
     let bar = point_bar(study.shard_points(options.shard).len() as u64);
@@ -138,12 +176,16 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
             to_compute,
             redone,
         } => {
+            markers.get_or_init(start_markers);
             bar.set_position((points - to_compute) as u64);
             if redone > 0 {
                 eprintln!("{redone} unreadable point file(s) (e.g. truncated by a crash) will be recomputed");
             }
         }
         StudyEvent::PointStarted(p) => {
+            if let Some(Some(m)) = markers.get() {
+                m.point_started(&p.file_stem());
+            }
             bar.set_message(format!("{} rpm × {}", p.inner_speed_rpm, p.load_scale));
             if delay > 0 {
                 std::thread::sleep(std::time::Duration::from_millis(delay));
@@ -156,6 +198,9 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
             error,
             seconds,
         } => {
+            if let Some(Some(m)) = markers.get() {
+                m.point_done(&point.file_stem());
+            }
             bar.inc(1);
             let mut n = done.lock().unwrap_or_else(|p| p.into_inner());
             *n += 1;
@@ -180,6 +225,33 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     });
     contacts_bar.finish_and_clear();
     bar.finish_and_clear();
+    let outcome = report_run(run, &study, study_path, &store, &options, t0);
+    match (markers.into_inner(), &outcome) {
+        (Some(Some(m)), _) => m.finish(&outcome),
+        (None, Err(e)) => progress::record_early_failure(output, options.shard, e),
+        _ => {}
+    }
+    outcome?;
+    if options.shard.count > 1 {
+        println!(
+            "when every shard is done: ehl-bearing study merge {} -o {}",
+            study_path.display(),
+            output.display()
+        );
+        return Ok(());
+    }
+    finish(&study, &store)
+}
+
+/// Print what a run did; a shard run with failed points is an error (its task fails visibly).
+fn report_run(
+    run: anyhow::Result<ehl_bearing::study::StudyRun>,
+    study: &Study,
+    study_path: &Path,
+    store: &FsStore,
+    options: &RunOptions,
+    t0: Instant,
+) -> anyhow::Result<()> {
     let run = run?;
     println!(
         "study {}: shard {}: {} points ({} computed, {} loaded from {}), method {}, {:.2} s",
@@ -192,25 +264,33 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
         study.method,
         t0.elapsed().as_secs_f64()
     );
-    if options.shard.count > 1 {
-        if !run.failed.is_empty() {
-            anyhow::bail!(
-                "{} of {} points of shard {} failed (recorded in their point files; delete them to retry):
-  {}",
-                run.failed.len(),
-                run.points,
-                run.shard,
-                failures(&run.failed)
-            );
-        }
-        println!(
-            "when every shard is done: ehl-bearing study merge {} -o {}",
-            study_path.display(),
-            output.display()
+    if options.shard.count > 1 && !run.failed.is_empty() {
+        anyhow::bail!(
+            "{} of {} points of shard {} failed (recorded in their point files; delete them to retry):\n  {}",
+            run.failed.len(),
+            run.points,
+            run.shard,
+            failures(&run.failed)
         );
-        return Ok(());
     }
-    finish(&study, &store)
+    Ok(())
+}
+
+/// `study status`.
+fn status(args: &StatusArgs) -> anyhow::Result<()> {
+    if !(30..=86_400).contains(&args.stale_after_s) {
+        anyhow::bail!(
+            "--stale-after-s {}: expected seconds from 30 to 86400",
+            args.stale_after_s
+        );
+    }
+    let st = progress::read_status(&args.dir, args.stale_after_s)?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&st.to_json())?);
+    } else {
+        println!("{}", st.to_text());
+    }
+    Ok(())
 }
 
 fn failures(failed: &[(ehl_bearing::study::StudyPoint, String)]) -> String {
@@ -245,6 +325,11 @@ fn merge(args: &MergeArgs) -> anyhow::Result<()> {
 /// Build and report the outputs from the point files.
 fn finish(study: &Study, store: &FsStore) -> anyhow::Result<()> {
     let out: StudyOutputs = finish_study(study, store)?;
+    // Every point is finished and the outputs are written: the progress markers and the
+    // temporaries of killed writers are no longer needed, and the folder holds what a single
+    // run writes.
+    progress::remove_progress(store.dir())?;
+    progress::remove_stale_temporaries(store.dir())?;
     if !study.case.lubricant_given {
         println!(
             "  lubricant not given in the case: default mineral oil (η0 = {} Pa·s, α = {:e} 1/Pa)",

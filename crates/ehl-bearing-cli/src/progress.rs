@@ -1,0 +1,709 @@
+//! Progress markers of a study's output folder and `ehl-bearing study status DIR`.
+//!
+//! While a study (or one shard of it) runs, it keeps small marker files in `DIR/.progress/`:
+//! - `plan.json`: the study file, the method, the number of shards and every point's file stem
+//!   in study order (so the status knows the points without the study file);
+//! - `shard-<i>of<N>.json`: one per shard run: `state` (`running`, `done`, `failed`), host, process
+//!   id, Slurm job, start time, a heartbeat time rewritten every [`HEARTBEAT_S`] seconds while the
+//!   process lives, and the error message of a failed run;
+//! - `running/<stem>.json`: the point a shard is computing (removed when its point file is written).
+//!
+//! Every marker is written atomically (temporary file + rename). Stale markers are harmless: a
+//! marker of a process that no longer runs (same host: the process id is gone; another host: no
+//! heartbeat for `stale_after_s`) is reported as *interrupted*, its points are redone by the next
+//! run of the shard, and a new run of a shard overwrites its marker. The point files are the only
+//! results: when the study's outputs are written (a complete single run, or `study merge`), the
+//! whole `.progress` folder is removed, so a finished folder holds exactly what a single run writes.
+
+use ehl_bearing::io::write_atomic;
+use ehl_bearing::study::{PointRecord, Shard, Study};
+use serde_json::{json, Value};
+use std::path::{Path, PathBuf};
+use std::sync::mpsc::{channel, RecvTimeoutError, Sender};
+use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
+use std::time::{Duration, SystemTime, UNIX_EPOCH};
+
+/// The marker folder inside a study's output folder.
+pub const PROGRESS_DIR: &str = ".progress";
+/// Seconds between two heartbeats of a running shard.
+pub const HEARTBEAT_S: u64 = 20;
+/// Default age of the last heartbeat after which a running shard of another host counts as
+/// interrupted, s.
+pub const DEFAULT_STALE_AFTER_S: u64 = 90;
+
+fn now_s() -> u64 {
+    SystemTime::now()
+        .duration_since(UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0)
+}
+
+/// This machine's host name ("unknown" if it cannot be read).
+pub fn hostname() -> String {
+    let mut buf = [0u8; 256];
+    // SAFETY: gethostname writes at most buf.len() bytes into buf.
+    let rc = unsafe { libc::gethostname(buf.as_mut_ptr().cast(), buf.len()) };
+    if rc != 0 {
+        return "unknown".into();
+    }
+    let end = buf.iter().position(|&b| b == 0).unwrap_or(buf.len());
+    String::from_utf8_lossy(&buf[..end]).into_owned()
+}
+
+/// Whether process `pid` exists on this machine.
+fn pid_alive(pid: i64) -> bool {
+    let Ok(pid) = libc::pid_t::try_from(pid) else {
+        return false;
+    };
+    if pid <= 0 {
+        return false;
+    }
+    // SAFETY: signal 0 only checks that the process exists and may be signalled.
+    let rc = unsafe { libc::kill(pid, 0) };
+    rc == 0 || std::io::Error::last_os_error().raw_os_error() == Some(libc::EPERM)
+}
+
+/// The marker folder of output folder `out`.
+pub fn progress_dir(out: &Path) -> PathBuf {
+    out.join(PROGRESS_DIR)
+}
+
+fn shard_file(out: &Path, shard: Shard) -> PathBuf {
+    progress_dir(out).join(format!("shard-{}of{}.json", shard.index, shard.count))
+}
+
+fn write_json(path: &Path, v: &Value) -> anyhow::Result<()> {
+    if let Some(d) = path.parent() {
+        std::fs::create_dir_all(d).map_err(|e| anyhow::anyhow!("creating {}: {e}", d.display()))?;
+    }
+    let text = serde_json::to_string_pretty(v)? + "\n";
+    write_atomic(path, text.as_bytes())?;
+    Ok(())
+}
+
+fn read_json(path: &Path) -> Option<Value> {
+    let text = std::fs::read_to_string(path).ok()?;
+    serde_json::from_str(&text).ok()
+}
+
+/// Write `DIR/.progress/plan.json` for `study` run as `shards` shards.
+pub fn write_plan(
+    out: &Path,
+    study_path: &Path,
+    study: &Study,
+    shards: usize,
+) -> anyhow::Result<()> {
+    let stems: Vec<String> = study.points().iter().map(|p| p.file_stem()).collect();
+    let mut plan = read_json(&progress_dir(out).join("plan.json")).unwrap_or(json!({}));
+    let submissions = plan.get("submissions").cloned().unwrap_or(json!([]));
+    plan = json!({
+        "study": study_path.display().to_string(),
+        "method": study.method.name(),
+        "shards": shards,
+        "points": stems,
+        "submissions": submissions,
+    });
+    write_json(&progress_dir(out).join("plan.json"), &plan)
+}
+
+/// Write the plan unless one with the same shard count and points is there (a shard run must
+/// not overwrite the submissions recorded by `study sbatch`).
+pub fn ensure_plan(
+    out: &Path,
+    study_path: &Path,
+    study: &Study,
+    shards: usize,
+) -> anyhow::Result<()> {
+    let stems: Vec<Value> = study
+        .points()
+        .iter()
+        .map(|p| Value::from(p.file_stem()))
+        .collect();
+    if let Some(plan) = read_json(&progress_dir(out).join("plan.json")) {
+        if plan["shards"] == json!(shards) && plan["points"].as_array() == Some(&stems) {
+            return Ok(());
+        }
+    }
+    let path = std::fs::canonicalize(study_path).unwrap_or_else(|_| study_path.to_path_buf());
+    write_plan(out, &path, study, shards)
+}
+
+/// Remove the temporary files of writers that were killed between writing and renaming
+/// (`points/.<name>.tmp-<pid>`, `points/.probe-<pid>`). Called only once every point is
+/// finished and the outputs are written.
+pub fn remove_stale_temporaries(out: &Path) -> anyhow::Result<()> {
+    let points = out.join("points");
+    for e in std::fs::read_dir(&points)
+        .map_err(|e| anyhow::anyhow!("reading {}: {e}", points.display()))?
+    {
+        let e = e?;
+        let name = e.file_name().to_string_lossy().to_string();
+        if name.starts_with('.') && (name.contains(".tmp-") || name.starts_with(".probe-")) {
+            std::fs::remove_file(e.path()).ok();
+        }
+    }
+    Ok(())
+}
+
+/// Record a Slurm submission (array job id, its task list, merge job id) in the plan.
+pub fn record_submission(
+    out: &Path,
+    array_job: Option<&str>,
+    tasks: &str,
+    merge_job: &str,
+) -> anyhow::Result<()> {
+    let path = progress_dir(out).join("plan.json");
+    let mut plan = read_json(&path).unwrap_or(json!({}));
+    let entry = json!({
+        "array_job_id": array_job,
+        "array_tasks": tasks,
+        "merge_job_id": merge_job,
+        "submitted_unix_s": now_s(),
+    });
+    match plan.get_mut("submissions").and_then(Value::as_array_mut) {
+        Some(a) => a.push(entry),
+        None => plan["submissions"] = json!([entry]),
+    }
+    write_json(&path, &plan)
+}
+
+/// Remove the marker folder (the study's outputs are written; nothing is in flight).
+pub fn remove_progress(out: &Path) -> anyhow::Result<()> {
+    match std::fs::remove_dir_all(progress_dir(out)) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(anyhow::anyhow!(
+            "removing {}: {e}",
+            progress_dir(out).display()
+        )),
+    }
+}
+
+/// The Slurm job of this process, e.g. `12_3` for array task 3 of job 12, or `14`.
+fn slurm_job() -> Option<String> {
+    let get = |k: &str| std::env::var(k).ok().filter(|s| !s.is_empty());
+    match (get("SLURM_ARRAY_JOB_ID"), get("SLURM_ARRAY_TASK_ID")) {
+        (Some(a), Some(t)) => Some(format!("{a}_{t}")),
+        _ => get("SLURM_JOB_ID"),
+    }
+}
+
+/// The markers of one running shard: its shard file (with a heartbeat thread) and the marker of
+/// the point in flight.
+pub struct ShardMarkers {
+    out: PathBuf,
+    marker: Arc<Mutex<Value>>,
+    path: PathBuf,
+    stop: Option<Sender<()>>,
+    heartbeat: Option<JoinHandle<()>>,
+}
+
+impl ShardMarkers {
+    /// Mark `shard` of the study in `out` as running by this process and start its heartbeat.
+    pub fn start(out: &Path, shard: Shard) -> anyhow::Result<Self> {
+        let t = now_s();
+        let marker = json!({
+            "shard": shard.to_string(),
+            "state": "running",
+            "host": hostname(),
+            "pid": std::process::id(),
+            "slurm_job": slurm_job(),
+            "started_unix_s": t,
+            "heartbeat_unix_s": t,
+        });
+        let path = shard_file(out, shard);
+        write_json(&path, &marker)?;
+        let marker = Arc::new(Mutex::new(marker));
+        let (tx, rx) = channel::<()>();
+        let (m, p) = (Arc::clone(&marker), path.clone());
+        let heartbeat = std::thread::spawn(move || {
+            while let Err(RecvTimeoutError::Timeout) =
+                rx.recv_timeout(Duration::from_secs(HEARTBEAT_S))
+            {
+                let v = {
+                    let mut v = m.lock().unwrap_or_else(|e| e.into_inner());
+                    v["heartbeat_unix_s"] = json!(now_s());
+                    v.clone()
+                };
+                // A failed heartbeat only makes the status pessimistic; the run goes on.
+                write_json(&p, &v).ok();
+            }
+        });
+        Ok(ShardMarkers {
+            out: out.to_path_buf(),
+            marker,
+            path,
+            stop: Some(tx),
+            heartbeat: Some(heartbeat),
+        })
+    }
+
+    fn point_file(&self, stem: &str) -> PathBuf {
+        progress_dir(&self.out)
+            .join("running")
+            .join(format!("{stem}.json"))
+    }
+
+    /// The point `stem` starts.
+    pub fn point_started(&self, stem: &str) {
+        let shard = self
+            .marker
+            .lock()
+            .map(|m| m["shard"].clone())
+            .unwrap_or(Value::Null);
+        let v = json!({
+            "shard": shard,
+            "host": hostname(),
+            "pid": std::process::id(),
+            "started_unix_s": now_s(),
+        });
+        write_json(&self.point_file(stem), &v).ok();
+    }
+
+    /// The point `stem` is written.
+    pub fn point_done(&self, stem: &str) {
+        std::fs::remove_file(self.point_file(stem)).ok();
+    }
+
+    /// Stop the heartbeat and write the shard's final state (`done` or `failed` with `message`).
+    pub fn finish(mut self, result: &anyhow::Result<()>) {
+        self.stop_heartbeat();
+        let v = {
+            let mut v = self.marker.lock().unwrap_or_else(|e| e.into_inner());
+            let t = now_s();
+            v["heartbeat_unix_s"] = json!(t);
+            v["finished_unix_s"] = json!(t);
+            match result {
+                Ok(()) => v["state"] = json!("done"),
+                Err(e) => {
+                    v["state"] = json!("failed");
+                    v["message"] = json!(format!("{e:#}"));
+                }
+            }
+            v.clone()
+        };
+        write_json(&self.path, &v).ok();
+    }
+
+    fn stop_heartbeat(&mut self) {
+        self.stop.take();
+        if let Some(h) = self.heartbeat.take() {
+            h.join().ok();
+        }
+    }
+}
+
+impl Drop for ShardMarkers {
+    fn drop(&mut self) {
+        self.stop_heartbeat();
+    }
+}
+
+/// Record that a run of `shard` failed before it started its markers (e.g. the folder holds
+/// another study's points), if the folder is tracked (`plan.json` exists, as after `study
+/// sbatch`); an untracked folder is left untouched.
+pub fn record_early_failure(out: &Path, shard: Shard, error: &anyhow::Error) {
+    if !progress_dir(out).join("plan.json").is_file() {
+        return;
+    }
+    let t = now_s();
+    let marker = json!({
+        "shard": shard.to_string(),
+        "state": "failed",
+        "host": hostname(),
+        "pid": std::process::id(),
+        "slurm_job": slurm_job(),
+        "started_unix_s": t,
+        "heartbeat_unix_s": t,
+        "finished_unix_s": t,
+        "message": format!("{error:#}"),
+    });
+    write_json(&shard_file(out, shard), &marker).ok();
+}
+
+/// State of a point in the output folder.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PointState {
+    /// A point file with a result.
+    Done,
+    /// A point file with an error (the characterization failed; not retried).
+    Failed,
+    /// A marker of a live shard process.
+    InFlight,
+    /// A marker of a shard process that is gone (cancelled, killed, timed out): redone by the
+    /// next run of its shard.
+    Interrupted,
+    /// Nothing yet (or an unreadable point file, which is redone).
+    Pending,
+}
+
+/// Counts of points by state.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Counts {
+    /// Points of the set.
+    pub points: usize,
+    /// Done.
+    pub done: usize,
+    /// Failed.
+    pub failed: usize,
+    /// In flight.
+    pub in_flight: usize,
+    /// Interrupted.
+    pub interrupted: usize,
+    /// Pending.
+    pub pending: usize,
+}
+
+impl Counts {
+    fn add(&mut self, s: PointState) {
+        self.points += 1;
+        match s {
+            PointState::Done => self.done += 1,
+            PointState::Failed => self.failed += 1,
+            PointState::InFlight => self.in_flight += 1,
+            PointState::Interrupted => self.interrupted += 1,
+            PointState::Pending => self.pending += 1,
+        }
+    }
+
+    /// Every point has a point file (done or failed).
+    pub fn finished(&self) -> bool {
+        self.done + self.failed == self.points
+    }
+
+    fn json(&self) -> Value {
+        json!({
+            "points": self.points,
+            "done": self.done,
+            "failed": self.failed,
+            "in_flight": self.in_flight,
+            "interrupted": self.interrupted,
+            "pending": self.pending,
+        })
+    }
+}
+
+/// Status of one shard.
+#[derive(Debug, Clone)]
+pub struct ShardStatus {
+    /// The shard.
+    pub shard: Shard,
+    /// `pending` (never started), `running`, `interrupted`, `done`, `failed`, or `finished` (all
+    /// its points have files, without a marker).
+    pub state: String,
+    /// Its points by state.
+    pub counts: Counts,
+    /// Slurm job of the last run (e.g. `12_3`), host and message of a failed run.
+    pub slurm_job: Option<String>,
+    /// Host of the last run.
+    pub host: Option<String>,
+    /// Error of a failed run.
+    pub message: Option<String>,
+}
+
+/// Status of a study's output folder.
+#[derive(Debug, Clone)]
+pub struct StudyStatus {
+    /// The output folder.
+    pub dir: PathBuf,
+    /// Study file of the plan (None without a plan).
+    pub study: Option<String>,
+    /// Method of the plan.
+    pub method: Option<String>,
+    /// All points.
+    pub counts: Counts,
+    /// Per shard (empty without a plan).
+    pub shards: Vec<ShardStatus>,
+    /// `results.csv`, `points.csv` are present and no markers: the outputs are written.
+    pub merged: bool,
+    /// Slurm jobs recorded by `study sbatch --submit` (array job, tasks, merge job).
+    pub submissions: Vec<(Option<String>, String, String)>,
+}
+
+fn point_file_state(out: &Path, stem: &str) -> Option<PointState> {
+    let text = std::fs::read_to_string(out.join("points").join(format!("{stem}.json"))).ok()?;
+    let r = PointRecord::from_json(&text).ok()?;
+    Some(if r.error.is_some() {
+        PointState::Failed
+    } else {
+        PointState::Done
+    })
+}
+
+/// Whether the process of a `running` shard marker still runs.
+fn marker_alive(m: &Value, me: &str, now: u64, stale_after_s: u64) -> bool {
+    let host = m["host"].as_str().unwrap_or("");
+    if host == me {
+        return m["pid"].as_i64().is_some_and(pid_alive);
+    }
+    let beat = m["heartbeat_unix_s"].as_u64().unwrap_or(0);
+    now.saturating_sub(beat) <= stale_after_s
+}
+
+/// Read the status of output folder `out`: every point of the plan by state, per shard of the
+/// plan. A `running` marker is live if its process exists (same host) or its heartbeat is at
+/// most `stale_after_s` old (another host).
+pub fn read_status(out: &Path, stale_after_s: u64) -> anyhow::Result<StudyStatus> {
+    if !out.join("points").is_dir() {
+        anyhow::bail!(
+            "{}: no points folder: not the output folder of a study",
+            out.display()
+        );
+    }
+    let pdir = progress_dir(out);
+    let plan = read_json(&pdir.join("plan.json"));
+    let merged = plan.is_none() && out.join("points.csv").is_file();
+    let me = hostname();
+    let now = now_s();
+    let Some(plan) = plan else {
+        // No plan: a finished (merged) folder, or a folder of an older version; count files.
+        let mut counts = Counts::default();
+        let mut stems: Vec<String> = std::fs::read_dir(out.join("points"))?
+            .filter_map(|e| e.ok())
+            .map(|e| e.file_name().to_string_lossy().to_string())
+            .filter(|n| !n.starts_with('.'))
+            .filter_map(|n| n.strip_suffix(".json").map(str::to_string))
+            .collect();
+        stems.sort();
+        for s in &stems {
+            counts.add(point_file_state(out, s).unwrap_or(PointState::Pending));
+        }
+        return Ok(StudyStatus {
+            dir: out.to_path_buf(),
+            study: None,
+            method: None,
+            counts,
+            shards: Vec::new(),
+            merged,
+            submissions: Vec::new(),
+        });
+    };
+    let stems: Vec<String> = plan["points"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .filter_map(|s| s.as_str().map(str::to_string))
+                .collect()
+        })
+        .unwrap_or_default();
+    let n = plan["shards"]
+        .as_u64()
+        .and_then(|n| usize::try_from(n).ok())
+        .filter(|&n| n >= 1)
+        .unwrap_or(1);
+    let mut shards: Vec<ShardStatus> = (1..=n)
+        .map(|i| {
+            let shard = Shard { index: i, count: n };
+            let m = read_json(&shard_file(out, shard));
+            let (state, slurm_job, host, message) = match &m {
+                None => ("pending".to_string(), None, None, None),
+                Some(m) => {
+                    let s = m["state"].as_str().unwrap_or("unknown");
+                    let state = if s == "running" && !marker_alive(m, &me, now, stale_after_s) {
+                        "interrupted"
+                    } else {
+                        s
+                    };
+                    (
+                        state.to_string(),
+                        m["slurm_job"].as_str().map(str::to_string),
+                        m["host"].as_str().map(str::to_string),
+                        m["message"].as_str().map(str::to_string),
+                    )
+                }
+            };
+            ShardStatus {
+                shard,
+                state,
+                counts: Counts::default(),
+                slurm_job,
+                host,
+                message,
+            }
+        })
+        .collect();
+    let mut counts = Counts::default();
+    for (k, stem) in stems.iter().enumerate() {
+        let state = match point_file_state(out, stem) {
+            Some(s) => s,
+            None => match read_json(&pdir.join("running").join(format!("{stem}.json"))) {
+                None => PointState::Pending,
+                Some(p) => {
+                    // The point's marker is live while its shard's process is.
+                    let owner = p["shard"]
+                        .as_str()
+                        .and_then(|s| s.parse::<Shard>().ok())
+                        .and_then(|s| read_json(&shard_file(out, s)));
+                    let live = owner.is_some_and(|m| {
+                        m["state"] == "running"
+                            && m["pid"] == p["pid"]
+                            && m["host"] == p["host"]
+                            && marker_alive(&m, &me, now, stale_after_s)
+                    });
+                    if live {
+                        PointState::InFlight
+                    } else {
+                        PointState::Interrupted
+                    }
+                }
+            },
+        };
+        counts.add(state);
+        shards[k % n].counts.add(state);
+    }
+    for s in &mut shards {
+        if s.state == "pending" && s.counts.points > 0 && s.counts.finished() {
+            s.state = "finished".into();
+        }
+    }
+    let submissions = plan["submissions"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .map(|s| {
+                    (
+                        s["array_job_id"].as_str().map(str::to_string),
+                        s["array_tasks"].as_str().unwrap_or("").to_string(),
+                        s["merge_job_id"].as_str().unwrap_or("").to_string(),
+                    )
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    Ok(StudyStatus {
+        dir: out.to_path_buf(),
+        study: plan["study"].as_str().map(str::to_string),
+        method: plan["method"].as_str().map(str::to_string),
+        counts,
+        shards,
+        merged,
+        submissions,
+    })
+}
+
+impl StudyStatus {
+    /// Shards that still have points to compute (pending or interrupted) and no live process.
+    pub fn shards_to_run(&self) -> Vec<usize> {
+        self.shards
+            .iter()
+            .filter(|s| !s.counts.finished() && s.state != "running")
+            .map(|s| s.shard.index)
+            .collect()
+    }
+
+    /// The status as JSON (`study status --json`).
+    pub fn to_json(&self) -> Value {
+        let mut v = self.counts.json();
+        let top = json!({
+            "dir": self.dir.display().to_string(),
+            "study": self.study,
+            "method": self.method,
+            "complete": self.counts.points > 0 && self.counts.finished(),
+            "merged": self.merged,
+        });
+        if let (Some(t), Some(o)) = (top.as_object(), v.as_object_mut()) {
+            let mut all = t.clone();
+            all.append(o);
+            v = Value::Object(all);
+        }
+        v["shards"] = Value::Array(
+            self.shards
+                .iter()
+                .map(|s| {
+                    let mut c = s.counts.json();
+                    let mut head = json!({
+                        "shard": s.shard.to_string(),
+                        "state": s.state,
+                        "slurm_job": s.slurm_job,
+                        "host": s.host,
+                        "message": s.message,
+                    });
+                    if let (Some(h), Some(c)) = (head.as_object_mut(), c.as_object_mut()) {
+                        h.append(c);
+                    }
+                    head
+                })
+                .collect(),
+        );
+        v["submissions"] = Value::Array(
+            self.submissions
+                .iter()
+                .map(|(a, t, m)| json!({"array_job_id": a, "array_tasks": t, "merge_job_id": m}))
+                .collect(),
+        );
+        v
+    }
+
+    /// The status as a table for people.
+    pub fn to_text(&self) -> String {
+        let c = &self.counts;
+        let mut out = format!(
+            "{}: {} points: {} done, {} failed, {} in flight, {} interrupted, {} pending",
+            self.dir.display(),
+            c.points,
+            c.done,
+            c.failed,
+            c.in_flight,
+            c.interrupted,
+            c.pending
+        );
+        if let Some(s) = &self.study {
+            out += &format!("\n  study {s}");
+            if let Some(m) = &self.method {
+                out += &format!(", method {m}");
+            }
+        }
+        if self.merged {
+            out += "\n  outputs written (merged); no progress markers left";
+        } else if c.points > 0 && c.finished() {
+            out +=
+                "\n  every point is finished: run `ehl-bearing study merge` to write the outputs";
+        }
+        if !self.shards.is_empty() {
+            out += &format!(
+                "\n  {:<7} {:<12} {:>6} {:>6} {:>6} {:>9} {:>11} {:>7}  job",
+                "shard", "state", "points", "done", "failed", "in flight", "interrupted", "pending"
+            );
+            for s in &self.shards {
+                let k = &s.counts;
+                out += &format!(
+                    "\n  {:<7} {:<12} {:>6} {:>6} {:>6} {:>9} {:>11} {:>7}  {}",
+                    s.shard.to_string(),
+                    s.state,
+                    k.points,
+                    k.done,
+                    k.failed,
+                    k.in_flight,
+                    k.interrupted,
+                    k.pending,
+                    [s.slurm_job.clone(), s.host.clone()]
+                        .into_iter()
+                        .flatten()
+                        .collect::<Vec<_>>()
+                        .join(" on ")
+                );
+                if let Some(m) = &s.message {
+                    out += &format!("\n          failed: {}", m.replace('\n', "\n          "));
+                }
+            }
+        }
+        for (a, t, m) in &self.submissions {
+            out += &format!(
+                "\n  submitted: array job {} (tasks {t}), merge job {m}",
+                a.as_deref().unwrap_or("none")
+            );
+        }
+        let todo = self.shards_to_run();
+        if !todo.is_empty() {
+            out += &format!(
+                "\n  shards with points left and no live process: {} (resubmit: ehl-bearing study sbatch … --submit)",
+                todo.iter()
+                    .map(|i| i.to_string())
+                    .collect::<Vec<_>>()
+                    .join(",")
+            );
+        }
+        out
+    }
+}

@@ -1,0 +1,448 @@
+//! `ehl-bearing study sbatch STUDY.toml -o DIR`: a Slurm job-array script for a study (one array
+//! task per shard, every task writing its own points into the shared folder DIR), the merge job's
+//! script, and with `--submit` the submission of both (`sbatch --parsable`, the merge with
+//! `--dependency=afterok:<array job>`). A resubmission submits only the shards that still have
+//! points to compute.
+
+use crate::progress;
+use ehl_bearing::study::{read_study, Study};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// Arguments of `study sbatch`.
+#[derive(clap::Args, Debug)]
+pub struct SbatchArgs {
+    /// Study file (TOML).
+    pub study: PathBuf,
+    /// Shared output folder of the study (on a file system every node sees); created if needed.
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
+    /// Number of array tasks = shards (round robin over the study's points); from 1 to the
+    /// study's number of points.
+    #[arg(long, default_value_t = 4)]
+    pub shards: usize,
+    /// CPUs per array task (`#SBATCH --cpus-per-task`); the task's threads (RAYON_NUM_THREADS)
+    /// are taken from SLURM_CPUS_PER_TASK. From 1 to 1024.
+    #[arg(long, default_value_t = 2)]
+    pub cpus_per_task: usize,
+    /// Time limit of each array task and of the merge job, minutes (`#SBATCH --time`); from 1 to
+    /// 525600 (a year).
+    #[arg(long, default_value_t = 120)]
+    pub time_limit_min: u64,
+    /// Slurm partition (`#SBATCH --partition`); default: the cluster's default partition.
+    #[arg(long)]
+    pub partition: Option<String>,
+    /// Job name (default: ehl-<study file stem>).
+    #[arg(long)]
+    pub job_name: Option<String>,
+    /// Folder for the scripts (`study.sbatch`, `merge.sbatch`) and the Slurm logs (`logs/`);
+    /// default: `<DIR>.slurm` next to the output folder, so that the output folder holds results
+    /// only.
+    #[arg(long)]
+    pub job_dir: Option<PathBuf>,
+    /// The ehl-bearing executable the jobs run (default: this one); must be reachable from the
+    /// compute nodes.
+    #[arg(long)]
+    pub bin: Option<PathBuf>,
+    /// Override the study file's method (quasi-static, harmonic, hertz), for the tasks and the merge.
+    #[arg(long)]
+    pub method: Option<String>,
+    /// Submit the array and the dependent merge job with sbatch; only the shards with points
+    /// left and no live task are submitted.
+    #[arg(long)]
+    pub submit: bool,
+    /// With --submit: a running shard of another host whose heartbeat is older than this counts
+    /// as interrupted and is resubmitted, s; from 30 to 86400 (as `study status`).
+    #[arg(long, default_value_t = progress::DEFAULT_STALE_AFTER_S)]
+    pub stale_after_s: u64,
+    /// The sbatch command (default: sbatch on the PATH).
+    #[arg(long, default_value = "sbatch")]
+    pub sbatch: String,
+}
+
+/// Everything a script depends on, validated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScriptParams {
+    /// Absolute study file.
+    pub study: PathBuf,
+    /// Absolute output folder.
+    pub output: PathBuf,
+    /// Absolute job folder.
+    pub job_dir: PathBuf,
+    /// The executable.
+    pub bin: PathBuf,
+    /// Method override.
+    pub method: Option<String>,
+    /// Shards.
+    pub shards: usize,
+    /// Points of the study.
+    pub points: usize,
+    /// CPUs per task.
+    pub cpus_per_task: usize,
+    /// Time limit, min.
+    pub time_limit_min: u64,
+    /// Partition.
+    pub partition: Option<String>,
+    /// Job name.
+    pub job_name: String,
+}
+
+/// A shell word: single-quoted unless it is plainly safe.
+pub fn shell_quote(s: &str) -> String {
+    if !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "/._-+:=,@%".contains(c))
+    {
+        return s.to_string();
+    }
+    format!("'{}'", s.replace('\'', r"'\''"))
+}
+
+fn slurm_name_ok(s: &str) -> bool {
+    !s.is_empty()
+        && s.len() <= 64
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "._-".contains(c))
+}
+
+/// Check the options against their ranges (the study's point count bounds the shards).
+pub fn validate(args: &SbatchArgs, points: usize) -> anyhow::Result<()> {
+    if !(1..=points.min(100_000)).contains(&args.shards) {
+        anyhow::bail!(
+            "--shards {}: expected an integer from 1 to {} (the study's number of points)",
+            args.shards,
+            points.min(100_000)
+        );
+    }
+    if !(1..=1024).contains(&args.cpus_per_task) {
+        anyhow::bail!(
+            "--cpus-per-task {}: expected an integer from 1 to 1024",
+            args.cpus_per_task
+        );
+    }
+    if !(1..=525_600).contains(&args.time_limit_min) {
+        anyhow::bail!(
+            "--time-limit-min {}: expected minutes from 1 to 525600 (a year)",
+            args.time_limit_min
+        );
+    }
+    if !(30..=86_400).contains(&args.stale_after_s) {
+        anyhow::bail!(
+            "--stale-after-s {}: expected seconds from 30 to 86400",
+            args.stale_after_s
+        );
+    }
+    if let Some(p) = &args.partition {
+        if !slurm_name_ok(p) {
+            anyhow::bail!("--partition {p:?}: expected a partition name of 1 to 64 letters, digits, '.', '_' or '-'");
+        }
+    }
+    if let Some(j) = &args.job_name {
+        if !slurm_name_ok(j) {
+            anyhow::bail!("--job-name {j:?}: expected 1 to 64 letters, digits, '.', '_' or '-'");
+        }
+    }
+    Ok(())
+}
+
+fn time_hms(min: u64) -> String {
+    let (d, h, m) = (min / 1440, (min % 1440) / 60, min % 60);
+    if d > 0 {
+        format!("{d}-{h:02}:{m:02}:00")
+    } else {
+        format!("{h:02}:{m:02}:00")
+    }
+}
+
+fn header(p: &ScriptParams, name: &str, output: &str, cpus: usize) -> String {
+    let mut s = String::from("#!/bin/bash\n");
+    s += &format!("#SBATCH --job-name={name}\n");
+    s += "#SBATCH --ntasks=1\n";
+    s += &format!("#SBATCH --cpus-per-task={cpus}\n");
+    s += &format!("#SBATCH --time={}\n", time_hms(p.time_limit_min));
+    if let Some(part) = &p.partition {
+        s += &format!("#SBATCH --partition={part}\n");
+    }
+    s += &format!(
+        "#SBATCH --output={}\n",
+        p.job_dir.join("logs").join(output).display()
+    );
+    s
+}
+
+fn method_arg(p: &ScriptParams) -> String {
+    p.method
+        .as_ref()
+        .map(|m| format!(" --method {}", shell_quote(m)))
+        .unwrap_or_default()
+}
+
+/// The job-array script: task i runs shard i/N into the shared output folder.
+pub fn array_script(p: &ScriptParams) -> String {
+    let mut s = header(p, &p.job_name, "%x-%A_%a.out", p.cpus_per_task);
+    s += &format!("#SBATCH --array=1-{}\n", p.shards);
+    s += &format!(
+        "# Written by `ehl-bearing study sbatch` ({} {}): study {}, {} points in {} shards
+# (shard i runs the points k with k mod {} = i - 1). Array task i runs shard i/{} and writes
+# only its own point files into the shared output folder, each atomically; a resubmitted task
+# skips the points already finished. A task that fails exits non-zero with the message in its
+# log. When every task succeeded, the merge job (merge.sbatch) writes the study's outputs.
+# Watch: {} study status {}
+set -euo pipefail
+: \"${{SLURM_ARRAY_TASK_ID:?submit this script with sbatch: it is a job array}}\"
+# The library's threads (rayon): the CPUs Slurm gave the task.
+export RAYON_NUM_THREADS=\"${{SLURM_CPUS_PER_TASK:-1}}\"
+echo \"ehl-bearing shard ${{SLURM_ARRAY_TASK_ID}}/{} on $(hostname) with $RAYON_NUM_THREADS thread(s)\"
+exec {} study {} -o {} --shard \"${{SLURM_ARRAY_TASK_ID}}/{}\"{}
+",
+        env!("CARGO_PKG_NAME"),
+        env!("CARGO_PKG_VERSION"),
+        p.study.display(),
+        p.points,
+        p.shards,
+        p.shards,
+        p.shards,
+        shell_quote(&p.bin.display().to_string()),
+        shell_quote(&p.output.display().to_string()),
+        p.shards,
+        shell_quote(&p.bin.display().to_string()),
+        shell_quote(&p.study.display().to_string()),
+        shell_quote(&p.output.display().to_string()),
+        p.shards,
+        method_arg(p),
+    );
+    s
+}
+
+/// The merge job's script (submitted with `--dependency=afterok:<array job>`).
+pub fn merge_script(p: &ScriptParams) -> String {
+    let mut s = header(p, &format!("{}-merge", p.job_name), "%x-%j.out", 1);
+    s += &format!(
+        "# Written by `ehl-bearing study sbatch`: gathers the points of study {} in {} and writes
+# results.csv, points.csv, trends.json and the plots; fails, naming the first missing point,
+# unless every point is finished.
+set -euo pipefail
+export RAYON_NUM_THREADS=\"${{SLURM_CPUS_PER_TASK:-1}}\"
+exec {} study merge {} -o {}{}
+",
+        p.study.display(),
+        p.output.display(),
+        shell_quote(&p.bin.display().to_string()),
+        shell_quote(&p.study.display().to_string()),
+        shell_quote(&p.output.display().to_string()),
+        method_arg(p),
+    );
+    s
+}
+
+fn absolute(p: &Path) -> anyhow::Result<PathBuf> {
+    std::fs::canonicalize(p).map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))
+}
+
+/// `<DIR>.slurm` next to DIR.
+fn default_job_dir(output: &Path) -> PathBuf {
+    let name = output
+        .file_name()
+        .map(|n| n.to_string_lossy().to_string())
+        .unwrap_or_else(|| "study".into());
+    output.with_file_name(format!("{name}.slurm"))
+}
+
+/// The job id printed by `sbatch --parsable` (`12` or `12;cluster`).
+pub fn parse_job_id(stdout: &str) -> anyhow::Result<String> {
+    let line = stdout.lines().map(str::trim).find(|l| !l.is_empty());
+    let id = line
+        .and_then(|l| l.split(';').next())
+        .map(str::trim)
+        .unwrap_or("");
+    if id.is_empty() || !id.chars().all(|c| c.is_ascii_digit()) {
+        anyhow::bail!("sbatch --parsable printed {stdout:?}: expected a job id");
+    }
+    Ok(id.to_string())
+}
+
+fn sbatch(cmd: &str, args: &[String]) -> anyhow::Result<String> {
+    let out = Command::new(cmd)
+        .args(args)
+        .output()
+        .map_err(|e| anyhow::anyhow!("running {cmd} (--sbatch): {e}"))?;
+    if !out.status.success() {
+        anyhow::bail!(
+            "{cmd} {} failed ({}): {}",
+            args.join(" "),
+            out.status,
+            String::from_utf8_lossy(&out.stderr).trim()
+        );
+    }
+    parse_job_id(&String::from_utf8_lossy(&out.stdout))
+}
+
+/// Compress sorted task numbers into Slurm's array syntax, e.g. `1-3,5`.
+pub fn array_ranges(tasks: &[usize]) -> String {
+    let mut parts = Vec::new();
+    let mut i = 0;
+    while i < tasks.len() {
+        let mut j = i;
+        while j + 1 < tasks.len() && tasks[j + 1] == tasks[j] + 1 {
+            j += 1;
+        }
+        parts.push(if j > i {
+            format!("{}-{}", tasks[i], tasks[j])
+        } else {
+            tasks[i].to_string()
+        });
+        i = j + 1;
+    }
+    parts.join(",")
+}
+
+fn load(args: &SbatchArgs) -> anyhow::Result<Study> {
+    let mut study = read_study(&args.study)?;
+    if let Some(m) = &args.method {
+        study
+            .set_method(m)
+            .map_err(|e| anyhow::anyhow!("--method: {e}"))?;
+    }
+    Ok(study)
+}
+
+/// Run `study sbatch`.
+pub fn run(args: &SbatchArgs) -> anyhow::Result<()> {
+    let study = load(args)?;
+    let points = study.points().len();
+    validate(args, points)?;
+    let bin = match &args.bin {
+        Some(b) => absolute(b).map_err(|e| anyhow::anyhow!("--bin: {e}"))?,
+        None => std::env::current_exe()?,
+    };
+    std::fs::create_dir_all(args.output.join("points"))
+        .map_err(|e| anyhow::anyhow!("creating {}: {e}", args.output.display()))?;
+    let output = absolute(&args.output)?;
+    let job_dir = args
+        .job_dir
+        .clone()
+        .unwrap_or_else(|| default_job_dir(&output));
+    std::fs::create_dir_all(job_dir.join("logs"))
+        .map_err(|e| anyhow::anyhow!("creating {}: {e}", job_dir.join("logs").display()))?;
+    let job_dir = absolute(&job_dir)?;
+    if job_dir.starts_with(&output) {
+        anyhow::bail!(
+            "--job-dir {}: expected a folder outside the output folder {} (which holds results only)",
+            job_dir.display(),
+            output.display()
+        );
+    }
+    let study_path = absolute(&args.study)?;
+    let stem = study_path
+        .file_stem()
+        .map(|s| s.to_string_lossy().to_string())
+        .unwrap_or_else(|| "study".into());
+    let default_name: String = format!("ehl-{stem}")
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || "._-".contains(c) {
+                c
+            } else {
+                '_'
+            }
+        })
+        .take(64)
+        .collect();
+    let p = ScriptParams {
+        study: study_path.clone(),
+        output: output.clone(),
+        job_dir: job_dir.clone(),
+        bin,
+        method: args.method.clone(),
+        shards: args.shards,
+        points,
+        cpus_per_task: args.cpus_per_task,
+        time_limit_min: args.time_limit_min,
+        partition: args.partition.clone(),
+        job_name: args.job_name.clone().unwrap_or(default_name),
+    };
+    let array = job_dir.join("study.sbatch");
+    let merge = job_dir.join("merge.sbatch");
+    crate::characterize_cmd::write_atomic(&array, array_script(&p).as_bytes())?;
+    crate::characterize_cmd::write_atomic(&merge, merge_script(&p).as_bytes())?;
+    progress::write_plan(&output, &study_path, &study, args.shards)?;
+    println!(
+        "study {}: {} points in {} shards (array tasks 1-{}, {} CPU(s) each, {} min)\n  array script {}\n  merge script {}\n  logs in {}",
+        study_path.display(),
+        points,
+        args.shards,
+        args.shards,
+        args.cpus_per_task,
+        args.time_limit_min,
+        array.display(),
+        merge.display(),
+        job_dir.join("logs").display()
+    );
+    if !args.submit {
+        println!(
+            "submit:\n  id=$(sbatch --parsable {})\n  sbatch --dependency=afterok:$id --kill-on-invalid-dep=yes {}\nwatch: ehl-bearing study status {}",
+            shell_quote(&array.display().to_string()),
+            shell_quote(&merge.display().to_string()),
+            shell_quote(&output.display().to_string())
+        );
+        return Ok(());
+    }
+    let status = progress::read_status(&output, args.stale_after_s)?;
+    let live: Vec<String> = status
+        .shards
+        .iter()
+        .filter(|s| s.state == "running")
+        .map(|s| s.shard.to_string())
+        .collect();
+    if !live.is_empty() {
+        println!(
+            "  still running, not resubmitted: shard(s) {}",
+            live.join(", ")
+        );
+    }
+    let tasks = status.shards_to_run();
+    let merge_s = merge.display().to_string();
+    let (array_id, tasks_s, merge_id) = if tasks.is_empty() && live.is_empty() {
+        println!("  every point has its file: submitting the merge job only");
+        let m = sbatch(&args.sbatch, &["--parsable".into(), merge_s])?;
+        (None, String::new(), m)
+    } else if tasks.is_empty() {
+        anyhow::bail!(
+            "nothing to submit: the shards with points left are still running ({}); watch them with `ehl-bearing study status {}`",
+            live.join(", "),
+            output.display()
+        );
+    } else {
+        let list = array_ranges(&tasks);
+        let a = sbatch(
+            &args.sbatch,
+            &[
+                "--parsable".into(),
+                format!("--array={list}"),
+                array.display().to_string(),
+            ],
+        )?;
+        let m = sbatch(
+            &args.sbatch,
+            &[
+                "--parsable".into(),
+                format!("--dependency=afterok:{a}"),
+                "--kill-on-invalid-dep=yes".into(),
+                merge_s,
+            ],
+        )?;
+        (Some(a), list, m)
+    };
+    progress::record_submission(&output, array_id.as_deref(), &tasks_s, &merge_id)?;
+    match &array_id {
+        Some(a) => println!(
+            "submitted array job {a} (tasks {tasks_s}) and merge job {merge_id} (runs after every task of {a} succeeded)"
+        ),
+        None => println!("submitted merge job {merge_id}"),
+    }
+    println!(
+        "watch: ehl-bearing study status {}",
+        shell_quote(&output.display().to_string())
+    );
+    Ok(())
+}

@@ -1,0 +1,182 @@
+#!/usr/bin/env bash
+# Slurm stage of the tests (called by scripts/test.sh): a real one-node Slurm cluster on this
+# machine, started without systemd, runs the seed study as job arrays and the result is compared
+# byte for byte with a single-machine run.
+#
+#   scripts/test_slurm.sh               # default: hertz seed study (12 points) + light quasi-static
+#                                       # study (2 speeds x 3 loads, grid 33, 5 film solutions)
+#   SLURM_FULL=1 scripts/test_slurm.sh  # the full seed study examples/study_7006.toml (12 points,
+#                                       # quasi-static at its default options; tens of minutes)
+#
+# What it does:
+#  1. builds the ehl-bearing binary (test profile, optimized, as cargo test; EHL_BEARING_BIN overrides);
+#  2. installs Debian's slurm-wlm and munge with apt-get if they are missing (the stage is
+#     SKIPPED, not failed, only if they cannot be installed or the script is not run as root);
+#  3. (scripts/slurm_local_cluster.sh) writes a munge key and a one-node slurm.conf (NodeName=localhost CPUs=2, proctrack/linuxproc,
+#     task/none, select/cons_tres) into a temporary folder and starts munged, slurmctld and slurmd
+#     as daemons with pid files there (free ports are picked, so parallel runs do not collide);
+#  4. for the hertz and the quasi-static method: a single-machine run, then
+#     `ehl-bearing study sbatch … --shards 3 --cpus-per-task 1 --submit` (3 array tasks + the
+#     dependent merge job), waits (bounded), checks every job COMPLETED and `diff -r` of the two
+#     output folders;
+#  5. a failing task (a foreign point file in its shard): FAILED, message in its log and in
+#     `study status`, merge not run; after removing the cause, the resubmission runs that task only;
+#  6. fault test: the quasi-static array again, task 2 cancelled with scancel while its point is in
+#     flight; `study status` must show the shard interrupted and the merge job must not have run;
+#     resubmitting must submit task 2 only, and the merged folder must again equal the single run;
+#  7. stops every daemon it started (trap on EXIT) and removes the temporary folder
+#     (KEEP_SLURM_TMP=1 keeps it).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+T_START=$(date +%s)
+
+log() { echo "[slurm $(($(date +%s) - T_START)) s] $*"; }
+skip() {
+    echo "SKIPPED: Slurm stage: $*"
+    exit 0
+}
+fail() {
+    echo "FAILED: Slurm stage: $*" >&2
+    exit 1
+}
+
+# ---------------------------------------------------------------- 1. the binary
+if [ -n "${EHL_BEARING_BIN:-}" ]; then
+    BIN=$EHL_BEARING_BIN
+else
+    # The test profile (optimized, Cargo.toml): the binary `cargo test` already built, so no
+    # second compilation of the library after the cargo test stage.
+    log "building ehl-bearing (cargo build --profile test -p ehl-bearing-cli)"
+    cargo build -q --profile test -p ehl-bearing-cli --bin ehl-bearing
+    BIN=$ROOT/target/debug/ehl-bearing
+fi
+[ -x "$BIN" ] || fail "no executable ehl-bearing at $BIN"
+
+# ---------------------------------------------------------------- 2./3. packages and the cluster
+# shellcheck source=scripts/slurm_local_cluster.sh
+source scripts/slurm_local_cluster.sh
+
+run_bin() { timeout 1800 "$BIN" "$@"; }
+
+# ---------------------------------------------------------------- 4. studies
+SEED_STUDY=$ROOT/examples/study_7006.toml
+if [ "${SLURM_FULL:-0}" = 1 ]; then
+    QS_STUDY=$SEED_STUDY
+    JOB_LIMIT=7200
+    log "SLURM_FULL=1: the full seed study (12 points) by the quasi-static method"
+else
+    QS_STUDY=$TMP/study_7006_light.toml
+    cat >"$QS_STUDY" <<EOF
+# Light quasi-static study of the seed bearing for the Slurm stage: 2 speeds x 3 load scales,
+# 5 steady film solutions per contact on a 33 x 33 grid.
+case = "$ROOT/examples/7006.toml"
+method = "quasi-static"
+inner_speeds_rpm = [3000.0, 5000.0]
+load_scales = [0.5, 1.0, 2.0]
+
+[method_options]
+grid = 33
+points = 5
+EOF
+    JOB_LIMIT=600
+fi
+
+# study_on_slurm NAME STUDY METHOD: single run vs 3-task array + merge, diff -r.
+study_on_slurm() {
+    local name=$1 study=$2 method=$3 out
+    log "$name: single-machine run ($method)"
+    RAYON_NUM_THREADS=2 run_bin study "$study" -o "$TMP/ref-$name" --method "$method" >"$TMP/ref-$name.log" 2>&1 ||
+        fail "$name: single-machine run failed (log $TMP/ref-$name.log)"
+    log "$name: study sbatch --shards 3 --submit"
+    out=$(run_bin study sbatch "$study" -o "$TMP/slurm-$name" --method "$method" --shards 3 \
+        --cpus-per-task 1 --time-limit-min 30 --submit) || fail "$name: study sbatch --submit failed: $out"
+    parse_submission "$out"
+    [ "$ARRAY_TASKS" = "1-3" ] || fail "$name: submitted tasks $ARRAY_TASKS, expected 1-3"
+    wait_jobs "$JOB_LIMIT" "$ARRAY_ID" "$MERGE_ID"
+    expect_completed "$name array" "$ARRAY_ID"
+    expect_completed "$name merge" "$MERGE_ID"
+    [ "$(job_states "$ARRAY_ID" | wc -l)" = 3 ] || fail "$name: array job $ARRAY_ID does not have 3 tasks"
+    for i in 1 2 3; do
+        grep -q "ehl-bearing shard $i/3 on .* with 1 thread(s)" "$TMP/slurm-$name.slurm/logs/"*"-${ARRAY_ID}_$i.out" ||
+            fail "$name: log of task $i does not show shard $i/3 with 1 thread (SLURM_CPUS_PER_TASK)"
+    done
+    diff -r "$TMP/ref-$name" "$TMP/slurm-$name" ||
+        fail "$name: the merged Slurm folder differs from the single-machine run"
+    [ -f "$TMP/slurm-$name/trends.json" ] || fail "$name: no trends.json"
+    log "$name: 3 array tasks + merge COMPLETED; merged folder identical to the single run ($(find "$TMP/slurm-$name" -type f | wc -l) files)"
+}
+
+study_on_slurm hertz "$SEED_STUDY" hertz
+
+# A task that fails (here: its folder holds a point file of another study under one of its point
+# names) exits non-zero with the message in its log; the merge does not run; status shows the
+# shard failed; once the cause is removed, the resubmission submits that task only.
+log "failing task: hertz array with a foreign point file in shard 1"
+FAILING=$TMP/failing
+mkdir -p "$FAILING/points"
+sed 's/"load_scale": 0.5,/"load_scale": 0.75,/' "$TMP/ref-hertz/points/n3000rpm_s0.5.json" >"$FAILING/points/n3000rpm_s0.5.json"
+cmp -s "$FAILING/points/n3000rpm_s0.5.json" "$TMP/ref-hertz/points/n3000rpm_s0.5.json" &&
+    fail "failing task: could not alter the point file"
+out=$(run_bin study sbatch "$SEED_STUDY" -o "$FAILING" --method hertz --shards 3 \
+    --cpus-per-task 1 --time-limit-min 30 --submit) || fail "failing task: study sbatch --submit failed: $out"
+parse_submission "$out"
+wait_jobs "$JOB_LIMIT" "$ARRAY_ID" "$MERGE_ID"
+[ "$(job_states "${ARRAY_ID}_1")" = FAILED ] || fail "failing task: task 1 ended as $(job_states "${ARRAY_ID}_1"), expected FAILED"
+expect_completed "failing task: tasks 2 and 3" "${ARRAY_ID}_2" "${ARRAY_ID}_3"
+[ "$(job_states "$MERGE_ID" 2>/dev/null || echo gone)" != COMPLETED ] || fail "failing task: the merge job ran"
+grep -q "^error: .*different study" "$FAILING.slurm/logs/"*"-${ARRAY_ID}_1.out" ||
+    fail "failing task: the log of task 1 does not give the error"
+status=$(run_bin study status "$FAILING")
+if [ "$(awk '$1 == "1/3" { print $2 }' <<<"$status")" != failed ] || ! grep -q "failed: .*different study" <<<"$status"; then
+    fail "failing task: study status does not show shard 1/3 failed with its message: $status"
+fi
+rm "$FAILING/points/n3000rpm_s0.5.json"
+out=$(run_bin study sbatch "$SEED_STUDY" -o "$FAILING" --method hertz --shards 3 \
+    --cpus-per-task 1 --time-limit-min 30 --submit) || fail "failing task: resubmission failed: $out"
+parse_submission "$out"
+[ "$ARRAY_TASKS" = 1 ] || fail "failing task: resubmission submitted tasks $ARRAY_TASKS, expected only 1"
+wait_jobs "$JOB_LIMIT" "$ARRAY_ID" "$MERGE_ID"
+expect_completed "failing task: resubmitted task and merge" "$ARRAY_ID" "$MERGE_ID"
+diff -r "$TMP/ref-hertz" "$FAILING" || fail "failing task: the merged folder differs from the single run"
+log "failing task: FAILED with its message in the log and the status; only task 1 resubmitted; identical merge"
+
+study_on_slurm quasi-static "$QS_STUDY" quasi-static
+
+# ---------------------------------------------------------------- 5. fault test
+log "fault test: quasi-static array, task 2 cancelled mid-run"
+FAULT=$TMP/fault
+out=$(run_bin study sbatch "$QS_STUDY" -o "$FAULT" --method quasi-static --shards 3 \
+    --cpus-per-task 1 --time-limit-min 30 --submit) || fail "fault: study sbatch --submit failed: $out"
+parse_submission "$out"
+shard2() { run_bin study status "$FAULT" | awk '$1 == "2/3" { print $2, $6 }'; }
+t0=$SECONDS
+until [ "$(shard2)" = "running 1" ]; do # state running, one point in flight
+    ((SECONDS - t0 > 120)) && fail "fault: shard 2/3 never had a point in flight within 120 s (status: $(shard2))"
+    sleep 0.2
+done
+scancel "${ARRAY_ID}_2" || fail "fault: scancel ${ARRAY_ID}_2 failed"
+log "fault: scancel ${ARRAY_ID}_2 with its point in flight"
+wait_jobs "$JOB_LIMIT" "$ARRAY_ID" "$MERGE_ID"
+[ "$(job_states "${ARRAY_ID}_2")" = CANCELLED ] || fail "fault: task 2 ended as $(job_states "${ARRAY_ID}_2"), expected CANCELLED"
+expect_completed "fault: tasks 1 and 3" "${ARRAY_ID}_1" "${ARRAY_ID}_3"
+merge_state=$(job_states "$MERGE_ID" 2>/dev/null || echo gone)
+[ "$merge_state" != COMPLETED ] || fail "fault: the merge job ran although task 2 was cancelled"
+status=$(run_bin study status "$FAULT")
+echo "$status"
+[ "$(awk '$1 == "2/3" { print $2 }' <<<"$status")" = interrupted ] || fail "fault: study status does not show shard 2/3 interrupted"
+awk '$1 == "2/3" && $7 >= 1 { ok = 1 } END { exit !ok }' <<<"$status" || fail "fault: no interrupted point in shard 2/3"
+[ ! -f "$FAULT/points.csv" ] || fail "fault: outputs were written although a shard was cancelled"
+log "fault: resubmitting"
+out=$(run_bin study sbatch "$QS_STUDY" -o "$FAULT" --method quasi-static --shards 3 \
+    --cpus-per-task 1 --time-limit-min 30 --submit) || fail "fault: resubmission failed: $out"
+parse_submission "$out"
+[ "$ARRAY_TASKS" = 2 ] || fail "fault: resubmission submitted tasks $ARRAY_TASKS, expected only 2"
+wait_jobs "$JOB_LIMIT" "$ARRAY_ID" "$MERGE_ID"
+expect_completed "fault: resubmitted task" "$ARRAY_ID"
+expect_completed "fault: merge" "$MERGE_ID"
+diff -r "$TMP/ref-quasi-static" "$FAULT" ||
+    fail "fault: the merged folder after the resubmission differs from the single-machine run"
+log "fault: only task 2 resubmitted; merged folder identical to the single run"
+
+log "Slurm stage passed in $(($(date +%s) - T_START)) s"
