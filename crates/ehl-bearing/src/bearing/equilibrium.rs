@@ -399,6 +399,10 @@ pub struct DynamicForce {
     pub approaches: Vec<[f64; 2]>,
 }
 
+/// Consecutive creeping Newton steps of a ball (textbook kinematics) that end an attempt so that
+/// `solve_ball` can restart elsewhere.
+const CREEP_STOP: usize = 5;
+
 impl BearingModel {
     /// A model of `bearing` with `laws` at the speeds of `op` (the DOF controls of `op` are not
     /// used here).
@@ -696,6 +700,7 @@ impl BearingModel {
     }
 
     /// Solve ball j's equilibrium for groove-centre offsets `a`, starting from `warm` if given.
+    /// (`CREEP_STOP`: consecutive creeping Newton steps that end an attempt, see `ball_newton`.)
     fn solve_ball(
         &self,
         j: usize,
@@ -748,23 +753,37 @@ impl BearingModel {
             // start: the ball's speeds then do not depend on its position), then the textbook
             // model from there.
             let tg = self.terms_opt(j, x, a, false, Kinematics::GrooveLine);
-            let (xg, _) = self.ball_newton(j, a, x, tg, false, Kinematics::GrooveLine);
+            let (xg, _) = self.ball_newton(j, a, x, tg, false, Kinematics::GrooveLine, CREEP_STOP);
             x = xg;
             t = self.terms_at(j, x, a);
         }
-        let (mut xs, mut ts) = self.ball_newton(j, a, x, t, false, kin);
+        let (mut xs, mut ts) = self.ball_newton(j, a, x, t, false, kin, CREEP_STOP);
         if !converged(&ts) {
             // Stalled at the onset of the inner contact, where a nearly unloaded but stiff inner
             // contact makes the Jacobian singular: solve the ball in the outer groove alone. If the
             // inner contact is open there, that is the solution; otherwise restart from it.
             let t0 = self.terms_opt(j, x, a, true, kin);
-            let (xo, _) = self.ball_newton(j, a, x, t0, true, kin);
+            let (xo, _) = self.ball_newton(j, a, x, t0, true, kin, CREEP_STOP);
             let tf = self.terms_at(j, xo, a);
             (xs, ts) = if converged(&tf) {
                 (xo, tf)
             } else {
-                self.ball_newton(j, a, xo, tf, false, kin)
+                self.ball_newton(j, a, xo, tf, false, kin, CREEP_STOP)
             };
+            if !converged(&ts) && kin == Kinematics::OperatingAngles {
+                // Last resort (textbook kinematics near the inner contact's onset, where both
+                // starts can stop creeping on a knife edge — found by the high-speed Jacobian
+                // property test): the same Newton without the creeping stop, from the
+                // separated-ball solution and from where the first attempt stopped.
+                for start in [xo, xs] {
+                    let t1 = self.terms_at(j, start, a);
+                    let (x1, t1) = self.ball_newton(j, a, start, t1, false, kin, usize::MAX);
+                    if converged(&t1) {
+                        (xs, ts) = (x1, t1);
+                        break;
+                    }
+                }
+            }
         }
         let (x, t) = (xs, ts);
         let res = t.r[0].v.hypot(t.r[1].v);
@@ -817,6 +836,7 @@ impl BearingModel {
         t: Terms,
         ignore_inner: bool,
         kin: Kinematics,
+        creep_stop: usize,
     ) -> ([f64; 2], Terms) {
         let mut t = t;
         let scale = |t: &Terms| t.qi.abs() + t.qo.abs() + t.fc.abs() + 1e-6;
@@ -837,7 +857,7 @@ impl BearingModel {
             if res <= 1e-13 * scale(&t) {
                 break;
             }
-            if kin == Kinematics::OperatingAngles && creeping >= 5 {
+            if kin == Kinematics::OperatingAngles && creeping >= creep_stop {
                 break;
             }
             let (sp, cp) = phi.sin_cos();
