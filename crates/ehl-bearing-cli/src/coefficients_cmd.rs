@@ -41,6 +41,7 @@ pub struct CoefficientsArgs {
 /// Run `coefficients`.
 pub fn run(args: &CoefficientsArgs) -> anyhow::Result<()> {
     let case = read_case(&args.case)?;
+    crate::characterize_cmd::check_plausible(&case, &args.case)?;
     let speeds = if args.speeds.is_empty() {
         vec![case.operating.inner_speed * 30.0 / std::f64::consts::PI]
     } else {

@@ -429,7 +429,17 @@ pub(crate) fn solid(raw: Option<&RawSolid>, table: &str) -> Result<Solid, InputE
     let mut s = Solid::AISI_52100;
     if let Some(r) = raw {
         if let Some(e) = r.youngs_modulus_gpa {
-            s.youngs_modulus = positive(e, &format!("{table}.youngs_modulus_gpa"), "GPa")? * 1e9;
+            // Diamond, the stiffest solid, has about 1050–1200 GPa; below 0.1 GPa (rubbers) the
+            // contact is soft EHL, which the piezoviscous models here do not describe.
+            if !(e.is_finite() && (0.1..=1200.0).contains(&e)) {
+                return Err(InputError::field(
+                    &format!("{table}.youngs_modulus_gpa"),
+                    e,
+                    "0.1 to 1200 GPa (a solid's modulus: steel 208, silicon nitride 310, \
+                     diamond ≈ 1100)",
+                ));
+            }
+            s.youngs_modulus = e * 1e9;
         }
         if let Some(nu) = r.poisson_ratio {
             if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
