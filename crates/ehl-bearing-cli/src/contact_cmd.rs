@@ -256,8 +256,7 @@ fn method_of(args: &ContactArgs) -> Result<ehl_bearing::method::Method> {
 
 /// Run `contact`.
 pub fn run(args: &ContactArgs) -> Result<()> {
-    let text = std::fs::read_to_string(&args.contact)
-        .with_context(|| format!("reading {}", args.contact.display()))?;
+    let text = ehl_bearing::io::read_text(&args.contact)?;
     let file = ehl::input::parse_contact_file(&text)
         .with_context(|| format!("in {}", args.contact.display()))?;
     let c = file.contact;

@@ -222,8 +222,7 @@ pub fn run(args: &EhlArgs) -> Result<()> {
         crate::characterize_cmd::solve_spinner(format!("EHL solve, {0}×{0} grid", s.grid));
     let result = match (&args.contact, args.moes_m, args.moes_l) {
         (Some(path), _, _) => {
-            let text = std::fs::read_to_string(path)
-                .with_context(|| format!("reading {}", path.display()))?;
+            let text = ehl_bearing::io::read_text(path)?;
             let c = ehl::input::parse_contact_toml(&text)
                 .with_context(|| format!("in {}", path.display()))?;
             for w in ehl_bearing::plausibility::check_contact(&c)

@@ -75,8 +75,12 @@ pub fn parse_contact_toml(text: &str) -> Result<EhlContact, EhlError> {
 
 /// Parses and validates a contact file's text, with the ball's mass if the file gives it.
 pub fn parse_contact_file(text: &str) -> Result<ContactFile, EhlError> {
-    let t: ContactToml =
-        toml::from_str(text).map_err(|e| EhlError::File(format!("contact file: {e}")))?;
+    let t: ContactToml = crate::io::from_toml(text, "contact file").map_err(|e| match e {
+        crate::io::InputError::Syntax { path, message } => {
+            EhlError::File(format!("{path}: {message}"))
+        }
+        e => EhlError::File(e.to_string()),
+    })?;
     let load = positive("load_n", t.load_n)?;
     let rx = positive("rx_mm", t.rx_mm)? * 1e-3;
     let ry = positive("ry_mm", t.ry_mm)? * 1e-3;
