@@ -160,3 +160,23 @@ fn the_coupled_loop_and_a_study_point_stop_at_their_time_limit() {
     let files = std::fs::read_dir(out.join("points")).unwrap().count();
     assert_eq!(files, 0, "{err}");
 }
+
+/// Found by tests/ehl_edges.rs: at M = 557, L = 0.5 the 33² grid converges to a negative film
+/// (the true one, ≈ 0.1 nm at 257², is not resolved). The solution is finite and `ehl` says so.
+#[test]
+fn an_unresolved_film_is_reported() {
+    let (o, _) = run(&[
+        "ehl",
+        "--moes-m",
+        "556.78",
+        "--moes-l",
+        "0.5",
+        "--ry-over-rx",
+        "3.7376",
+        "--grid",
+        "33",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("does not resolve this film"), "{err}");
+}
