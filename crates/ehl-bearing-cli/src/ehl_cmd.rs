@@ -105,9 +105,9 @@ fn settings(args: &EhlArgs) -> EhlSettings {
     s
 }
 
-/// Grids of 513² and more take minutes per solve: say so at once, with the way to bound it.
-/// Measured on this project's 2-core machine (docs/robustness.md): about 2.5 s per W-cycle at
-/// 513², 10 s at 1025², and a hard contact can need 40 cycles in each of several starts.
+/// Grids of 513² and more take minutes per solve: say so at once, with the way to bound it
+/// (issue 15: the seed's inner contact at 1025² gave up after 293 s; here, one run with
+/// `--time-limit 5` under a load average of 8 stopped after 5.9 s with one finest-grid cycle).
 pub fn large_grid_notice(s: &EhlSettings, time_limit: Option<f64>) {
     if s.grid >= 513 {
         eprintln!(
