@@ -259,6 +259,13 @@ pub fn run(args: &EhlArgs) -> Result<()> {
     if let Some(dir) = &args.fields {
         write_fields(&result, dir)?;
     }
+    if result.converged && result.h_min <= 0.0 {
+        eprintln!(
+            "warning: the minimum film is {:.3e} m ≤ 0: the {}² grid does not resolve this \
+             film (very thin at this load and L); refine --grid",
+            result.h_min, result.grid[0]
+        );
+    }
     if !result.converged {
         bail!(
             "EHL solution did not converge in {} cycles: relative residual {:.3e}, force balance {:.3e}",
