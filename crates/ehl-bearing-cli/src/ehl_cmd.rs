@@ -106,7 +106,7 @@ fn settings(args: &EhlArgs) -> EhlSettings {
 }
 
 /// Grids of 513² and more take minutes per solve: say so at once, with the way to bound it
-/// (issue 15: the seed's inner contact at 1025² gave up after 293 s; here, one run with
+/// (issue 15: `ehl --grid 1025` gave up after 293 s; here, the seed's inner contact with
 /// `--time-limit 5` under a load average of 8 stopped after 5.9 s with one finest-grid cycle).
 pub fn large_grid_notice(s: &EhlSettings, time_limit: Option<f64>) {
     if s.grid >= 513 {
