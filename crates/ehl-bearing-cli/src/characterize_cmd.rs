@@ -29,7 +29,55 @@ pub fn with_threads<T: Send>(
     }
 }
 
+use ehl_bearing::budget::Deadline;
 pub use ehl_bearing::io::write_atomic;
+
+/// The wall-time budget of `--time-limit SECONDS`, started now.
+pub fn deadline(time_limit: Option<f64>) -> anyhow::Result<Option<Deadline>> {
+    match time_limit {
+        None => Ok(None),
+        Some(t) => match Deadline::after_seconds(t) {
+            Some(d) => Ok(Some(d)),
+            None => bail!("--time-limit {t}: expected a number of seconds, > 0 and at most 3.2e7"),
+        },
+    }
+}
+
+/// Refuses an output folder that cannot be one (an existing file) or cannot be created, before
+/// any computation.
+pub fn check_output_dir(dir: &std::path::Path, option: &str) -> anyhow::Result<()> {
+    if dir.exists() && !dir.is_dir() {
+        bail!("{option} {}: exists and is not a folder", dir.display());
+    }
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("{option} {}: cannot create the folder", dir.display()))
+}
+
+/// Physical plausibility of a case before any EHL solve: warnings on stderr, an error for
+/// inputs outside what the models describe.
+pub fn check_plausible(case: &Case, origin: &std::path::Path) -> anyhow::Result<()> {
+    let warnings = ehl_bearing::plausibility::check_case(case)
+        .with_context(|| format!("{}: outside what the models describe", origin.display()))?;
+    for w in warnings {
+        eprintln!("warning: {}: {w}", origin.display());
+    }
+    Ok(())
+}
+
+/// A spinner with the elapsed time on stderr for one long solve, when stderr is a terminal
+/// (hidden otherwise).
+pub fn solve_spinner(message: String) -> ProgressBar {
+    if !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new_spinner();
+    if let Ok(style) = ProgressStyle::with_template("{spinner} [{elapsed_precise}] {msg}") {
+        bar.set_style(style);
+    }
+    bar.set_message(message);
+    bar.enable_steady_tick(std::time::Duration::from_millis(200));
+    bar
+}
 
 /// A progress container drawing on stderr when it is a terminal, hidden otherwise (piped or
 /// redirected output stays clean).
@@ -109,6 +157,10 @@ pub struct CharacterizeArgs {
     /// every law on the new loads.
     #[arg(long, default_value_t = CharacterizeSettings::default().load_reuse_tolerance)]
     pub load_reuse_tolerance: f64,
+    /// Wall-time budget in seconds: the loop and its EHL solves stop with an error carrying
+    /// their residual history when it runs out (default: none; iteration limits always apply).
+    #[arg(long, value_name = "SECONDS")]
+    pub time_limit: Option<f64>,
     /// Start from the dry Hertz loads instead of the loads predicted by the method (quasi-static:
     /// one loosely converged EHL solution per contact).
     #[arg(long)]
@@ -147,9 +199,15 @@ pub fn contacts_csv(c: &BearingCharacterization) -> String {
 /// Run `characterize`.
 pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
     let case = read_case(&args.case)?;
+    let deadline = deadline(args.time_limit)?;
     let ch = case
         .method_or(args.method.as_deref())
-        .map_err(|e| anyhow::anyhow!("--method: {e}"))?;
+        .map_err(|e| anyhow::anyhow!("--method: {e}"))?
+        .with_deadline(deadline);
+    if let Some(dir) = &args.output {
+        check_output_dir(dir, "-o")?;
+    }
+    check_plausible(&case, &args.case)?;
     let settings = CharacterizeSettings {
         tolerance: args.tolerance,
         max_iterations: args.max_iterations,
@@ -157,6 +215,7 @@ pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
         min_load_fraction: args.min_load_fraction,
         load_reuse_tolerance: args.load_reuse_tolerance,
         predict_loads: !args.no_load_prediction,
+        deadline,
         ..CharacterizeSettings::default()
     };
     let multi = progress_container();

@@ -41,6 +41,7 @@ pub struct CoefficientsArgs {
 /// Run `coefficients`.
 pub fn run(args: &CoefficientsArgs) -> anyhow::Result<()> {
     let case = read_case(&args.case)?;
+    crate::characterize_cmd::check_plausible(&case, &args.case)?;
     let speeds = if args.speeds.is_empty() {
         vec![case.operating.inner_speed * 30.0 / std::f64::consts::PI]
     } else {
@@ -51,8 +52,7 @@ pub fn run(args: &CoefficientsArgs) -> anyhow::Result<()> {
     }
     let coeffs: Vec<SpeedCoefficients> = match &args.trends {
         Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .with_context(|| format!("reading {}", path.display()))?;
+            let text = ehl_bearing::io::read_text(path)?;
             let element = TrendForceElement::from_json(&text)
                 .with_context(|| format!("trend model {}", path.display()))?;
             from_element(&case, &speeds, &element, "trends")?

@@ -57,6 +57,10 @@ pub struct ContactArgs {
     /// Harmonic method: fit Q = K·δ^d + ΔF without the damping term c·δ̇.
     #[arg(long)]
     pub no_damping_term: bool,
+    /// Wall-time budget in seconds: the EHL solves stop with an error carrying their residual
+    /// history when it runs out (default: none; the cycle limits always apply).
+    #[arg(long, value_name = "SECONDS")]
+    pub time_limit: Option<f64>,
     /// Print JSON (SI units) instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -252,11 +256,22 @@ fn method_of(args: &ContactArgs) -> Result<ehl_bearing::method::Method> {
 
 /// Run `contact`.
 pub fn run(args: &ContactArgs) -> Result<()> {
-    let text = std::fs::read_to_string(&args.contact)
-        .with_context(|| format!("reading {}", args.contact.display()))?;
+    let text = ehl_bearing::io::read_text(&args.contact)?;
     let file = ehl::input::parse_contact_file(&text)
         .with_context(|| format!("in {}", args.contact.display()))?;
     let c = file.contact;
+    let deadline = crate::characterize_cmd::deadline(args.time_limit)?;
+    if let Some(dir) = &args.output {
+        crate::characterize_cmd::check_output_dir(dir, "-o")?;
+    }
+    for w in ehl_bearing::plausibility::check_contact(&c).with_context(|| {
+        format!(
+            "{}: outside what the models describe",
+            args.contact.display()
+        )
+    })? {
+        eprintln!("warning: {}: {w}", args.contact.display());
+    }
     let method = match args.method {
         Method::Harmonic => {
             if args.points.is_some() {
@@ -281,6 +296,18 @@ pub fn run(args: &ContactArgs) -> Result<()> {
             method_of(args)?
         }
     };
+    let method = method.with_deadline(deadline);
+    if let Some(g) = method.grid() {
+        let s = ehl_bearing::ehl::EhlSettings {
+            grid: g,
+            ..Default::default()
+        };
+        crate::ehl_cmd::large_grid_notice(&s, args.time_limit);
+    }
+    let spinner = crate::characterize_cmd::solve_spinner(format!(
+        "characterizing {}",
+        args.contact.display()
+    ));
     let fit = match method {
         ehl_bearing::method::Method::Harmonic(s) => {
             let mass = match (s.mass, file.ball_mass) {
@@ -296,6 +323,7 @@ pub fn run(args: &ContactArgs) -> Result<()> {
         ehl_bearing::method::Method::QuasiStatic(s) => characterize_quasi_static(&c, &s)?,
         other => bail!("method {other} does not characterize a single contact"),
     };
+    spinner.finish_and_clear();
     if let Some(dir) = &args.output {
         std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
         let mut csv = String::from(

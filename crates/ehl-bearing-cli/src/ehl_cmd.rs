@@ -60,6 +60,10 @@ pub struct EhlArgs {
     /// Largest number of multigrid cycles (default from the solver settings, 40).
     #[arg(long)]
     pub max_cycles: Option<usize>,
+    /// Wall-time budget in seconds: the solve stops with an error carrying its residual history
+    /// when it runs out (default: none; the cycle limit always applies).
+    #[arg(long, value_name = "SECONDS")]
+    pub time_limit: Option<f64>,
     /// Write into this directory pressure.csv and film.csv (long format x_m,y_m,value; Pa and m)
     /// and four figures, each as .png and .svg: pressure_map and film_map (zoomed to the contact,
     /// Hertz ellipse overlaid), centreline_rolling (p/p_h and h along Y = 0) and
@@ -99,6 +103,24 @@ fn settings(args: &EhlArgs) -> EhlSettings {
         s.half_width = Some(v);
     }
     s
+}
+
+/// Grids of 513² and more take minutes per solve: say so at once, with the way to bound it
+/// (issue 15: `ehl --grid 1025` gave up after 293 s; here, the seed's inner contact with
+/// `--time-limit 5` under a load average of 8 stopped after 5.9 s with one finest-grid cycle).
+pub fn large_grid_notice(s: &EhlSettings, time_limit: Option<f64>) {
+    if s.grid >= 513 {
+        eprintln!(
+            "note: a {0}×{0} grid takes minutes per EHL solve (several seconds per multigrid \
+             cycle, up to {1} cycles per start){2}",
+            s.grid,
+            s.max_cycles,
+            match time_limit {
+                Some(t) => format!("; stopping after {t} s (--time-limit)"),
+                None => "; bound it with --time-limit SECONDS".into(),
+            }
+        );
+    }
 }
 
 fn json(r: &EhlSolution) -> serde_json::Value {
@@ -190,13 +212,24 @@ pub fn write_fields(r: &EhlSolution, dir: &Path) -> Result<()> {
 
 /// Runs `ehl-bearing ehl`.
 pub fn run(args: &EhlArgs) -> Result<()> {
-    let s = settings(args);
+    let mut s = settings(args);
+    s.deadline = crate::characterize_cmd::deadline(args.time_limit)?;
+    if let Some(dir) = &args.fields {
+        crate::characterize_cmd::check_output_dir(dir, "--fields")?;
+    }
+    large_grid_notice(&s, args.time_limit);
+    let spinner =
+        crate::characterize_cmd::solve_spinner(format!("EHL solve, {0}×{0} grid", s.grid));
     let result = match (&args.contact, args.moes_m, args.moes_l) {
         (Some(path), _, _) => {
-            let text = std::fs::read_to_string(path)
-                .with_context(|| format!("reading {}", path.display()))?;
+            let text = ehl_bearing::io::read_text(path)?;
             let c = ehl::input::parse_contact_toml(&text)
                 .with_context(|| format!("in {}", path.display()))?;
+            for w in ehl_bearing::plausibility::check_contact(&c)
+                .with_context(|| format!("{}: outside what the models describe", path.display()))?
+            {
+                eprintln!("warning: {}: {w}", path.display());
+            }
             ehl::solve_steady(&c, &s)?
         }
         (None, Some(m), Some(l)) => {
@@ -217,6 +250,7 @@ pub fn run(args: &EhlArgs) -> Result<()> {
         }
         _ => bail!("give a contact file, or both --moes-m and --moes-l"),
     };
+    spinner.finish_and_clear();
     if args.json {
         println!("{}", serde_json::to_string_pretty(&json(&result))?);
     } else {
@@ -224,6 +258,13 @@ pub fn run(args: &EhlArgs) -> Result<()> {
     }
     if let Some(dir) = &args.fields {
         write_fields(&result, dir)?;
+    }
+    if result.converged && result.h_min <= 0.0 {
+        eprintln!(
+            "warning: the minimum film is {:.3e} m ≤ 0: the {}² grid does not resolve this \
+             film (very thin at this load and L); refine --grid",
+            result.h_min, result.grid[0]
+        );
     }
     if !result.converged {
         bail!(

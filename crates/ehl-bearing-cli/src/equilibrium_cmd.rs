@@ -77,6 +77,24 @@ pub fn films(case: &Case, eq: &Equilibrium, grid: Option<usize>) -> Vec<Film> {
 /// Run `equilibrium`.
 pub fn run(args: &EquilibriumArgs) -> anyhow::Result<()> {
     let case = read_case(&args.case)?;
+    // The dry equilibrium stays meaningful as a Hertz computation: outside the models' range
+    // it warns; with --film (EHL solves) it refuses.
+    match ehl_bearing::plausibility::check_case(&case) {
+        Ok(warnings) => {
+            for w in warnings {
+                eprintln!("warning: {}: {w}", args.case.display());
+            }
+        }
+        Err(e) if args.film => {
+            return Err(e).with_context(|| {
+                format!("{}: outside what the models describe", args.case.display())
+            })
+        }
+        Err(e) => eprintln!(
+            "warning: {}: outside what the models describe: {e}",
+            args.case.display()
+        ),
+    }
     let laws = ContactLaws::hertz(&case.bearing)?;
     let eq = solve_equilibrium(&case.bearing, &laws, &case.operating, &case.settings)
         .with_context(|| format!("solving {}", args.case.display()))?;

@@ -63,3 +63,107 @@ fn main() -> ExitCode {
         }
     }
 }
+
+/// Command-line parsing over many generated argument lists, in process (the runs themselves:
+/// `tests/fuzz_cli.rs`): clap must return arguments or an error, never panic. Default: 20 000
+/// lists; `FUZZ_ARGS=1000000 cargo test -p ehl-bearing-cli --bin ehl-bearing fuzz_parse --
+/// --ignored` for more.
+#[cfg(test)]
+mod fuzz_parse {
+    use super::Cli;
+    use clap::Parser;
+
+    const WORDS: [&str; 40] = [
+        "equilibrium",
+        "characterize",
+        "study",
+        "merge",
+        "ehl",
+        "contact",
+        "coefficients",
+        "case.toml",
+        "-o",
+        "out",
+        "--json",
+        "--method",
+        "hertz",
+        "quasi-static",
+        "--threads",
+        "--tolerance",
+        "--max-iterations",
+        "--time-limit",
+        "--grid",
+        "--moes-m",
+        "--moes-l",
+        "--ry-over-rx",
+        "--viscosity",
+        "barus",
+        "--shard",
+        "2/3",
+        "0/0",
+        "--speeds",
+        "1,2,,x",
+        "--points",
+        "--fields",
+        "--overwrite",
+        "--film",
+        "nan",
+        "-1",
+        "1e400",
+        "",
+        "--",
+        "-",
+        "--help",
+    ];
+
+    fn lists(seed: u64, n: u64) -> usize {
+        let mut state = seed;
+        let mut next = move || {
+            state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = state;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            z ^ (z >> 31)
+        };
+        let mut parsed = 0;
+        for _ in 0..n {
+            let len = (next() % 8) as usize;
+            let mut args = vec!["ehl-bearing".to_string()];
+            for _ in 0..len {
+                let r = next();
+                args.push(if r % 11 == 0 {
+                    format!("{}", f64::from_bits(next()))
+                } else {
+                    WORDS[(r % WORDS.len() as u64) as usize].to_string()
+                });
+            }
+            if Cli::try_parse_from(&args).is_ok() {
+                parsed += 1;
+            }
+        }
+        parsed
+    }
+
+    #[test]
+    fn parsing_never_panics() {
+        let parsed = lists(15, 20_000);
+        // Some lists are complete commands.
+        assert!(parsed > 100, "{parsed}");
+    }
+
+    #[test]
+    #[ignore]
+    fn parsing_never_panics_many() {
+        let n = std::env::var("FUZZ_ARGS")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(1_000_000);
+        let t0 = std::time::Instant::now();
+        let parsed = lists(15, n);
+        println!(
+            "{n} argument lists parsed in {:.1} s: {parsed} accepted, {} refused",
+            t0.elapsed().as_secs_f64(),
+            n as usize - parsed
+        );
+    }
+}

@@ -17,6 +17,7 @@
 
 use crate::characterize_cmd::{contact_progress, progress_container, with_threads};
 use crate::progress;
+use anyhow::Context;
 use ehl_bearing::io::FsStore;
 use ehl_bearing::study::{
     finish_study, merge_points, read_study, run_study, PointStore, ResultRow, RunOptions, Shard,
@@ -57,6 +58,10 @@ pub struct StudyArgs {
     /// Results do not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Wall-time budget of each point in seconds: a point that runs out of it fails with an
+    /// error carrying its residual history and is not saved (a rerun computes it).
+    #[arg(long, value_name = "SECONDS")]
+    pub time_limit: Option<f64>,
     /// Testing aid: sleep this many milliseconds before each computed point (to interrupt a
     /// study reliably in the resume test).
     #[arg(long, hide = true, default_value_t = 0)]
@@ -143,11 +148,26 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     if args.threads == Some(0) {
         anyhow::bail!("--threads 0: expected at least 1 thread");
     }
+    crate::characterize_cmd::deadline(args.time_limit)?;
+    // Every point's case is checked for physical plausibility before any work.
+    for p in study.shard_points(args.shard.unwrap_or(Shard::ALL)) {
+        crate::characterize_cmd::check_plausible(&study.point_case(&p), study_path).with_context(
+            || {
+                format!(
+                    "point {} ({} rpm × load scale {})",
+                    p.index + 1,
+                    p.inner_speed_rpm,
+                    p.load_scale
+                )
+            },
+        )?;
+    }
     // The output folder is checked (and created) before any work.
     let store = FsStore::create(output)?;
     let options = RunOptions {
         shard: args.shard.unwrap_or(Shard::ALL),
         overwrite: args.overwrite,
+        point_time_limit_s: args.time_limit,
     };
     // Progress markers (DIR/.progress) are started once the run has checked the folder (a
     // refused run leaves it untouched).

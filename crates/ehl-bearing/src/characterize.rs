@@ -76,6 +76,22 @@ pub enum CharacterizeError {
         /// What went wrong.
         cause: Box<crate::Error>,
     },
+    /// The wall-time budget ([`CharacterizeSettings::deadline`]) ran out.
+    #[error(
+        "characterization stopped at its time limit of {limit_s} s after {seconds:.1} s and \
+         {iterations} finished iterations (largest relative load change after each: {})",
+        crate::ehl::format_history(load_change_history)
+    )]
+    TimeLimit {
+        /// The budget, s.
+        limit_s: f64,
+        /// Time spent, s.
+        seconds: f64,
+        /// Finished iterations.
+        iterations: usize,
+        /// Largest relative load change after each finished iteration.
+        load_change_history: Vec<f64>,
+    },
     /// The equilibrium with the fitted laws failed.
     #[error("equilibrium with the fitted laws failed in iteration {iteration}: {cause}")]
     Equilibrium {
@@ -146,6 +162,11 @@ pub struct CharacterizeSettings {
     /// Start the loop from loads predicted with the method's [`ContactCharacterizer::predictor`]
     /// laws instead of the dry Hertz loads, when the method offers a predictor (default true).
     pub predict_loads: bool,
+    /// Wall-time budget of the loop (default none), checked before every iteration; when it has
+    /// passed the loop ends with [`CharacterizeError::TimeLimit`]. The EHL solves inside take
+    /// theirs from the method ([`crate::method::Method::with_deadline`]). Not serialized.
+    #[serde(skip)]
+    pub deadline: Option<crate::budget::Deadline>,
 }
 
 impl Default for CharacterizeSettings {
@@ -158,6 +179,7 @@ impl Default for CharacterizeSettings {
             error_if_not_converged: false,
             load_reuse_tolerance: 0.01,
             predict_loads: true,
+            deadline: None,
         }
     }
 }
@@ -590,6 +612,17 @@ pub fn characterize_bearing_with_progress(
     let mut change = f64::INFINITY;
     let mut contacts: Vec<LoopContact> = Vec::new();
     for iteration in 1..=settings.max_iterations {
+        if let Some(d) = settings.deadline.filter(|d| d.expired()) {
+            return Err(CharacterizeError::TimeLimit {
+                limit_s: d.limit_seconds(),
+                seconds: d.elapsed_seconds(),
+                iterations: history.len(),
+                load_change_history: history
+                    .iter()
+                    .map(|h: &IterationRecord| h.max_load_change)
+                    .collect(),
+            });
+        }
         let ti = Instant::now();
         let conds = conditions_of(case, &eq, settings.min_load_fraction);
         let keys: Vec<[f64; 3]> = conds.iter().map(|(c, _)| contact_key(c)).collect();

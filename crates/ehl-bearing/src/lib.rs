@@ -13,6 +13,7 @@
 #![warn(missing_docs)]
 
 pub mod bearing;
+pub mod budget;
 pub mod characterize;
 pub mod coefficients;
 pub mod contact;
@@ -25,6 +26,7 @@ pub mod hertz;
 pub mod io;
 pub mod material;
 pub mod method;
+pub mod plausibility;
 pub mod rotor;
 pub mod study;
 

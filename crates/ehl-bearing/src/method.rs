@@ -955,6 +955,22 @@ impl Method {
         }
     }
 
+    /// The method with a wall-time budget on its EHL solves ([`EhlSettings::deadline`]; no
+    /// effect on hertz and synthetic, which do not iterate).
+    pub fn with_deadline(self, deadline: Option<crate::budget::Deadline>) -> Method {
+        match self {
+            Method::QuasiStatic(mut s) => {
+                s.ehl.deadline = deadline;
+                Method::QuasiStatic(s)
+            }
+            Method::Harmonic(mut s) => {
+                s.ehl.deadline = deadline;
+                Method::Harmonic(s)
+            }
+            m => m,
+        }
+    }
+
     /// The EHL grid of an EHL method (None for hertz and synthetic).
     pub fn grid(&self) -> Option<usize> {
         match self {

@@ -24,6 +24,7 @@ fn run(s: &Study, store: &MemoryStore, shard: Shard) -> ehl_bearing::study::Stud
         &RunOptions {
             shard,
             overwrite: false,
+            point_time_limit_s: None,
         },
         &|_| {},
     )
@@ -114,6 +115,7 @@ fn another_studys_points_are_refused_before_any_work() {
         &RunOptions {
             shard: Shard::ALL,
             overwrite: true,
+            point_time_limit_s: None,
         },
         &|_| {},
     )

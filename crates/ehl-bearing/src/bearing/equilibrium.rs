@@ -828,6 +828,7 @@ impl BearingModel {
 
     /// Damped Newton (with a Levenberg–Marquardt fallback) for one ball in polar coordinates
     /// about the outer groove centre; returns the last iterate.
+    #[allow(clippy::too_many_arguments)]
     fn ball_newton(
         &self,
         j: usize,

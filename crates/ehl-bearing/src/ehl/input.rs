@@ -75,8 +75,12 @@ pub fn parse_contact_toml(text: &str) -> Result<EhlContact, EhlError> {
 
 /// Parses and validates a contact file's text, with the ball's mass if the file gives it.
 pub fn parse_contact_file(text: &str) -> Result<ContactFile, EhlError> {
-    let t: ContactToml =
-        toml::from_str(text).map_err(|e| EhlError::File(format!("contact file: {e}")))?;
+    let t: ContactToml = crate::io::from_toml(text, "contact file").map_err(|e| match e {
+        crate::io::InputError::Syntax { path, message } => {
+            EhlError::File(format!("{path}: {message}"))
+        }
+        e => EhlError::File(e.to_string()),
+    })?;
     let load = positive("load_n", t.load_n)?;
     let rx = positive("rx_mm", t.rx_mm)? * 1e-3;
     let ry = positive("ry_mm", t.ry_mm)? * 1e-3;
@@ -91,7 +95,16 @@ pub fn parse_contact_file(text: &str) -> Result<ContactFile, EhlError> {
         (Some(_), Some(_), _) | (Some(_), _, Some(_)) => {
             fail!("give either reduced_modulus_gpa or [ball_material]/[ring_material], not both")
         }
-        (Some(e), None, None) => positive("reduced_modulus_gpa", e)? * 1e9,
+        (Some(e), None, None) => {
+            // Two solids of 0.1 to 1200 GPa (case files) with 0 ≤ ν < 0.5.
+            if !(e.is_finite() && (0.1..=2400.0).contains(&e)) {
+                fail!(
+                    "reduced_modulus_gpa = {e} is invalid: valid range 0.1 to 2400 GPa (steel on \
+                     steel 228.6; the moduli of real solids)"
+                );
+            }
+            e * 1e9
+        }
         (None, b, r) => reduced_modulus(&solid("ball_material", b)?, &solid("ring_material", r)?),
     };
     let ball_mass = match (t.ball_mass_kg, t.ball_diameter_mm) {

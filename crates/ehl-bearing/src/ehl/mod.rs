@@ -62,6 +62,29 @@ pub enum EhlError {
         /// Lowest relative residual reached before the divergence (NaN if none).
         residual: f64,
     },
+    /// The wall-time budget ([`EhlSettings::deadline`]) ran out before the solve converged.
+    #[error(
+        "EHL solve stopped at its time limit of {limit_s} s after {seconds:.1} s and {cycles} \
+         cycles (M = {m:.4}, L = {l:.4}, Ry/Rx = {ratio:.4}; relative residual after each cycle \
+         of the last start: {})",
+        format_history(residual_history)
+    )]
+    TimeLimit {
+        /// The budget, s.
+        limit_s: f64,
+        /// Time spent, s.
+        seconds: f64,
+        /// Multigrid cycles done on the finest grid.
+        cycles: usize,
+        /// Moes load parameter of the case.
+        m: f64,
+        /// Moes material parameter of the case.
+        l: f64,
+        /// Ry/Rx of the case.
+        ratio: f64,
+        /// Relative residual after each finest-grid cycle of the last start that ran cycles.
+        residual_history: Vec<f64>,
+    },
     /// A stage that must converge before the next can start did not.
     #[error(
         "EHL {stage} did not converge (relative residual {residual:e}, force-balance residual \
@@ -75,6 +98,22 @@ pub enum EhlError {
         /// Relative force-balance residual reached.
         force_residual: f64,
     },
+}
+
+/// A residual history in a message: all values when short, else the first and last few
+/// (for the messages of the time-limit errors).
+pub fn format_history(h: &[f64]) -> String {
+    let f = |v: &[f64]| {
+        v.iter()
+            .map(|x| format!("{x:.2e}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    match h.len() {
+        0 => "none".into(),
+        n if n <= 8 => format!("[{}]", f(h)),
+        n => format!("[{}, …, {}] ({n} cycles)", f(&h[..3]), f(&h[n - 3..])),
+    }
 }
 
 /// Multigrid cycle type.
@@ -138,6 +177,11 @@ pub struct EhlSettings {
     pub jd_threshold: f64,
     /// FAS cycles on each intermediate level of the full-multigrid start (default 2).
     pub fmg_cycles: usize,
+    /// Wall-time budget (default none): checked before every multigrid cycle and between the
+    /// starts; when it has passed the solve ends with [`EhlError::TimeLimit`]. Not part of the
+    /// settings' serialized form (results do not depend on it).
+    #[serde(skip)]
+    pub deadline: Option<crate::budget::Deadline>,
 }
 
 impl Default for EhlSettings {
@@ -164,6 +208,7 @@ impl Default for EhlSettings {
             h0_gain: 0.05,
             jd_threshold: 0.3,
             fmg_cycles: 2,
+            deadline: None,
         }
     }
 }

@@ -366,6 +366,10 @@ fn iterate(
         bilinear(&lv.h, &lv.x, &lv.y, 0.0, 0.0)
     };
     for _ in 0..max_cycles {
+        // The wall-time budget ends the iteration like the cycle limit; the caller reports it.
+        if crate::budget::expired(&s.deadline) {
+            break;
+        }
         let hc_old = centre(&hier);
         let h0_old = hier.h0;
         hier.cycle(pr, &prm, top);
@@ -585,7 +589,24 @@ fn solve_ordered(
     let mut load_cont: Option<Result<EhlSolution, EhlError>> = None;
     let mut alpha_lowest = f64::NAN;
     let mut alpha_best: Option<(Vec<f64>, f64, usize)> = None;
+    let mut last_history: Vec<f64> = Vec::new();
+    let time_limit = |cycles: usize, history: &[f64]| {
+        s.deadline.map(|d| EhlError::TimeLimit {
+            limit_s: d.limit_seconds(),
+            seconds: t0.elapsed().as_secs_f64(),
+            cycles,
+            m: sc.m,
+            l: sc.l,
+            ratio: sc.ratio,
+            residual_history: history.to_vec(),
+        })
+    };
     for &st in order {
+        if crate::budget::expired(&s.deadline) {
+            if let Some(e) = time_limit(cycles, &last_history) {
+                return Err(e);
+            }
+        }
         let ta = Instant::now();
         let before = cycles;
         match st {
@@ -600,6 +621,9 @@ fn solve_ordered(
                 match iterate(pr, sk, Start::Hertz, h_est, s.max_cycles) {
                     Ok(core) => {
                         cycles += core.cycles;
+                        if !core.history.is_empty() {
+                            last_history.clone_from(&core.history);
+                        }
                         record(&mut log, st, core.outcome(), core.cycles, core.residual, ta);
                         if core.converged {
                             let mut r = finish(c, sc, core, cycles, 0, t0);
@@ -622,6 +646,9 @@ fn solve_ordered(
                 let (outcome, res) = match &r {
                     Ok(sol) => {
                         cycles = sol.cycles;
+                        if !sol.residual_history.is_empty() {
+                            last_history.clone_from(&sol.residual_history);
+                        }
                         let o = if sol.converged {
                             AttemptOutcome::Converged
                         } else {
@@ -712,6 +739,11 @@ fn solve_ordered(
                 }
                 None => record(&mut log, st, AttemptOutcome::Skipped, 0, f64::NAN, ta),
             },
+        }
+    }
+    if crate::budget::expired(&s.deadline) {
+        if let Some(e) = time_limit(cycles, &last_history) {
+            return Err(e);
         }
     }
     match best {
@@ -888,6 +920,13 @@ fn alpha_continuation(
     let mut q = ALPHA_STEP;
     let mut steps = 1;
     loop {
+        if crate::budget::expired(&warm.deadline) {
+            return Err(AlphaFailure {
+                cycles: cycles_total,
+                lowest,
+                best,
+            });
+        }
         let mut f = done * q;
         if f > 1.0 - 1e-9 {
             f = 1.0;
@@ -1013,6 +1052,10 @@ fn continuation(
     let mut last_res = f64::NAN;
     let steps = loads.len();
     for (k, &load) in loads.iter().enumerate() {
+        if crate::budget::expired(&s.deadline) && k + 1 < steps {
+            // Straight to the last step, which stops at once and returns its iterate.
+            continue;
+        }
         let ck = contact_with_load(c, load);
         let (pr, sck) = setup(&ck, s)?;
         let h_est = h_estimate(&sck);

@@ -251,6 +251,17 @@ impl TransientSolver {
                 range: "finite",
             });
         }
+        if let Some(d) = self.s.deadline.filter(|d| d.expired()) {
+            return Err(EhlError::TimeLimit {
+                limit_s: d.limit_seconds(),
+                seconds: d.elapsed_seconds(),
+                cycles: 0,
+                m: self.sc.m,
+                l: self.sc.l,
+                ratio: self.sc.ratio,
+                residual_history: Vec::new(),
+            });
+        }
         let top = self.hier.levels.len() - 1;
         let dtt = self.dtt;
         // Shift the history: the current state becomes level n−1.
@@ -301,6 +312,9 @@ impl TransientSolver {
         let mut force_residual = f64::NAN;
         let mut cycles = 0;
         for _ in 0..self.max_cycles {
+            if crate::budget::expired(&self.s.deadline) {
+                break;
+            }
             let hc_old = centre(&self.hier);
             let h0_old = self.hier.h0;
             self.hier.cycle(&self.pr, &self.prm, top);

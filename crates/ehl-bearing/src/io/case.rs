@@ -191,19 +191,13 @@ struct RawEquilibrium {
 
 /// Read and validate a case file.
 pub fn read_case(path: &Path) -> Result<Case, InputError> {
-    let text = std::fs::read_to_string(path).map_err(|e| InputError::Io {
-        path: path.display().to_string(),
-        message: e.to_string(),
-    })?;
+    let text = super::read_text(path)?;
     parse_case(&text, &path.display().to_string())
 }
 
 /// Parse and validate case-file text; `origin` names the source in messages.
 pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
-    let raw: RawCase = toml::from_str(text).map_err(|e| InputError::Syntax {
-        path: origin.to_string(),
-        message: e.to_string().trim_end().to_string(),
-    })?;
+    let raw: RawCase = super::from_toml(text, origin)?;
     let method = match (&raw.method, &raw.method_options) {
         (Some(name), options) => Some(
             crate::method::Method::parse(name, options.as_ref()).map_err(method_input_error)?,
@@ -229,23 +223,21 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
             "an integer from 3 to 1000",
         ));
     }
-    let d = positive(
+    let d = size(
         require(
             b.ball_diameter_mm,
             "bearing.ball_diameter_mm",
             "the ball diameter in mm",
         )?,
         "bearing.ball_diameter_mm",
-        "mm",
     )?;
-    let dm = positive(
+    let dm = size(
         require(
             b.pitch_diameter_mm,
             "bearing.pitch_diameter_mm",
             "the pitch diameter in mm",
         )?,
         "bearing.pitch_diameter_mm",
-        "mm",
     )?;
     if d >= dm {
         return Err(InputError::field(
@@ -314,7 +306,7 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
             "bearing.ball_count",
             ball_count,
             format!(
-                "few enough balls to fit: {ball_count} balls of {d} mm overlap on a {dm} mm pitch circle (neighbour spacing {chord:.3} mm)"
+                "few enough balls to fit: {ball_count} balls of bearing.ball_diameter_mm = {d} overlap on bearing.pitch_diameter_mm = {dm} (neighbour spacing {chord:.3} mm)"
             ),
         ));
     }
@@ -400,6 +392,20 @@ fn require<T>(v: Option<T>, key: &str, hint: &str) -> Result<T, InputError> {
     })
 }
 
+/// A bearing dimension in mm: 0.01 mm (miniature balls are ≥ 0.3 mm) to 20 m (the largest
+/// slewing bearings).
+fn size(v: f64, key: &str) -> Result<f64, InputError> {
+    if v.is_finite() && (0.01..=20_000.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(InputError::field(
+            key,
+            v,
+            "a dimension from 0.01 to 20000 mm",
+        ))
+    }
+}
+
 fn positive(v: f64, key: &str, unit: &str) -> Result<f64, InputError> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
@@ -429,7 +435,17 @@ pub(crate) fn solid(raw: Option<&RawSolid>, table: &str) -> Result<Solid, InputE
     let mut s = Solid::AISI_52100;
     if let Some(r) = raw {
         if let Some(e) = r.youngs_modulus_gpa {
-            s.youngs_modulus = positive(e, &format!("{table}.youngs_modulus_gpa"), "GPa")? * 1e9;
+            // Diamond, the stiffest solid, has about 1050–1200 GPa; below 0.1 GPa (rubbers) the
+            // contact is soft EHL, which the piezoviscous models here do not describe.
+            if !(e.is_finite() && (0.1..=1200.0).contains(&e)) {
+                return Err(InputError::field(
+                    &format!("{table}.youngs_modulus_gpa"),
+                    e,
+                    "0.1 to 1200 GPa (a solid's modulus: steel 208, silicon nitride 310, \
+                     diamond ≈ 1100)",
+                ));
+            }
+            s.youngs_modulus = e * 1e9;
         }
         if let Some(nu) = r.poisson_ratio {
             if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {

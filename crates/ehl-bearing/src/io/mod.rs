@@ -59,6 +59,52 @@ pub enum InputError {
     },
 }
 
+/// Largest input file read (case, contact, study, trend files are a few kB): 16 MiB.
+pub const MAX_INPUT_BYTES: u64 = 16 << 20;
+
+/// Reads a text input file of at most [`MAX_INPUT_BYTES`]: a larger file or an endless one
+/// (e.g. `/dev/zero`) is an error after reading that much, instead of filling the memory.
+pub fn read_text(path: &std::path::Path) -> Result<String, InputError> {
+    use std::io::Read;
+    let io = |message: String| InputError::Io {
+        path: path.display().to_string(),
+        message,
+    };
+    let file = std::fs::File::open(path).map_err(|e| io(e.to_string()))?;
+    let mut bytes = Vec::new();
+    file.take(MAX_INPUT_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| io(e.to_string()))?;
+    if bytes.len() as u64 > MAX_INPUT_BYTES {
+        return Err(io(format!(
+            "larger than {} MiB: not an input file of this program",
+            MAX_INPUT_BYTES >> 20
+        )));
+    }
+    String::from_utf8(bytes).map_err(|e| io(format!("not UTF-8 text: {e}")))
+}
+
+/// Deserializes TOML text, naming the key of a value of the wrong type or an unknown variant
+/// (`in bearing.ball_count: …`), which the TOML parser's message alone does not always do.
+pub(crate) fn from_toml<T: serde::de::DeserializeOwned>(
+    text: &str,
+    origin: &str,
+) -> Result<T, InputError> {
+    let de = toml::Deserializer::new(text);
+    serde_path_to_error::deserialize(de).map_err(|e| {
+        let path = e.path().to_string();
+        let message = e.into_inner().to_string().trim_end().to_string();
+        InputError::Syntax {
+            path: origin.to_string(),
+            message: if path == "." || message.contains(&path) {
+                message
+            } else {
+                format!("in `{path}`: {message}")
+            },
+        }
+    })
+}
+
 impl InputError {
     pub(crate) fn field(field: &str, value: impl ToString, expected: impl Into<String>) -> Self {
         InputError::Field {

@@ -52,6 +52,9 @@ pub struct RunOptions {
     pub shard: Shard,
     /// Recompute point files that hold a different spec instead of refusing (default false).
     pub overwrite: bool,
+    /// Wall-time budget of each point, s (default none): a point that runs out of it fails with
+    /// the time-limit error and is not saved (a later run with a larger budget computes it).
+    pub point_time_limit_s: Option<f64>,
 }
 
 impl Default for RunOptions {
@@ -59,6 +62,7 @@ impl Default for RunOptions {
         RunOptions {
             shard: Shard::ALL,
             overwrite: false,
+            point_time_limit_s: None,
         }
     }
 }
@@ -236,7 +240,33 @@ pub fn run_study(
     for p in todo {
         events(StudyEvent::PointStarted(p));
         let tp = Instant::now();
-        let record = run_point(study, &p, &|e| events(StudyEvent::Loop(e)));
+        let deadline = options
+            .point_time_limit_s
+            .and_then(crate::budget::Deadline::after_seconds);
+        let record = match deadline {
+            None => run_point(study, &p, &|e| events(StudyEvent::Loop(e))),
+            Some(d) => {
+                let mut bounded = study.clone();
+                bounded.method = bounded.method.with_deadline(Some(d));
+                bounded.settings.deadline = Some(d);
+                run_point(&bounded, &p, &|e| events(StudyEvent::Loop(e)))
+            }
+        };
+        if record.error.is_some() && deadline.is_some_and(|d| d.expired()) {
+            // Out of its time budget: not a result of the point, so no point file.
+            let e = format!(
+                "{} (not saved: a run with a larger time limit computes it)",
+                record.error.clone().unwrap_or_default()
+            );
+            run.failed.push((p, e.clone()));
+            events(StudyEvent::PointDone {
+                point: p,
+                converged: false,
+                error: Some(e),
+                seconds: tp.elapsed().as_secs_f64(),
+            });
+            continue;
+        }
         store.save_point(&p.file_stem(), &record.to_json())?;
         run.computed += 1;
         if let Some(e) = &record.error {

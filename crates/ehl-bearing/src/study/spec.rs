@@ -75,10 +75,7 @@ struct RawCharacterize {
 
 /// Read a study file; a relative `case` path is resolved against the study file's folder.
 pub fn read_study(path: &Path) -> Result<Study, InputError> {
-    let text = std::fs::read_to_string(path).map_err(|e| InputError::Io {
-        path: path.display().to_string(),
-        message: e.to_string(),
-    })?;
+    let text = crate::io::read_text(path)?;
     let base = path.parent().unwrap_or(Path::new("."));
     parse_study(&text, &path.display().to_string(), base)
 }
@@ -104,10 +101,7 @@ pub fn read_study(path: &Path) -> Result<Study, InputError> {
 ///                                       # quasi-static: amplitude, points, grid; hertz: samples, amplitude
 /// ```
 pub fn parse_study(text: &str, origin: &str, base_dir: &Path) -> Result<Study, InputError> {
-    let raw: RawStudy = toml::from_str(text).map_err(|e| InputError::Syntax {
-        path: origin.to_string(),
-        message: e.to_string().trim_end().to_string(),
-    })?;
+    let raw: RawStudy = crate::io::from_toml(text, origin)?;
     let (case, case_origin) = match raw.case {
         None => {
             return Err(InputError::Missing {

@@ -1,0 +1,182 @@
+//! Inputs outside what the models describe are refused at once, naming the key, and long
+//! solves are bounded by `--time-limit` (issue 15: each of these ran for minutes before).
+
+use assert_cmd::cargo::CommandCargoExt;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::time::{Duration, Instant};
+
+fn examples() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
+}
+
+/// The seed case with `from` replaced by `to`.
+fn case_with(dir: &Path, from: &str, to: &str) -> PathBuf {
+    let text = std::fs::read_to_string(examples().join("7006.toml")).unwrap();
+    assert!(text.contains(from));
+    let path = dir.join("case.toml");
+    std::fs::write(&path, text.replace(from, to)).unwrap();
+    path
+}
+
+fn run(args: &[&str]) -> (Output, Duration) {
+    let t0 = Instant::now();
+    let o = Command::cargo_bin("ehl-bearing")
+        .unwrap()
+        .args(args)
+        .output()
+        .unwrap();
+    (o, t0.elapsed())
+}
+
+fn refused_at_once(args: &[&str], needles: &[&str]) {
+    let (o, t) = run(args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    for n in needles {
+        assert!(err.contains(n), "{n:?} not in: {err}");
+    }
+    assert!(t < Duration::from_secs(5), "took {t:?}");
+}
+
+#[test]
+fn the_issues_characterize_examples_are_refused_at_once() {
+    let tmp = tempfile::tempdir().unwrap();
+    let c = case_with(
+        tmp.path(),
+        "inner_speed_rpm = 5000.0",
+        "inner_speed_rpm = 1e5",
+    );
+    refused_at_once(
+        &["characterize", c.to_str().unwrap()],
+        &["operating.inner_speed_rpm = 100000", "n·d_m ≤ 4.0e6"],
+    );
+    let c = case_with(
+        tmp.path(),
+        "youngs_modulus_gpa = 208.0",
+        "youngs_modulus_gpa = 1e6",
+    );
+    refused_at_once(
+        &["characterize", c.to_str().unwrap()],
+        &[
+            "ball_material.youngs_modulus_gpa = 1000000",
+            "0.1 to 1200 GPa",
+        ],
+    );
+    let c = case_with(tmp.path(), "force_axial_n = 1000.0", "force_axial_n = 1e5");
+    refused_at_once(
+        &["characterize", c.to_str().unwrap()],
+        &["operating.force_axial_n", "100000", "≤ 5.0 GPa"],
+    );
+    // The same in a study: refused before the output folder is made.
+    let study = tmp.path().join("study.toml");
+    std::fs::write(
+        &study,
+        "case = \"case.toml\"\nmethod = \"hertz\"\ninner_speeds_rpm = [3000.0]\n",
+    )
+    .unwrap();
+    let out = tmp.path().join("out");
+    refused_at_once(
+        &[
+            "study",
+            study.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        &["point 1", "operating.force_axial_n"],
+    );
+    assert!(!out.exists());
+    // The dry equilibrium itself still runs, with a warning.
+    let (o, _) = run(&["equilibrium", c.to_str().unwrap()]);
+    assert!(o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("warning"));
+    // A contact file beyond the pressure limit.
+    let text = std::fs::read_to_string(examples().join("contact_7006_inner.toml")).unwrap();
+    let contact = tmp.path().join("contact.toml");
+    std::fs::write(&contact, text.replace("load_n = 600.0", "load_n = 60000.0")).unwrap();
+    for cmd in ["ehl", "contact"] {
+        refused_at_once(
+            &[cmd, contact.to_str().unwrap()],
+            &["load_n = 60000", "GPa"],
+        );
+    }
+}
+
+#[test]
+fn large_grids_say_so_at_once_and_stop_at_the_time_limit() {
+    let contact = examples().join("contact_7006_inner.toml");
+    let (o, t) = run(&[
+        "ehl",
+        contact.to_str().unwrap(),
+        "--grid",
+        "1025",
+        "--time-limit",
+        "1",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("note: a 1025×1025 grid takes minutes"),
+        "{err}"
+    );
+    assert!(
+        err.contains("time limit of 1 s") && err.contains("relative residual after each cycle"),
+        "{err}"
+    );
+    // One multigrid cycle at 1025² after the budget at most (about 10 s on a loaded machine).
+    assert!(t < Duration::from_secs(60), "took {t:?}");
+    let (o, _) = run(&["ehl", contact.to_str().unwrap(), "--time-limit", "0"]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--time-limit 0"));
+}
+
+#[test]
+fn the_coupled_loop_and_a_study_point_stop_at_their_time_limit() {
+    let case = examples().join("7006.toml");
+    let (o, t) = run(&["characterize", case.to_str().unwrap(), "--time-limit", "1"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("time limit of 1 s"), "{err}");
+    assert!(t < Duration::from_secs(30), "took {t:?}");
+    // A study point out of its budget fails and leaves no point file (a rerun computes it).
+    let tmp = tempfile::tempdir().unwrap();
+    let study = examples().join("study_7006.toml");
+    let out = tmp.path().join("out");
+    let (o, _) = run(&[
+        "study",
+        study.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--shard",
+        "12/12",
+        "--time-limit",
+        "0.5",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("time limit") && err.contains("not saved"),
+        "{err}"
+    );
+    let files = std::fs::read_dir(out.join("points")).unwrap().count();
+    assert_eq!(files, 0, "{err}");
+}
+
+/// Found by tests/ehl_edges.rs: at M = 557, L = 0.5 the 33² grid converges to a negative film
+/// (the true one, ≈ 0.1 nm at 257², is not resolved). The solution is finite and `ehl` says so.
+#[test]
+fn an_unresolved_film_is_reported() {
+    let (o, _) = run(&[
+        "ehl",
+        "--moes-m",
+        "556.78",
+        "--moes-l",
+        "0.5",
+        "--ry-over-rx",
+        "3.7376",
+        "--grid",
+        "33",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("does not resolve this film"), "{err}");
+}
