@@ -3,6 +3,10 @@
 //! dicts (the library's JSON, SI units), matrices and vectors as numpy arrays. Long computations
 //! release the GIL; progress callbacks re-acquire it.
 
+// pyo3 0.22's macros expand `?` on PyResult into a PyErr → PyErr conversion that clippy flags in
+// the user's code (a known false positive of pyo3 0.22's macros, gone in later pyo3).
+#![allow(clippy::useless_conversion)]
+
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws};
 use ehl_bearing::characterize::{
     characterization_json, characterize_bearing_with_progress, BearingCharacterization,
@@ -74,7 +78,9 @@ fn progress_json(p: &Progress) -> serde_json::Value {
         Progress::IterationStarted {
             iteration,
             contacts,
-        } => serde_json::json!({"event": "iteration_started", "iteration": iteration, "contacts": contacts}),
+        } => {
+            serde_json::json!({"event": "iteration_started", "iteration": iteration, "contacts": contacts})
+        }
         Progress::ContactDone { iteration } => {
             serde_json::json!({"event": "contact_done", "iteration": iteration})
         }
@@ -171,7 +177,9 @@ impl PyCase {
     /// The same case with the inner-ring speed set to `rpm`.
     fn with_inner_speed_rpm(&self, rpm: f64) -> PyResult<Self> {
         if !rpm.is_finite() {
-            return Err(err(format!("inner speed {rpm} rpm: expected a finite speed")));
+            return Err(err(format!(
+                "inner speed {rpm} rpm: expected a finite speed"
+            )));
         }
         let mut c = self.case.clone();
         c.operating.inner_speed = rpm * PI / 30.0;
@@ -480,7 +488,10 @@ impl ElementCore {
         let loads: Vec<Vec<f64>> = out.loads.iter().map(|l| l.to_vec()).collect();
         let appr: Vec<Vec<f64>> = out.approaches.iter().map(|l| l.to_vec()).collect();
         d.set_item("loads", PyArray2::from_vec2_bound(py, &loads).map_err(err)?)?;
-        d.set_item("approaches", PyArray2::from_vec2_bound(py, &appr).map_err(err)?)?;
+        d.set_item(
+            "approaches",
+            PyArray2::from_vec2_bound(py, &appr).map_err(err)?,
+        )?;
         let outside: Vec<(usize, String)> = out
             .outside_range
             .iter()
@@ -622,12 +633,8 @@ impl PyLawElement {
         let v = from_py(py, report)?;
         let r: ehl_bearing::characterize::CharacterizationReport =
             serde_json::from_value(v).map_err(|e| err(format!("characterization report: {e}")))?;
-        let e = LawElement::from_report(
-            &case.case.bearing,
-            case.case.operating.race_control,
-            &r,
-        )
-        .map_err(err)?;
+        let e = LawElement::from_report(&case.case.bearing, case.case.operating.race_control, &r)
+            .map_err(err)?;
         Ok(Self::new(
             Arc::new(e.with_kinematics(case.case.settings.kinematics)),
             false,
@@ -749,6 +756,7 @@ fn ross_table_csv(py: Python<'_>, coefficients: &Bound<'_, PyAny>) -> PyResult<S
 }
 
 /// Check a 2-D array's shape.
+#[allow(dead_code)] // used by the rotor bindings once the integrator lands
 pub(crate) fn square(a: &PyReadonlyArray2<'_, f64>, n: usize, what: &str) -> PyResult<Vec<f64>> {
     let s = a.shape();
     if s != [n, n] {
@@ -760,7 +768,10 @@ pub(crate) fn square(a: &PyReadonlyArray2<'_, f64>, n: usize, what: &str) -> PyR
 /// The native module.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add("EhlBearingError", m.py().get_type_bound::<EhlBearingError>())?;
+    m.add(
+        "EhlBearingError",
+        m.py().get_type_bound::<EhlBearingError>(),
+    )?;
     m.add_class::<PyCase>()?;
     m.add_class::<Characterization>()?;
     m.add_class::<PyLawElement>()?;

@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 import math
-import tomllib
 
 import numpy as np
 import pytest
+import tomllib
 
 import ehl_bearing as eb
 
@@ -27,7 +27,7 @@ def test_library_errors_are_python_exceptions_with_the_message(examples):
     text = (examples / "7006.toml").read_text().replace("ball_count = 11", "ball_count = 2")
     with pytest.raises(eb.EhlBearingError, match="ball_count"):
         eb.Case.from_toml(text, "bad.toml")
-    with pytest.raises(eb.EhlBearingError, match="nope.toml"):
+    with pytest.raises(eb.EhlBearingError, match=r"nope\.toml"):
         eb.Case.from_file("nope.toml")
 
 
@@ -61,7 +61,7 @@ def test_force_element_arrays_and_jacobian(case):
         rp = el.evaluate(q + dq, inner_speed_rad_s=w)[0]
         rm = el.evaluate(q - dq, inner_speed_rad_s=w)[0]
         fd = (rp - rm) / (2 * h)
-        scale = np.abs(np.diag(k)) * (1.0 if j < 3 else 1.0)
+        scale = np.abs(np.diag(k))
         assert np.all(np.abs(fd - k[:, j]) <= 1e-3 * np.maximum(scale, np.abs(k[:, j]))), j
     full = el.evaluate(q, inner_speed_rad_s=w, full=True)
     assert full["loads"].shape == (11, 2) and full["approaches"].shape == (11, 2)
@@ -102,7 +102,7 @@ def test_characterize_hertz_reports_progress_and_gives_an_element(case):
     rep = ch.report()
     assert len(rep["contacts"]) == 22
     el = ch.law_element()
-    r, k, _ = el.evaluate(ch.displacement, inner_speed_rad_s=case.inner_speed_rad_s)
+    r, _, _ = el.evaluate(ch.displacement, inner_speed_rad_s=case.inner_speed_rad_s)
     np.testing.assert_allclose(r[:3], [1000.0] * 3, rtol=1e-4)
     # The same laws through the report dict (as cached by the worked example).
     el2 = eb.LawElement.from_report(case, rep)

@@ -52,10 +52,10 @@ __all__ = [
     "contact",
     "ehl",
     "equilibrium",
+    "print_progress",
+    "read_case",
     "ross_table_csv",
     "study",
-    "read_case",
-    "print_progress",
 ]
 
 __version__ = "0.1.0"

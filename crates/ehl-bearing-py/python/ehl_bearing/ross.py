@@ -46,17 +46,17 @@ except ImportError as _e:  # pragma: no cover - exercised only without ROSS
 __all__ = [
     "OURS_TO_ROSS",
     "ROSS_DOFS",
+    "BearingSite",
     "EhlBearingElement",
     "EhlRotor",
-    "BearingSite",
     "Unbalance",
-    "to_ross_block",
-    "node_dofs",
+    "damping_ratios",
     "friswell_bearing",
-    "two_disk_rotor",
+    "node_dofs",
     "rotor_model",
     "time_response",
-    "damping_ratios",
+    "to_ross_block",
+    "two_disk_rotor",
 ]
 
 #: Local ROSS index (x, y, z, α, β) of each of our DOFs x, y, z, θy, θz.
@@ -177,23 +177,23 @@ class EhlBearingElement(rs.BearingElement):
                 out[i, j] = np.interp(f, self._freq, table[:, i, j])
         return out
 
-    def K5(self, frequency: Any = None) -> np.ndarray:  # noqa: N802 (ROSS's naming)
+    def K5(self, frequency: Any = None) -> np.ndarray:
         """Whole stiffness block (5×5, ROSS order x, y, z, α, β; SI) at rotor speed
         ``frequency`` (rad/s)."""
         return self._interp(self._k5, frequency)
 
-    def C5(self, frequency: Any = None) -> np.ndarray:  # noqa: N802
+    def C5(self, frequency: Any = None) -> np.ndarray:
         """Whole damping block (5×5, ROSS order; SI) at rotor speed ``frequency`` (rad/s)."""
         return self._interp(self._c5, frequency)
 
-    def K_extra(self, frequency: Any = None) -> np.ndarray:  # noqa: N802
+    def K_extra(self, frequency: Any = None) -> np.ndarray:
         """:meth:`K5` minus the part ROSS's ``BearingElement.K`` places (kxx, kxy, kyx, kyy,
         kzz): what :class:`EhlRotor` adds at the node's x, y, z, α, β."""
         k = self.K5(frequency)
         k[:3, :3] -= _ross_3x3(k)
         return k
 
-    def C_extra(self, frequency: Any = None) -> np.ndarray:  # noqa: N802
+    def C_extra(self, frequency: Any = None) -> np.ndarray:
         """:meth:`C5` minus the part ROSS's ``BearingElement.C`` places."""
         c = self.C5(frequency)
         c[:3, :3] -= _ross_3x3(c)
@@ -227,11 +227,11 @@ class EhlRotor(rs.Rotor):
                 out[np.ix_(d, d)] += m
         return out
 
-    def K(self, frequency: Any) -> np.ndarray:  # noqa: N802
+    def K(self, frequency: Any) -> np.ndarray:
         """Stiffness matrix at ``frequency`` (rotor speed, rad/s) with the bearings' tilt terms."""
         return super().K(frequency) + self._extra("K", frequency)
 
-    def C(self, frequency: Any) -> np.ndarray:  # noqa: N802
+    def C(self, frequency: Any) -> np.ndarray:
         """Damping matrix at ``frequency`` (rad/s) with the bearings' tilt terms."""
         return super().C(frequency) + self._extra("C", frequency)
 
