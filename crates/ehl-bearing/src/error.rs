@@ -26,6 +26,9 @@ pub enum Error {
     /// Characterization loop and trend curves.
     #[error(transparent)]
     Characterize(#[from] crate::characterize::CharacterizeError),
+    /// Rotor model and time response.
+    #[error(transparent)]
+    Rotor(#[from] crate::rotor::RotorError),
     /// Running, merging and storing studies.
     #[error(transparent)]
     Study(#[from] crate::study::StudyError),

@@ -25,6 +25,7 @@ pub mod hertz;
 pub mod io;
 pub mod material;
 pub mod method;
+pub mod rotor;
 pub mod study;
 
 pub use contact_law::{ContactLaw, HertzLaw};

@@ -1,0 +1,693 @@
+//! Time response: Newmark average acceleration with the bearing forces implicit (Newton on the
+//! bearing DOFs of the condensed rotor) or lagged by one step.
+
+use super::model::{check_speed, RotorModel};
+use super::RotorError;
+use crate::force_element::{ElementOutput, ElementState};
+use nalgebra::{DMatrix, DVector};
+use std::time::Instant;
+
+/// Shaft speed over time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SpeedProfile {
+    /// Constant speed, rad/s.
+    Constant {
+        /// Shaft speed, rad/s.
+        speed_rad_s: f64,
+    },
+    /// Linear run-up (or run-down) from `start_rad_s` to `end_rad_s` over `duration_s`, then
+    /// constant.
+    Ramp {
+        /// Speed at t = 0, rad/s.
+        start_rad_s: f64,
+        /// Speed from t = duration_s on, rad/s.
+        end_rad_s: f64,
+        /// Ramp duration, s.
+        duration_s: f64,
+    },
+}
+
+impl SpeedProfile {
+    fn validate(&self) -> Result<(), RotorError> {
+        match *self {
+            SpeedProfile::Constant { speed_rad_s } => check_speed(speed_rad_s),
+            SpeedProfile::Ramp {
+                start_rad_s,
+                end_rad_s,
+                duration_s,
+            } => {
+                check_speed(start_rad_s)?;
+                check_speed(end_rad_s)?;
+                if !(duration_s.is_finite() && duration_s > 0.0) {
+                    return Err(RotorError::Invalid(format!(
+                        "ramp duration_s = {duration_s}; must be finite and > 0"
+                    )));
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// Speed (rad/s) at time `t` (s).
+    pub fn speed(&self, t: f64) -> f64 {
+        match *self {
+            SpeedProfile::Constant { speed_rad_s } => speed_rad_s,
+            SpeedProfile::Ramp {
+                start_rad_s,
+                end_rad_s,
+                duration_s,
+            } => start_rad_s + (end_rad_s - start_rad_s) * (t / duration_s).clamp(0.0, 1.0),
+        }
+    }
+
+    /// Angular acceleration (rad/s²) at time `t` (s).
+    pub fn acceleration(&self, t: f64) -> f64 {
+        match *self {
+            SpeedProfile::Constant { .. } => 0.0,
+            SpeedProfile::Ramp {
+                start_rad_s,
+                end_rad_s,
+                duration_s,
+            } => {
+                if t < duration_s {
+                    (end_rad_s - start_rad_s) / duration_s
+                } else {
+                    0.0
+                }
+            }
+        }
+    }
+
+    /// Shaft rotation angle (rad) at time `t` (s), zero at t = 0.
+    pub fn angle(&self, t: f64) -> f64 {
+        match *self {
+            SpeedProfile::Constant { speed_rad_s } => speed_rad_s * t,
+            SpeedProfile::Ramp {
+                start_rad_s,
+                end_rad_s,
+                duration_s,
+            } => {
+                let a = (end_rad_s - start_rad_s) / duration_s;
+                if t < duration_s {
+                    start_rad_s * t + 0.5 * a * t * t
+                } else {
+                    0.5 * (start_rad_s + end_rad_s) * duration_s + end_rad_s * (t - duration_s)
+                }
+            }
+        }
+    }
+}
+
+/// How the bearing forces enter a time step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Coupling {
+    /// At the new time, by Newton's method on the bearing DOFs (the default; stable).
+    #[default]
+    Implicit,
+    /// From the previous step, as an explicit load (ROSS's `add_to_RHS`): diverges for stiff,
+    /// lightly damped contacts unless the step is far below their period.
+    Lagged,
+}
+
+/// How the cages move.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum CageMotion {
+    /// Each cage turns at its bearing's cage speed (ω_c = cage ratio · Ω): the balls pass the
+    /// load zone at Z·f_cage (varying compliance).
+    #[default]
+    Rolling,
+    /// Every cage held at this angle, rad: a time-invariant bearing.
+    Fixed {
+        /// Cage angle, rad.
+        angle_rad: f64,
+    },
+}
+
+/// Initial state of a time response.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub enum Start {
+    /// The static equilibrium at the initial speed, at rest.
+    #[default]
+    StaticEquilibrium,
+    /// Given displacements (SI, n) and rates (n).
+    Given {
+        /// Rotor displacements q(0).
+        displacement: Vec<f64>,
+        /// Rotor rates q̇(0).
+        velocity: Vec<f64>,
+    },
+}
+
+/// Options of a time response.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TimeOptions {
+    /// Time step h, s.
+    pub step_s: f64,
+    /// Simulated time, s.
+    pub duration_s: f64,
+    /// Record every this many steps (≥ 1); the initial state is always recorded.
+    pub record_every: usize,
+    /// Rotor DOFs to record (empty: all).
+    pub record_dofs: Vec<usize>,
+    /// How the bearing forces enter a step.
+    pub coupling: Coupling,
+    /// How the cages move.
+    pub cage: CageMotion,
+    /// Initial state.
+    pub start: Start,
+    /// Newton tolerance on the bearing DOFs' residual, m (or rad): |y − L·q(y)|∞.
+    pub newton_tolerance_m: f64,
+    /// Newton iteration budget per step.
+    pub max_newton_iterations: usize,
+    /// A bearing translation beyond this (m) ends the run as diverged.
+    pub divergence_limit_m: f64,
+    /// A bearing tilt beyond this (rad) ends the run as diverged.
+    pub divergence_limit_rad: f64,
+}
+
+impl Default for TimeOptions {
+    fn default() -> Self {
+        TimeOptions {
+            step_s: 1e-5,
+            duration_s: 0.1,
+            record_every: 1,
+            record_dofs: Vec::new(),
+            coupling: Coupling::Implicit,
+            cage: CageMotion::Rolling,
+            start: Start::StaticEquilibrium,
+            newton_tolerance_m: 1e-13,
+            max_newton_iterations: 30,
+            divergence_limit_m: 1e-3,
+            divergence_limit_rad: 0.1,
+        }
+    }
+}
+
+impl TimeOptions {
+    fn validate(&self, n: usize) -> Result<usize, RotorError> {
+        let positive = |name: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(RotorError::Invalid(format!(
+                    "{name} = {v}; must be finite and > 0"
+                )))
+            }
+        };
+        positive("step_s", self.step_s)?;
+        positive("duration_s", self.duration_s)?;
+        positive("newton_tolerance_m", self.newton_tolerance_m)?;
+        positive("divergence_limit_m", self.divergence_limit_m)?;
+        positive("divergence_limit_rad", self.divergence_limit_rad)?;
+        let steps = (self.duration_s / self.step_s).round();
+        if !(1.0..=1e9).contains(&steps) {
+            return Err(RotorError::Invalid(format!(
+                "duration_s / step_s = {steps} steps; must be 1 to 1e9"
+            )));
+        }
+        if self.record_every == 0 {
+            return Err(RotorError::Invalid("record_every = 0; must be ≥ 1".into()));
+        }
+        if self.max_newton_iterations == 0 {
+            return Err(RotorError::Invalid(
+                "max_newton_iterations = 0; must be ≥ 1".into(),
+            ));
+        }
+        if let Some(&i) = self.record_dofs.iter().find(|&&i| i >= n) {
+            return Err(RotorError::Invalid(format!(
+                "record_dofs contains {i}; rotor DOF indices run 0..{n}"
+            )));
+        }
+        if let CageMotion::Fixed { angle_rad } = self.cage {
+            if !angle_rad.is_finite() {
+                return Err(RotorError::Invalid(format!(
+                    "cage angle_rad = {angle_rad}; must be finite"
+                )));
+            }
+        }
+        if let Start::Given {
+            displacement,
+            velocity,
+        } = &self.start
+        {
+            for (name, v) in [("displacement", displacement), ("velocity", velocity)] {
+                if v.len() != n {
+                    return Err(RotorError::Invalid(format!(
+                        "start {name} has {} entries; {n} expected",
+                        v.len()
+                    )));
+                }
+                if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+                    return Err(RotorError::Invalid(format!(
+                        "start {name}[{i}] = {}; must be finite",
+                        v[i]
+                    )));
+                }
+            }
+        }
+        Ok(steps as usize)
+    }
+}
+
+/// Where the wall time of a run went, s.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct TimeBreakdown {
+    /// Whole run.
+    pub total_s: f64,
+    /// Bearing force-element evaluations.
+    pub bearing_s: f64,
+    /// Factorizations of the effective matrix and the condensation onto the bearing DOFs.
+    pub factorization_s: f64,
+}
+
+/// Progress of a run, passed to the caller's callback about a hundred times.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RotorProgress {
+    /// Steps done.
+    pub step: usize,
+    /// Steps in all.
+    pub steps: usize,
+    /// Simulated time reached, s.
+    pub time_s: f64,
+}
+
+/// A time response.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct TimeResponse {
+    /// Recorded times, s.
+    pub time_s: Vec<f64>,
+    /// Shaft speed at each recorded time, rad/s.
+    pub speed_rad_s: Vec<f64>,
+    /// The recorded rotor DOFs.
+    pub record_dofs: Vec<usize>,
+    /// Per recorded time: the recorded rotor displacements (SI).
+    pub displacement: Vec<Vec<f64>>,
+    /// Per recorded time, per bearing: cage angle, rad.
+    pub cage_angle_rad: Vec<Vec<f64>>,
+    /// Per recorded time, per bearing: bearing displacement (x, y, z, θy, θz), m and rad.
+    pub bearing_displacement: Vec<Vec<[f64; 5]>>,
+    /// Per recorded time, per bearing: reaction (load on the inner ring), N and N·m.
+    pub bearing_reaction: Vec<Vec<[f64; 5]>>,
+    /// Steps taken.
+    pub steps: usize,
+    /// Newton iterations summed over the steps (bearing evaluations per bearing).
+    pub newton_iterations: usize,
+    /// Largest Newton iteration count of one step.
+    pub max_newton_iterations: usize,
+    /// Steps in which a contact lay outside its law's fitted range (or the speed outside a
+    /// trend element's range).
+    pub steps_outside_range: usize,
+    /// Where the time went.
+    pub breakdown: TimeBreakdown,
+}
+
+/// Newmark average acceleration (β = 1/4, γ = 1/2).
+const BETA: f64 = 0.25;
+const GAMMA: f64 = 0.5;
+
+/// The effective matrix of a step condensed onto the bearing DOFs, for one speed.
+struct Condensed {
+    speed: f64,
+    /// D = C + Ω·G.
+    damping: DMatrix<f64>,
+    /// LU of S = c0·M + c1·D + K.
+    lu: nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>,
+    /// W = S⁻¹·Lᵀ (n × m).
+    w: DMatrix<f64>,
+    /// A = L·W (m × m).
+    a: DMatrix<f64>,
+}
+
+/// The bearing DOFs that are mapped to rotor DOFs: (bearing, bearing DOF, rotor DOF, sign).
+struct BearingDofs(Vec<(usize, usize, usize, f64)>);
+
+impl BearingDofs {
+    fn of(model: &RotorModel) -> Self {
+        let mut v = Vec::new();
+        for (b, site) in model.bearings.iter().enumerate() {
+            for k in 0..5 {
+                if let Some(i) = site.dofs[k] {
+                    v.push((b, k, i, site.signs[k]));
+                }
+            }
+        }
+        BearingDofs(v)
+    }
+
+    fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    /// L·x (m).
+    fn gather(&self, x: &DVector<f64>) -> DVector<f64> {
+        DVector::from_iterator(self.0.len(), self.0.iter().map(|&(_, _, i, s)| s * x[i]))
+    }
+
+    /// The mapped reaction components (m) of the bearing outputs.
+    fn reactions(&self, outs: &[ElementOutput]) -> DVector<f64> {
+        DVector::from_iterator(
+            self.0.len(),
+            self.0.iter().map(|&(b, k, _, _)| outs[b].reaction[k]),
+        )
+    }
+
+    /// Block-diagonal ∂R/∂y + c·∂R/∂ẏ on the mapped DOFs (m × m).
+    fn tangent(&self, outs: &[ElementOutput], c: f64) -> DMatrix<f64> {
+        let m = self.0.len();
+        let mut t = DMatrix::zeros(m, m);
+        for (r, &(br, kr, _, _)) in self.0.iter().enumerate() {
+            for (col, &(bc, kc, _, _)) in self.0.iter().enumerate() {
+                if br == bc {
+                    t[(r, col)] = outs[br].stiffness[kr][kc] + c * outs[br].damping[kr][kc];
+                }
+            }
+        }
+        t
+    }
+}
+
+impl RotorModel {
+    /// The shaft speed's time response under `profile`: see the module documentation for the
+    /// equation and the scheme. `progress` is called about a hundred times with the steps done.
+    /// Ends with an error carrying the step, the time and the residual history when a step's
+    /// Newton iteration does not converge, when a bearing element fails, or when the response
+    /// diverges (beyond `divergence_limit_m`).
+    pub fn simulate(
+        &self,
+        profile: &SpeedProfile,
+        options: &TimeOptions,
+        mut progress: Option<&mut dyn FnMut(&RotorProgress)>,
+    ) -> Result<TimeResponse, RotorError> {
+        let clock = Instant::now();
+        profile.validate()?;
+        let n = self.dofs();
+        let steps = options.validate(n)?;
+        let h = options.step_s;
+        let c0 = 1.0 / (BETA * h * h);
+        let c1 = GAMMA / (BETA * h);
+        let c2 = 1.0 / (BETA * h);
+        let c3 = 1.0 / (2.0 * BETA) - 1.0;
+        let c4 = 1.0 - GAMMA / BETA;
+        let c5 = h * (1.0 - GAMMA / (2.0 * BETA));
+        let dofs = BearingDofs::of(self);
+        let nb = self.bearings.len();
+        let cage_ratio: Vec<f64> = self
+            .bearings
+            .iter()
+            .map(|s| s.element.cage_speed(1.0, 0.0))
+            .collect();
+        let cage_angles = |t: f64| -> Vec<f64> {
+            match options.cage {
+                CageMotion::Rolling => cage_ratio.iter().map(|r| r * profile.angle(t)).collect(),
+                CageMotion::Fixed { angle_rad } => vec![angle_rad; nb],
+            }
+        };
+        let mut breakdown = TimeBreakdown::default();
+        let mut states = vec![ElementState::default(); nb];
+
+        // Initial state.
+        let speed0 = profile.speed(0.0);
+        let (mut q, mut v) = match &options.start {
+            Start::StaticEquilibrium => {
+                let eq = self.static_equilibrium(speed0)?;
+                (DVector::from_vec(eq.displacement), DVector::zeros(n))
+            }
+            Start::Given {
+                displacement,
+                velocity,
+            } => (
+                DVector::from_column_slice(displacement),
+                DVector::from_column_slice(velocity),
+            ),
+        };
+        let mut angles = cage_angles(0.0);
+        let mut outs = self.evaluate_all(&q, &v, speed0, &angles, &mut states, 0.0)?;
+        let force0 = self.external_force(profile, 0.0);
+        let mut rhs =
+            force0 - (&self.damping + &self.gyroscopic * speed0) * &v - &self.stiffness * &q;
+        for (b, o) in outs.iter().enumerate() {
+            self.scatter_force(b, &o.reaction.map(|r| -r), &mut rhs);
+        }
+        let mut a = self
+            .mass
+            .clone()
+            .lu()
+            .solve(&rhs)
+            .ok_or(RotorError::Singular {
+                what: "mass",
+                time_s: 0.0,
+            })?;
+
+        let record_dofs: Vec<usize> = if options.record_dofs.is_empty() {
+            (0..n).collect()
+        } else {
+            options.record_dofs.clone()
+        };
+        let mut response = TimeResponse {
+            record_dofs: record_dofs.clone(),
+            ..TimeResponse::default()
+        };
+        let record = |response: &mut TimeResponse,
+                      t: f64,
+                      q: &DVector<f64>,
+                      angles: &[f64],
+                      outs: &[ElementOutput]| {
+            response.time_s.push(t);
+            response.speed_rad_s.push(profile.speed(t));
+            response
+                .displacement
+                .push(record_dofs.iter().map(|&i| q[i]).collect());
+            response.cage_angle_rad.push(angles.to_vec());
+            response
+                .bearing_displacement
+                .push(self.bearings.iter().map(|s| s.displacement(q)).collect());
+            response
+                .bearing_reaction
+                .push(outs.iter().map(|o| o.reaction).collect());
+        };
+        record(&mut response, 0.0, &q, &angles, &outs);
+
+        let mut condensed: Option<Condensed> = None;
+        let progress_every = (steps / 100).max(1);
+        for step in 1..=steps {
+            let t = step as f64 * h;
+            let speed = profile.speed(t);
+            if !matches!(&condensed, Some(c) if c.speed == speed) {
+                let t0 = Instant::now();
+                condensed = Some(self.condense(&dofs, speed, c0, c1, t)?);
+                breakdown.factorization_s += t0.elapsed().as_secs_f64();
+            }
+            let cond = condensed.as_ref().expect("condensed just set");
+            angles = cage_angles(t);
+            // q1 = u0 − W·R, a1 = c0·q1 + e_a, v1 = c1·q1 + e_v.
+            let e_a = -(&q * c0) - &v * c2 - &a * c3;
+            let e_v = -(&q * c1) + &v * c4 + &a * c5;
+            let r = self.external_force(profile, t) - &self.mass * &e_a - &cond.damping * &e_v;
+            let u0 = cond.lu.solve(&r).ok_or(RotorError::Singular {
+                what: "effective",
+                time_s: t,
+            })?;
+            let q1 = match options.coupling {
+                Coupling::Lagged => {
+                    let reaction = dofs.reactions(&outs);
+                    let q1 = &u0 - &cond.w * &reaction;
+                    self.check_divergence(&dofs, &dofs.gather(&q1), options, step, t)?;
+                    let v1 = &q1 * c1 + &e_v;
+                    let t0 = Instant::now();
+                    outs = self.evaluate_all(&q1, &v1, speed, &angles, &mut states, t)?;
+                    breakdown.bearing_s += t0.elapsed().as_secs_f64();
+                    response.newton_iterations += 1;
+                    response.max_newton_iterations = response.max_newton_iterations.max(1);
+                    q1
+                }
+                Coupling::Implicit => {
+                    let b = dofs.gather(&u0);
+                    let lv = dofs.gather(&e_v);
+                    // Predictor: y ≈ L·(q + h·v + h²/2·a).
+                    let mut y = dofs.gather(&(&q + &v * h + &a * (0.5 * h * h)));
+                    let mut history = Vec::new();
+                    let mut converged = false;
+                    for iteration in 1..=options.max_newton_iterations {
+                        self.check_divergence(&dofs, &y, options, step, t)?;
+                        let (qy, vy) = self.rotor_state_from_bearing(&dofs, &y, &lv, c1, n);
+                        let t0 = Instant::now();
+                        outs = self.evaluate_all(&qy, &vy, speed, &angles, &mut states, t)?;
+                        breakdown.bearing_s += t0.elapsed().as_secs_f64();
+                        let reaction = dofs.reactions(&outs);
+                        let g = &y - &b + &cond.a * &reaction;
+                        let g_max = g.amax();
+                        history.push(g_max);
+                        response.newton_iterations += 1;
+                        response.max_newton_iterations =
+                            response.max_newton_iterations.max(iteration);
+                        if g_max <= options.newton_tolerance_m {
+                            converged = true;
+                            break;
+                        }
+                        let jac = DMatrix::identity(dofs.len(), dofs.len())
+                            + &cond.a * dofs.tangent(&outs, c1);
+                        let dy = jac.lu().solve(&g).ok_or(RotorError::Singular {
+                            what: "bearing Newton",
+                            time_s: t,
+                        })?;
+                        y -= dy;
+                    }
+                    if !converged {
+                        return Err(RotorError::StepNotConverged {
+                            step,
+                            time_s: t,
+                            iterations: options.max_newton_iterations,
+                            update_history: history,
+                        });
+                    }
+                    &u0 - &cond.w * dofs.reactions(&outs)
+                }
+            };
+            if outs
+                .iter()
+                .any(|o| !o.outside_range.is_empty() || o.speed_outside)
+            {
+                response.steps_outside_range += 1;
+            }
+            let a1 = &q1 * c0 + &e_a;
+            let v1 = &q1 * c1 + &e_v;
+            q = q1;
+            v = v1;
+            a = a1;
+            if q.iter().any(|x| !x.is_finite()) {
+                return Err(RotorError::Diverged {
+                    step,
+                    time_s: t,
+                    displacement_m: f64::NAN,
+                    limit_m: options.divergence_limit_m,
+                });
+            }
+            if step % options.record_every == 0 {
+                record(&mut response, t, &q, &angles, &outs);
+            }
+            if let Some(p) = progress.as_deref_mut() {
+                if step % progress_every == 0 || step == steps {
+                    p(&RotorProgress {
+                        step,
+                        steps,
+                        time_s: t,
+                    });
+                }
+            }
+        }
+        response.steps = steps;
+        breakdown.total_s = clock.elapsed().as_secs_f64();
+        response.breakdown = breakdown;
+        Ok(response)
+    }
+
+    /// f_const + unbalance forces at time `t`.
+    fn external_force(&self, profile: &SpeedProfile, t: f64) -> DVector<f64> {
+        let mut f = self.constant_force.clone();
+        let (angle, speed, accel) = (profile.angle(t), profile.speed(t), profile.acceleration(t));
+        for u in &self.unbalances {
+            let [fx, fy] = u.force(angle, speed, accel);
+            f[u.dofs[0]] += fx;
+            f[u.dofs[1]] += fy;
+        }
+        f
+    }
+
+    /// Factorize S at `speed` and condense it onto the bearing DOFs.
+    fn condense(
+        &self,
+        dofs: &BearingDofs,
+        speed: f64,
+        c0: f64,
+        c1: f64,
+        t: f64,
+    ) -> Result<Condensed, RotorError> {
+        let n = self.dofs();
+        let damping = &self.damping + &self.gyroscopic * speed;
+        let s = &self.mass * c0 + &damping * c1 + &self.stiffness;
+        let lu = s.lu();
+        let mut lt = DMatrix::zeros(n, dofs.len());
+        for (col, &(_, _, i, sign)) in dofs.0.iter().enumerate() {
+            lt[(i, col)] = sign;
+        }
+        let w = lu.solve(&lt).ok_or(RotorError::Singular {
+            what: "effective",
+            time_s: t,
+        })?;
+        let mut a = DMatrix::zeros(dofs.len(), dofs.len());
+        for (r, &(_, _, i, sign)) in dofs.0.iter().enumerate() {
+            for col in 0..dofs.len() {
+                a[(r, col)] = sign * w[(i, col)];
+            }
+        }
+        Ok(Condensed {
+            speed,
+            damping,
+            lu,
+            w,
+            a,
+        })
+    }
+
+    /// Rotor-sized vectors holding the bearing DOFs `y` and their rates c1·y + L·e_v (only the
+    /// mapped entries are used by the bearings).
+    fn rotor_state_from_bearing(
+        &self,
+        dofs: &BearingDofs,
+        y: &DVector<f64>,
+        lv: &DVector<f64>,
+        c1: f64,
+        n: usize,
+    ) -> (DVector<f64>, DVector<f64>) {
+        let mut q = DVector::zeros(n);
+        let mut v = DVector::zeros(n);
+        for (k, &(_, _, i, sign)) in dofs.0.iter().enumerate() {
+            q[i] = sign * y[k];
+            v[i] = sign * (c1 * y[k] + lv[k]);
+        }
+        (q, v)
+    }
+
+    /// Evaluate every bearing at rotor state (q, v).
+    fn evaluate_all(
+        &self,
+        q: &DVector<f64>,
+        v: &DVector<f64>,
+        speed: f64,
+        angles: &[f64],
+        states: &mut [ElementState],
+        t: f64,
+    ) -> Result<Vec<ElementOutput>, RotorError> {
+        states
+            .iter_mut()
+            .enumerate()
+            .map(|(b, state)| self.evaluate_bearing(b, (q, v), (speed, angles[b]), state, t))
+            .collect()
+    }
+
+    fn check_divergence(
+        &self,
+        dofs: &BearingDofs,
+        y: &DVector<f64>,
+        options: &TimeOptions,
+        step: usize,
+        t: f64,
+    ) -> Result<(), RotorError> {
+        for (&(_, k, _, _), v) in dofs.0.iter().zip(y.iter()) {
+            let limit = if k < 3 {
+                options.divergence_limit_m
+            } else {
+                options.divergence_limit_rad
+            };
+            if !v.is_finite() || v.abs() > limit {
+                return Err(RotorError::Diverged {
+                    step,
+                    time_s: t,
+                    displacement_m: *v,
+                    limit_m: limit,
+                });
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,450 @@
+//! The rotor on nonlinear bearings (`ehl_bearing::rotor`): static equilibrium against the
+//! bearing's own equilibrium, the time integrator against the closed-form unbalance response of
+//! a linear rotor, the linear limit of the nonlinear response, the varying-compliance excitation
+//! at Z·f_cage, the run-up, mirrored bearings, and implicit against lagged bearing forces.
+
+use ehl_bearing::bearing::{solve_equilibrium, ContactLaws, Control};
+use ehl_bearing::force_element::{ForceElement, LawElement};
+use ehl_bearing::io::{read_case, Case};
+use ehl_bearing::rotor::{
+    BearingSite, CageMotion, Coupling, RotorError, RotorMatrices, RotorModel, SpeedProfile, Start,
+    TimeOptions, Unbalance,
+};
+use std::f64::consts::PI;
+use std::path::Path;
+use std::sync::Arc;
+
+fn seed() -> Case {
+    read_case(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/7006.toml")).unwrap()
+}
+
+/// Row-major diagonal matrix.
+fn diag(d: &[f64]) -> Vec<f64> {
+    let n = d.len();
+    let mut m = vec![0.0; n * n];
+    for i in 0..n {
+        m[i * n + i] = d[i];
+    }
+    m
+}
+
+/// The inner ring with its shaft as one rigid body on one bearing: 5 DOFs (x, y, z, θy, θz) =
+/// the bearing's, mass 0.5 kg, transverse inertia 5e-4 kg·m², viscous damping `c` N·s/m on
+/// the translations (and c·1e-4 N·m·s/rad on the tilts), no gyroscopics, no structural
+/// stiffness: the bearing alone holds it.
+fn rigid_ring(c: f64) -> RotorMatrices {
+    RotorMatrices::new(
+        5,
+        diag(&[0.5, 0.5, 0.5, 5e-4, 5e-4]),
+        diag(&[c, c, c, c * 1e-4, c * 1e-4]),
+        vec![0.0; 25],
+        vec![0.0; 25],
+    )
+    .unwrap()
+}
+
+fn hertz_site(case: &Case) -> BearingSite {
+    let e: Arc<dyn ForceElement> = Arc::new(LawElement::hertz_case(case).unwrap());
+    BearingSite::new(e, [Some(0), Some(1), Some(2), Some(3), Some(4)])
+}
+
+#[test]
+fn rigid_ring_static_equilibrium_is_the_bearing_equilibrium() {
+    let case = seed();
+    let speed = case.operating.inner_speed;
+    // The seed's loads with free tilts (the case imposes 0.001°).
+    let mut op = case.operating;
+    op.dofs[3] = Control::Load(0.0);
+    op.dofs[4] = Control::Load(0.0);
+    let laws = ContactLaws::hertz(&case.bearing).unwrap();
+    let eq = solve_equilibrium(&case.bearing, &laws, &op, &case.settings).unwrap();
+    let model = RotorModel::new(
+        rigid_ring(0.0),
+        vec![hertz_site(&case)],
+        vec![],
+        vec![1000.0, 1000.0, 1000.0, 0.0, 0.0],
+    )
+    .unwrap();
+    let st = model.static_equilibrium(speed).unwrap();
+    // Both solves stop at a relative force residual ≤ 1e-10; the displacements then agree to
+    // far better than 1e-6 of their size (bearing stiffness ≈ 1e8 N/m, tilt ≈ 1e4 N·m/rad).
+    for k in 0..5 {
+        let scale: f64 = if k < 3 { 1e-6 } else { 1e-5 };
+        let (a, b) = (st.displacement[k], eq.displacement[k]);
+        assert!(
+            (a - b).abs() <= 1e-6 * scale.max(b.abs()),
+            "dof {k}: rotor {a:e}, bearing {b:e}"
+        );
+    }
+    assert!(st.residual_n <= 1e-10 * 1000.0, "{}", st.residual_n);
+}
+
+/// A linear, isotropic 2-DOF rotor (m, c, k) under a rotating unbalance at constant speed,
+/// started on its steady orbit: the orbit radius stays at the closed form
+/// |X| = m·e·Ω² / |k − m·Ω² + i·c·Ω|. Newmark's average-acceleration rule has no amplitude
+/// error for an undamped oscillator and O((Ωh)²) otherwise: h = T/200 gives (Ωh)² = 1e-3, so
+/// 2e-3 bounds it.
+#[test]
+fn linear_rotor_unbalance_orbit_is_the_closed_form() {
+    let (m, c, k, me, speed) = (2.0, 40.0, 1e6, 1e-4, 500.0);
+    let matrices =
+        RotorMatrices::new(2, diag(&[m, m]), diag(&[c, c]), vec![0.0; 4], diag(&[k, k])).unwrap();
+    let ub = Unbalance {
+        dofs: [0, 1],
+        mass_eccentricity_kg_m: me,
+        phase_rad: 0.0,
+    };
+    let model = RotorModel::new(matrices, vec![], vec![ub], vec![0.0, 0.0]).unwrap();
+    let (re, im) = (k - m * speed * speed, c * speed);
+    let den = re * re + im * im;
+    // X = m·e·Ω²/(re + i·im); x + i·y = X·e^{iΩt}.
+    let (xr, xi) = (
+        me * speed * speed * re / den,
+        -me * speed * speed * im / den,
+    );
+    let radius = (xr * xr + xi * xi).sqrt();
+    let period = 2.0 * PI / speed;
+    let options = TimeOptions {
+        step_s: period / 200.0,
+        duration_s: 5.0 * period,
+        start: Start::Given {
+            displacement: vec![xr, xi],
+            velocity: vec![-speed * xi, speed * xr],
+        },
+        ..TimeOptions::default()
+    };
+    let r = model
+        .simulate(
+            &SpeedProfile::Constant { speed_rad_s: speed },
+            &options,
+            None,
+        )
+        .unwrap();
+    for (t, q) in r.time_s.iter().zip(&r.displacement) {
+        let rr = (q[0] * q[0] + q[1] * q[1]).sqrt();
+        assert!(
+            (rr / radius - 1.0).abs() < 2e-3,
+            "t = {t}: radius {rr:e}, closed form {radius:e}"
+        );
+    }
+    assert_eq!(r.steps, 1000);
+}
+
+/// Largest deviation of the radial DOFs (y, z) from their first recorded values.
+fn orbit_amplitude(r: &ehl_bearing::rotor::TimeResponse) -> f64 {
+    let q0 = &r.displacement[0];
+    r.displacement
+        .iter()
+        .map(|q| ((q[1] - q0[1]).powi(2) + (q[2] - q0[2]).powi(2)).sqrt())
+        .fold(0.0, f64::max)
+}
+
+/// The linear limit: a small unbalance (1 g·mm) on the rigid ring on its dry Hertz bearing,
+/// cage held still: the nonlinear response and the response of the rotor linearized at the
+/// same equilibrium agree within 1 % in orbit amplitude (the criterion); nonlinearity
+/// enters at the orbit/approach ratio, here < 1e-3.
+#[test]
+fn small_unbalance_response_is_the_linearized_response() {
+    let case = seed();
+    let speed = case.operating.inner_speed;
+    let force = vec![1000.0, 1000.0, 1000.0, 0.0, 0.0];
+    let ub = Unbalance {
+        dofs: [1, 2],
+        mass_eccentricity_kg_m: 1e-6,
+        phase_rad: 0.0,
+    };
+    let model =
+        RotorModel::new(rigid_ring(200.0), vec![hertz_site(&case)], vec![ub], force).unwrap();
+    let options = TimeOptions {
+        step_s: 2e-5,
+        duration_s: 0.03,
+        cage: CageMotion::Fixed { angle_rad: 0.0 },
+        ..TimeOptions::default()
+    };
+    let profile = SpeedProfile::Constant { speed_rad_s: speed };
+    let nonlinear = model.simulate(&profile, &options, None).unwrap();
+    let (lin, eq) = model.linearized(speed).unwrap();
+    let linear_model = RotorModel::new(lin, vec![], vec![ub], vec![0.0; 5]).unwrap();
+    let linear = linear_model
+        .simulate(
+            &profile,
+            &TimeOptions {
+                start: Start::Given {
+                    displacement: vec![0.0; 5],
+                    velocity: vec![0.0; 5],
+                },
+                ..options.clone()
+            },
+            None,
+        )
+        .unwrap();
+    let (an, al) = (orbit_amplitude(&nonlinear), orbit_amplitude(&linear));
+    assert!(an > 0.0 && al > 0.0);
+    assert!(
+        (an / al - 1.0).abs() < 0.01,
+        "orbit amplitude: nonlinear {an:e} m, linearized {al:e} m"
+    );
+    // The nonlinear run started at the same equilibrium.
+    for k in 0..5 {
+        assert!((nonlinear.displacement[0][k] - eq.displacement[k]).abs() < 1e-15);
+    }
+}
+
+/// Amplitude spectrum |DFT| / N of `x` (mean removed, Hann window against leakage), at
+/// frequencies k/(N·dt).
+fn spectrum(x: &[f64]) -> Vec<f64> {
+    use rustfft::{num_complex::Complex, FftPlanner};
+    let n = x.len() as f64;
+    let mean = x.iter().sum::<f64>() / n;
+    let mut buf: Vec<Complex<f64>> = x
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            let w = 0.5 - 0.5 * (2.0 * PI * i as f64 / n).cos();
+            Complex::new((v - mean) * w, 0.0)
+        })
+        .collect();
+    FftPlanner::new()
+        .plan_fft_forward(buf.len())
+        .process(&mut buf);
+    buf.iter()
+        .take(x.len() / 2)
+        .map(|c| c.norm() / x.len() as f64)
+        .collect()
+}
+
+/// Varying compliance: a radial load, no unbalance, cages rolling. The balls pass the load zone
+/// at Z·f_cage, so the radial displacement's spectrum peaks there (within one frequency bin)
+/// and at its harmonic 2·Z·f_cage, well above the neighbouring bins.
+#[test]
+fn rolling_cage_excites_the_ball_pass_frequency() {
+    let case = seed();
+    let speed = case.operating.inner_speed;
+    let element = LawElement::hertz_case(&case).unwrap();
+    let bpf = element.ball_count() as f64 * element.cage_speed(speed, 0.0) / (2.0 * PI);
+    let model = RotorModel::new(
+        rigid_ring(300.0),
+        vec![hertz_site(&case)],
+        vec![],
+        vec![1000.0, 1000.0, 0.0, 0.0, 0.0],
+    )
+    .unwrap();
+    let h = 2e-5;
+    let options = TimeOptions {
+        step_s: h,
+        duration_s: 0.22,
+        record_dofs: vec![1],
+        ..TimeOptions::default()
+    };
+    let r = model
+        .simulate(
+            &SpeedProfile::Constant { speed_rad_s: speed },
+            &options,
+            None,
+        )
+        .unwrap();
+    // Drop the first 0.02 s (start transient, decays in ≈ 2 ms at this damping).
+    let skip = (0.02 / h) as usize;
+    let y: Vec<f64> = r.displacement[skip..].iter().map(|q| q[0]).collect();
+    let s = spectrum(&y);
+    let df = 1.0 / (y.len() as f64 * h);
+    let peak = (1..s.len()).max_by(|&a, &b| s[a].total_cmp(&s[b])).unwrap();
+    assert!(
+        (peak as f64 * df - bpf).abs() <= df,
+        "spectral peak at {} Hz, Z·f_cage = {bpf} Hz (bin {df} Hz)",
+        peak as f64 * df
+    );
+
+    let k2 = (2.0 * bpf / df).round() as usize;
+    let local = (k2 - 1..=k2 + 1).map(|k| s[k]).fold(0.0, f64::max);
+    let background = (k2 + 10..k2 + 40).map(|k| s[k]).fold(0.0, f64::max);
+    assert!(
+        local > 10.0 * background,
+        "2·Z·f_cage: {local:e} vs background {background:e}"
+    );
+    assert!(r.max_newton_iterations <= 6, "{}", r.max_newton_iterations);
+}
+
+/// Stiff, lightly damped contacts: with the bearing forces lagged by one step (ROSS's
+/// add_to_RHS) the response diverges at a time step of a tenth of the contact period; the
+/// implicit treatment stays on the equilibrium at that step and at 4× it.
+#[test]
+fn lagged_bearing_forces_diverge_where_implicit_ones_are_stable() {
+    let case = seed();
+    let speed = case.operating.inner_speed;
+    let model = RotorModel::new(
+        rigid_ring(5.0),
+        vec![hertz_site(&case)],
+        vec![],
+        vec![1000.0, 1000.0, 0.0, 0.0, 0.0],
+    )
+    .unwrap();
+    let eq = model.static_equilibrium(speed).unwrap();
+    let k_radial = eq.bearing_stiffness[0][1][1];
+    let period = 2.0 * PI * (0.5 / k_radial).sqrt();
+    let profile = SpeedProfile::Constant { speed_rad_s: speed };
+    let options = |h: f64, coupling: Coupling| TimeOptions {
+        step_s: h,
+        duration_s: 0.02,
+        coupling,
+        cage: CageMotion::Fixed { angle_rad: 0.0 },
+        record_every: 10,
+        ..TimeOptions::default()
+    };
+    let lagged = model.simulate(&profile, &options(period / 10.0, Coupling::Lagged), None);
+    assert!(
+        matches!(
+            lagged,
+            Err(RotorError::Diverged { .. }) | Err(RotorError::Element { .. })
+        ),
+        "lagged: {lagged:?}"
+    );
+    for h in [period / 10.0, period / 2.5] {
+        let r = model
+            .simulate(&profile, &options(h, Coupling::Implicit), None)
+            .unwrap();
+        let dev = r
+            .displacement
+            .iter()
+            .flat_map(|q| q.iter().zip(&eq.displacement).map(|(a, b)| (a - b).abs()))
+            .fold(0.0, f64::max);
+        assert!(
+            dev < 1e-12,
+            "h = {h:e}: deviation {dev:e} m from equilibrium"
+        );
+    }
+}
+
+/// A run-up: the speed follows the ramp, the rotation angle is its integral, and the unbalance
+/// response grows with speed (far below the first resonance).
+#[test]
+fn run_up_follows_the_ramp() {
+    let profile = SpeedProfile::Ramp {
+        start_rad_s: 100.0,
+        end_rad_s: 500.0,
+        duration_s: 0.4,
+    };
+    // Angle = ∫ speed: trapezoid over fine steps.
+    let mut angle = 0.0;
+    let dt = 1e-5;
+    for i in 0..50_000 {
+        let t = i as f64 * dt;
+        angle += 0.5 * dt * (profile.speed(t) + profile.speed(t + dt));
+    }
+    assert!(
+        (angle - profile.angle(0.5)).abs() < 1e-9,
+        "{angle} vs {}",
+        profile.angle(0.5)
+    );
+    assert_eq!(profile.speed(0.2), 300.0);
+    assert_eq!(profile.acceleration(0.45), 0.0);
+
+    let case = seed();
+    let ub = Unbalance {
+        dofs: [1, 2],
+        mass_eccentricity_kg_m: 1e-5,
+        phase_rad: 0.3,
+    };
+    let model = RotorModel::new(
+        rigid_ring(200.0),
+        vec![hertz_site(&case)],
+        vec![ub],
+        vec![1000.0, 0.0, 0.0, 0.0, 0.0],
+    )
+    .unwrap();
+    let mut calls = 0;
+    let mut progress = |_: &ehl_bearing::rotor::RotorProgress| calls += 1;
+    let r = model
+        .simulate(
+            &profile,
+            &TimeOptions {
+                step_s: 5e-5,
+                duration_s: 0.4,
+                record_every: 4,
+                ..TimeOptions::default()
+            },
+            Some(&mut progress),
+        )
+        .unwrap();
+    assert!((100..=101).contains(&calls), "{calls} progress calls");
+    let n = r.time_s.len();
+    assert!((r.speed_rad_s[n - 1] - 500.0).abs() < 1e-9);
+    let amp = |range: std::ops::Range<usize>| {
+        range
+            .map(|i| r.displacement[i][1].hypot(r.displacement[i][2]))
+            .fold(0.0, f64::max)
+    };
+    // Unbalance force ∝ Ω² far below resonance: the late orbit is several times the early one.
+    assert!(amp(n - n / 10..n) > 5.0 * amp(n / 10..n / 5));
+}
+
+/// Two identical bearings at one node, the second mirrored, each preloaded by the same axial
+/// offset: by symmetry the node stays at x = 0 and untilted under a radial load, each bearing
+/// carries half of it, and the axial reactions cancel.
+#[test]
+fn mirrored_bearing_pair_is_symmetric() {
+    let case = seed();
+    let speed = case.operating.inner_speed;
+    let offset = [20e-6, 0.0, 0.0, 0.0, 0.0];
+    let a = hertz_site(&case).with_offset(offset);
+    let b = hertz_site(&case).mirrored().with_offset(offset);
+    let model = RotorModel::new(
+        rigid_ring(0.0),
+        vec![a, b],
+        vec![],
+        vec![0.0, 800.0, 0.0, 0.0, 0.0],
+    )
+    .unwrap();
+    let st = model.static_equilibrium(speed).unwrap();
+    let [ra, rb] = [st.reactions[0], st.reactions[1]];
+    assert!(
+        st.displacement[0].abs() < 1e-12,
+        "x = {:e}",
+        st.displacement[0]
+    );
+    assert!(st.displacement[3].abs() < 1e-9 && st.displacement[4].abs() < 1e-9);
+    assert!(
+        (ra[1] - 400.0).abs() < 1e-6 && (rb[1] - 400.0).abs() < 1e-6,
+        "{ra:?} {rb:?}"
+    );
+    assert!(
+        ra[0] > 100.0 && (ra[0] - rb[0]).abs() < 1e-6 * ra[0],
+        "{ra:?} {rb:?}"
+    );
+}
+
+#[test]
+fn invalid_inputs_name_the_field_and_value() {
+    let case = seed();
+    let bad = RotorMatrices::new(2, vec![1.0; 3], vec![0.0; 4], vec![0.0; 4], vec![0.0; 4]);
+    assert!(bad
+        .unwrap_err()
+        .to_string()
+        .contains("mass matrix has 3 entries"));
+    let nan = RotorMatrices::new(1, vec![f64::NAN], vec![0.0], vec![0.0], vec![0.0]);
+    assert!(nan.unwrap_err().to_string().contains("mass[0, 0] = NaN"));
+    let mut site = hertz_site(&case);
+    site.dofs[2] = Some(7);
+    let e = RotorModel::new(rigid_ring(0.0), vec![site], vec![], vec![0.0; 5]).unwrap_err();
+    assert!(e.to_string().contains("dofs[2] = 7"), "{e}");
+    let model = RotorModel::new(
+        rigid_ring(0.0),
+        vec![hertz_site(&case)],
+        vec![],
+        vec![0.0; 5],
+    )
+    .unwrap();
+    let e = model
+        .simulate(
+            &SpeedProfile::Constant { speed_rad_s: 100.0 },
+            &TimeOptions {
+                step_s: -1.0,
+                ..TimeOptions::default()
+            },
+            None,
+        )
+        .unwrap_err();
+    assert!(e.to_string().contains("step_s = -1"), "{e}");
+    let e = model.static_equilibrium(f64::INFINITY).unwrap_err();
+    assert!(e.to_string().contains("shaft speed = inf"), "{e}");
+}
