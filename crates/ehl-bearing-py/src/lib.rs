@@ -756,7 +756,6 @@ fn ross_table_csv(py: Python<'_>, coefficients: &Bound<'_, PyAny>) -> PyResult<S
 }
 
 /// Check a 2-D array's shape.
-#[allow(dead_code)] // used by the rotor bindings once the integrator lands
 pub(crate) fn square(a: &PyReadonlyArray2<'_, f64>, n: usize, what: &str) -> PyResult<Vec<f64>> {
     let s = a.shape();
     if s != [n, n] {

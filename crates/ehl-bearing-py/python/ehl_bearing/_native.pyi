@@ -106,15 +106,17 @@ class RotorModel:
     def add_bearing(
         self,
         element: _Element,
-        dofs: Sequence[int],
+        dofs: Sequence[Optional[int]],
         signs: Optional[Sequence[float]] = None,
         offset: Optional[Sequence[float]] = None,
     ) -> None: ...
     def add_unbalance(
         self, dofs: tuple[int, int], mass_eccentricity_kg_m: float, phase_rad: float = 0.0
     ) -> None: ...
-    def static_equilibrium(self, speed_rad_s: float) -> _Array: ...
-    def linearized(self, speed_rad_s: float) -> dict[str, _Array]: ...
+    @property
+    def bearing_count(self) -> int: ...
+    def static_equilibrium(self, speed_rad_s: float) -> dict[str, Any]: ...
+    def linearized(self, speed_rad_s: float) -> dict[str, Any]: ...
     def simulate(
         self,
         step_s: float,
@@ -122,10 +124,12 @@ class RotorModel:
         speed_rad_s: Optional[float] = None,
         ramp: Optional[tuple[float, float, float]] = None,
         record_every: int = 1,
+        record_dofs: Optional[Sequence[int]] = None,
         coupling: str = "implicit",
         cage_angle_rad: Optional[float] = None,
-        start: str = "static",
-        progress: Optional[Callable[[float], Any]] = None,
+        start_displacement: Optional[_Array] = None,
+        start_velocity: Optional[_Array] = None,
+        progress: Optional[Callable[[int, int, float], Any]] = None,
     ) -> dict[str, Any]: ...
 
 def equilibrium(case: Case) -> dict[str, Any]: ...

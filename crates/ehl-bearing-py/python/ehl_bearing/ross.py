@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any, Callable, Optional, Union
 
 import numpy as np
@@ -57,6 +57,7 @@ __all__ = [
     "time_response",
     "to_ross_block",
     "two_disk_rotor",
+    "unbalance_force",
 ]
 
 #: Local ROSS index (x, y, z, α, β) of each of our DOFs x, y, z, θy, θz.
@@ -321,16 +322,6 @@ class Unbalance:
     phase_rad: float = 0.0
 
 
-@dataclass
-class RotorSetup:
-    """What :func:`rotor_model` assembled: the native model and the DOF bookkeeping."""
-
-    model: Any
-    dofs: int
-    number_dof: int
-    bearing_dofs: list = field(default_factory=list)
-
-
 def rotor_model(
     rotor: Any,
     bearings: Sequence[BearingSite],
@@ -361,7 +352,7 @@ def rotor_model(
         dofs = [d[OURS_TO_ROSS[k]] for k in range(5)]
         model.add_bearing(
             b.element,
-            dofs=dofs,
+            dofs=list(dofs),
             signs=list(mounting_signs(b.mounting)),
             offset=[float(x) for x in b.offset_m],
         )
@@ -381,41 +372,60 @@ def time_response(
     unbalances: Sequence[Unbalance] = (),
     *,
     speed_rad_s: Optional[float] = None,
-    ramp_rad_s: Optional[tuple] = None,
+    ramp_rad_s: Optional[tuple[float, float, float]] = None,
     step_s: float,
     duration_s: float,
     record_every: int = 1,
+    record_dofs: Optional[Sequence[int]] = None,
     coupling: str = "implicit",
     cage_angle_rad: Optional[float] = None,
     gravity: bool = True,
-    start: str = "static",
-    progress: Optional[Callable[[float], None]] = None,
+    extra_force_n: Optional[np.ndarray] = None,
+    progress: Optional[Callable[[int, int, float], Any]] = None,
 ) -> dict:
-    """Nonlinear time response of ``rotor`` on our bearings (Rust integrator).
+    """Nonlinear time response of ``rotor`` on our bearings (the Rust integrator).
 
     Constant speed ``speed_rad_s`` or a run-up ``ramp_rad_s = (start, end, duration_s)``
-    (rad/s, rad/s, s). ``coupling``: ``"implicit"`` (bearing forces inside each implicit step,
-    Newton) or ``"lagged"`` (forces of the previous step, as ROSS's ``add_to_RHS``).
-    ``cage_angle_rad``: None lets the cage roll (ball-pass excitation at Z·f_cage), a number
-    holds it fixed. ``start``: ``"static"`` starts from the static equilibrium at the initial
-    speed, ``"zero"`` from rest at zero displacement.
+    (rad/s, rad/s, s; then constant). ``coupling``: ``"implicit"`` (bearing forces at the new
+    time, Newton on the bearing DOFs) or ``"lagged"`` (the previous step's forces, as ROSS's
+    ``add_to_RHS``). ``cage_angle_rad``: None lets the cages roll (ball passes at Z·f_cage), a
+    number holds them. Starts from the static equilibrium at the initial speed. Constant loads:
+    gravity (``gravity=True``) and ``extra_force_n`` (n,).
 
-    Returns the integrator's result as a dict of numpy arrays: ``time_s``, ``speed_rad_s``,
-    ``cage_angle_rad``, ``displacement`` (records × DOFs, ROSS's global DOFs), ``reactions``
-    (records × bearings × 5, ours), and ``statistics`` (Newton iterations, time breakdown).
+    Returns :meth:`ehl_bearing.RotorModel.simulate`'s dict (``time_s``, ``speed_rad_s``,
+    ``displacement`` over ROSS's global DOFs ``record_dofs``, ``bearing_reaction``,
+    ``breakdown``, …) with the ``model`` added.
     """
-    model = rotor_model(rotor, bearings, unbalances, gravity=gravity)
-    return model.simulate(
+    model = rotor_model(rotor, bearings, unbalances, gravity=gravity, extra_force_n=extra_force_n)
+    out = model.simulate(
         step_s=step_s,
         duration_s=duration_s,
         speed_rad_s=speed_rad_s,
         ramp=ramp_rad_s,
         record_every=record_every,
+        record_dofs=None if record_dofs is None else list(record_dofs),
         coupling=coupling,
         cage_angle_rad=cage_angle_rad,
-        start=start,
         progress=progress,
     )
+    out["model"] = model
+    return out
+
+
+def unbalance_force(
+    rotor: Any, unbalances: Sequence[Unbalance], time_s: np.ndarray, speed_rad_s: float
+) -> np.ndarray:
+    """The unbalance forces at constant speed over ``time_s`` as ROSS's force array
+    (len(time_s), ndof): m·e·Ω²·(cos φ, sin φ) on the node's x and y, φ = Ω·t + phase — the
+    same convention as :class:`Unbalance` in the Rust integrator."""
+    f = np.zeros((len(time_s), rotor.ndof))
+    for u in unbalances:
+        d = node_dofs(rotor, u.node)
+        phi = speed_rad_s * np.asarray(time_s) + u.phase_rad
+        amp = u.mass_eccentricity_kg_m * speed_rad_s**2
+        f[:, d[0]] += amp * np.cos(phi)
+        f[:, d[1]] += amp * np.sin(phi)
+    return f
 
 
 def damping_ratios(rotor: Any, speed_rad_s: float, modes: int = 6) -> tuple:
