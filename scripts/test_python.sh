@@ -24,8 +24,8 @@ echo "== python: pip install ./$crate[ross,test]"
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check "./$crate[ross,test]"
 echo "== python: ruff"
 py_sources=("$crate/python" "$crate/tests" examples/python)
-"$venv/bin/ruff" check "${py_sources[@]}"
-"$venv/bin/ruff" format --check "${py_sources[@]}"
+"$venv/bin/ruff" check --config "$crate/pyproject.toml" "${py_sources[@]}"
+"$venv/bin/ruff" format --check --config "$crate/pyproject.toml" "${py_sources[@]}"
 echo "== python: pytest"
 cd "$crate"
 MPLBACKEND=Agg "$root/$venv/bin/python" -m pytest -q -p no:cacheprovider tests
