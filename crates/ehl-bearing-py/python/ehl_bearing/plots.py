@@ -22,6 +22,7 @@ __all__ = [
     "orbit",
     "save",
     "spectrum",
+    "synchronous_orbit",
     "time_history_csv",
     "waterfall",
 ]
@@ -55,6 +56,24 @@ def save(fig: Any, path_stem: pathlib.Path) -> list[pathlib.Path]:
         out.append(p)
     _plt().close(fig)
     return out
+
+
+def synchronous_orbit(
+    response: dict, dofs: tuple[int, int], since_s: float = 0.0
+) -> tuple[float, complex, complex]:
+    """The 1× (shaft-synchronous) component of the orbit of the node whose lateral DOFs are
+    ``dofs``, from ``since_s`` on at constant speed: (semi-major axis in m, complex amplitudes
+    X, Y with x(t) ≈ Re(X·e^{iΩt})). Removes the free vibration at the natural frequencies that
+    a start from rest leaves in a lightly damped rotor (use a whole number of revolutions)."""
+    t = np.asarray(response["time_s"])
+    keep = t >= since_s
+    w = float(np.mean(np.asarray(response["speed_rad_s"])[keep]))
+    e = np.exp(-1j * w * t[keep])
+    xs = [column(response, d)[keep] for d in dofs]
+    amp = [2.0 * np.mean((x - x.mean()) * e) for x in xs]
+    ph = np.linspace(0.0, 2 * np.pi, 721)
+    r = np.hypot(np.real(amp[0] * np.exp(1j * ph)), np.real(amp[1] * np.exp(1j * ph)))
+    return float(r.max()), complex(amp[0]), complex(amp[1])
 
 
 def orbit(
@@ -151,7 +170,9 @@ def waterfall(
         rpm.append(speed[k : k + n].mean() * 30 / np.pi)
     amp = np.array(rows)
     fig, ax = plt.subplots(figsize=(7, 4.5))
-    mesh = ax.pcolormesh(f, rpm, np.log10(amp + 1e-9), shading="nearest", cmap="viridis")
+    mesh = ax.pcolormesh(
+        f, rpm, np.log10(amp + 1e-9), shading="nearest", cmap="viridis", rasterized=True
+    )
     fig.colorbar(mesh, ax=ax, label="log10 amplitude, µm")
     labels = order_labels or [f"{o:g}×" for o in orders]
     for o, lab in zip(orders, labels):
@@ -166,10 +187,15 @@ def waterfall(
 
 
 def time_history_csv(
-    response: dict, path: pathlib.Path, dofs: Sequence[int], names: Sequence[str]
+    response: dict,
+    path: pathlib.Path,
+    dofs: Sequence[int],
+    names: Sequence[str],
+    every: int = 1,
 ) -> pathlib.Path:
     """Write ``time_s``, ``speed_rad_s`` and the displacement of each of ``dofs`` (SI; column
-    names ``names``) and every bearing's reaction (N, N·m; ours) as CSV."""
+    names ``names``) and every bearing's reaction (N, N·m; ours) as CSV, every ``every``-th
+    record."""
     path = pathlib.Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     cols = [column(response, d) for d in dofs]
@@ -182,7 +208,8 @@ def time_history_csv(
     with path.open("w", newline="") as fh:
         w = csv.writer(fh)
         w.writerow(["time_s", "speed_rad_s", *names, *rnames])
-        for i, t in enumerate(response["time_s"]):
+        for i in range(0, len(response["time_s"]), every):
+            t = response["time_s"][i]
             w.writerow(
                 [
                     repr(float(t)),
