@@ -91,23 +91,26 @@ def critical_speeds(rotor, max_rpm: float = 15000.0, count: int = 2) -> list[flo
     return out
 
 
-def linear_unbalance_amplitude(rotor, speed_rad_s: float) -> float:
-    """Steady-state orbit semi-major axis (m) at disk 1 of the linear rotor (rotor.K, rotor.C
-    at the speed, gyroscopics) under the unbalance: (K − Ω²M + iΩ(C + ΩG))·X = F."""
+def steady_unbalance(m, k, c, g, speed_rad_s: float, disk_dofs) -> np.ndarray:
+    """Complex steady-state response X (x(t) = Re(X·e^{iΩt})) of the linear rotor (mass m,
+    stiffness k, damping c, gyroscopic g; torsion DOFs left out) to the unbalance on disk 1:
+    (K − Ω²M + iΩ(C + ΩG))·X = m·e·Ω²·(1, −i) on the disk's x, y."""
     w = speed_rad_s
-    n = rotor.ndof
-    free = [i for i in range(n) if i % rotor.number_dof != 5]  # no torsion
-    z = rotor.K(w) - w**2 * rotor.M() + 1j * w * (rotor.C(w) + w * rotor.G())
+    n = m.shape[0]
+    free = [i for i in range(n) if i % 6 != 5]  # ROSS: 6 DOFs per node, θ (torsion) last
+    z = k - w**2 * m + 1j * w * (c + w * g)
     f = np.zeros(n, dtype=complex)
-    d = er.node_dofs(rotor, DISK_NODE)
-    f[d[0]] = UNBALANCE_KG_M * w**2
-    f[d[1]] = -1j * UNBALANCE_KG_M * w**2
+    f[disk_dofs[0]] = UNBALANCE_KG_M * w**2
+    f[disk_dofs[1]] = -1j * UNBALANCE_KG_M * w**2
     x = np.zeros(n, dtype=complex)
     x[free] = np.linalg.solve(z[np.ix_(free, free)], f[free])
+    return x
+
+
+def semi_major(xc: complex, yc: complex) -> float:
+    """Semi-major axis of the orbit (Re(xc·e^{iφ}), Re(yc·e^{iφ}))."""
     ph = np.linspace(0, 2 * math.pi, 721)
-    xs = np.real(x[d[0]] * np.exp(1j * ph))
-    ys = np.real(x[d[1]] * np.exp(1j * ph))
-    return float(np.hypot(xs, ys).max())
+    return float(np.hypot(np.real(xc * np.exp(1j * ph)), np.real(yc * np.exp(1j * ph))).max())
 
 
 def loads(element, case):
@@ -224,11 +227,11 @@ def main() -> None:
         "",
         f"## Unbalance response at disk 1 (node {DISK_NODE}), {UNBALANCE_KG_M * 1e6:.0f} g·mm",
         "",
-        "Orbit semi-major axis, µm. Linear: steady state of the linearized rotor. Nonlinear: "
-        f"time response with our force elements (implicit, h = {STEP_S:g} s, 0.2 s from the "
-        "static equilibrium at rest, cages held: the fitted laws are per ball): its 1× "
-        "component over the last 0.1 s, and the largest radius about the mean there, which "
-        "includes the free vibration the start leaves in the almost undamped rotor.",
+        "Orbit semi-major axis, µm. Linear: steady state of the rotor with the bearings' "
+        "linear coefficients (ROSS's `rotor.K`, `rotor.C`). Nonlinear: time response with our "
+        f"force elements (implicit, h = {STEP_S:g} s, 0.2 s, cages held: the fitted laws are "
+        "per ball) started on the linearized steady orbit: its 1× component over the last "
+        "0.1 s (whole revolutions) and the largest radius about the mean there.",
         "",
         "| model | rpm | linear | nonlinear 1× | nonlinear peak |",
         "|---|---|---|---|---|",
@@ -242,21 +245,27 @@ def main() -> None:
         c_rpm = case.with_inner_speed_rpm(rpm)
         responses[rpm] = {}
         for name, r in rotors.items():
-            lin = linear_unbalance_amplitude(r, w)
+            xr = steady_unbalance(r.M(), r.K(w), r.C(w), r.G(), w, (dx, dy))
+            lin = semi_major(xr[dx], xr[dy])
             nl, peak = "—", "—"
             if name in elements:
                 el = elements[name](rpm)
                 sites, unb, extra = nonlinear_setup(r, el, c_rpm, unbalance=True)
+                model = er.rotor_model(r, sites, unb, extra_force_n=extra)
+                # Start on the linearized steady orbit about the static equilibrium, so that the
+                # almost undamped rotor is not left ringing at its natural frequencies.
+                li = model.linearized(w)
+                x0 = steady_unbalance(
+                    li["mass"], li["stiffness"], li["damping"], li["gyroscopic"], w, (dx, dy)
+                )
                 t0 = time.time()
-                resp = er.time_response(
-                    r,
-                    sites,
-                    unb,
-                    speed_rad_s=w,
+                resp = model.simulate(
                     step_s=STEP_S,
                     duration_s=0.2,
+                    speed_rad_s=w,
                     cage_angle_rad=0.0,
-                    extra_force_n=extra,
+                    start_displacement=li["static"]["displacement"] + np.real(x0),
+                    start_velocity=np.real(1j * w * x0),
                 )
                 bench[(name, rpm)] = (
                     time.time() - t0,

@@ -426,9 +426,11 @@ pub(crate) fn mat<'py>(py: Python<'py>, m: &[[f64; 5]; 5]) -> Bound<'py, PyArray
 }
 
 fn vec5(a: &PyReadonlyArray1<'_, f64>, what: &str) -> PyResult<[f64; 5]> {
-    let s = a.as_slice().map_err(err)?;
+    // Any layout (e.g. a row or column of a 2-D array): copy element-wise.
+    let s: Vec<f64> = a.as_array().iter().copied().collect();
+    let n = s.len();
     s.try_into()
-        .map_err(|_| err(format!("{what}: expected 5 values, got {}", s.len())))
+        .map_err(|_| err(format!("{what}: expected 5 values, got {n}")))
 }
 
 /// Shared implementation of the Python force-element classes: the element and one warm-start

@@ -79,7 +79,8 @@ fn vec_n(a: Option<PyReadonlyArray1<'_, f64>>, n: usize, what: &str) -> PyResult
     match a {
         None => Ok(vec![0.0; n]),
         Some(a) => {
-            let v = a.as_slice().map_err(err)?.to_vec();
+            // Any layout (e.g. the real part of a complex array, a column): copy element-wise.
+            let v: Vec<f64> = a.as_array().iter().copied().collect();
             if v.len() != n {
                 return Err(err(format!("{what}: expected {n} values, got {}", v.len())));
             }

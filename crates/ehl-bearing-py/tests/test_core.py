@@ -63,6 +63,8 @@ def test_force_element_arrays_and_jacobian(case):
         fd = (rp - rm) / (2 * h)
         scale = np.abs(np.diag(k))
         assert np.all(np.abs(fd - k[:, j]) <= 1e-3 * np.maximum(scale, np.abs(k[:, j]))), j
+    column = np.stack([q, 2 * q], axis=1)[:, 0]  # a non-contiguous view
+    np.testing.assert_allclose(el.evaluate(column, inner_speed_rad_s=w)[0], r, rtol=1e-9)
     full = el.evaluate(q, inner_speed_rad_s=w, full=True)
     assert full["loads"].shape == (11, 2) and full["approaches"].shape == (11, 2)
     with pytest.raises(eb.EhlBearingError, match="displacement"):
