@@ -389,8 +389,11 @@ def time_response(
     (rad/s, rad/s, s; then constant). ``coupling``: ``"implicit"`` (bearing forces at the new
     time, Newton on the bearing DOFs) or ``"lagged"`` (the previous step's forces, as ROSS's
     ``add_to_RHS``). ``cage_angle_rad``: None lets the cages roll (ball passes at Z·f_cage), a
-    number holds them. Starts from the static equilibrium at the initial speed. Constant loads:
-    gravity (``gravity=True``) and ``extra_force_n`` (n,).
+    number holds them — hold them with fitted laws (a ``LawElement`` from a characterization
+    keeps each ball's law, fitted at that ball's position in the case: a rolling cage would carry
+    the laws around and excite the cage frequency, an artifact); ball-pass studies with dry Hertz
+    or a ``TrendForceElement``. Starts from the static equilibrium at the initial speed.
+    Constant loads: gravity (``gravity=True``) and ``extra_force_n`` (n,).
 
     Returns :meth:`ehl_bearing.RotorModel.simulate`'s dict (``time_s``, ``speed_rad_s``,
     ``displacement`` over ROSS's global DOFs ``record_dofs``, ``bearing_reaction``,
