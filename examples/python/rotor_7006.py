@@ -354,6 +354,7 @@ def main() -> None:
         out / "csv" / "ball_pass_dry_5000rpm.csv",
         b0[:2],
         ["node0_x_m", "node0_y_m"],
+        every=5,
     )
 
     # Run-up 3000 → 5000 rpm in 1 s: waterfall (dry Hertz, rolling cages, with unbalance).
