@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # All the project's tests: the README's test command, run by CI (.ci/run).
-# Formatting, lints and the Rust tests; further stages (Python package, Slurm route) are added below as they land.
+# Formatting, lints and the Rust tests, then the Python package (scripts/test_python.sh); further stages are added below as they land.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 echo "== cargo fmt --check"
@@ -13,3 +13,5 @@ echo "== cargo test"
 cargo test --workspace
 echo "== Slurm route (scripts/test_slurm.sh; SKIPPED without root or Debian's slurm-wlm/munge)"
 scripts/test_slurm.sh
+echo "== python package (scripts/test_python.sh)"
+scripts/test_python.sh

@@ -1,0 +1,221 @@
+"""Outputs a rotordynamicist expects from a time response: orbits, displacement spectra, a
+waterfall over a run-up (matplotlib; saved as PNG and SVG) and time histories as CSV.
+
+All functions take the dict of :meth:`ehl_bearing.RotorModel.simulate` (or
+:func:`ehl_bearing.ross.time_response`): ``time_s``, ``speed_rad_s``, ``record_dofs`` and
+``displacement`` (records × recorded DOFs, SI). DOFs are given as global rotor indices (e.g.
+:func:`ehl_bearing.ross.node_dofs`). Needs matplotlib (``pip install 'ehl_bearing[plot]'``).
+"""
+
+from __future__ import annotations
+
+import csv
+import pathlib
+from collections.abc import Sequence
+from typing import Any, Optional
+
+import numpy as np
+
+__all__ = [
+    "amplitude_spectrum",
+    "column",
+    "orbit",
+    "save",
+    "spectrum",
+    "synchronous_orbit",
+    "time_history_csv",
+    "waterfall",
+]
+
+
+def column(response: dict, dof: int) -> np.ndarray:
+    """The recorded displacement history of global DOF ``dof`` (m or rad)."""
+    dofs = list(response["record_dofs"])
+    if dof not in dofs:
+        raise ValueError(f"DOF {dof} was not recorded (recorded: {dofs[:8]}…)")
+    return np.asarray(response["displacement"])[:, dofs.index(dof)]
+
+
+def _plt() -> Any:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def save(fig: Any, path_stem: pathlib.Path) -> list[pathlib.Path]:
+    """Save ``fig`` as ``<stem>.png`` (150 dpi) and ``<stem>.svg``; returns the paths."""
+    path_stem = pathlib.Path(path_stem)
+    path_stem.parent.mkdir(parents=True, exist_ok=True)
+    out = []
+    for ext in ("png", "svg"):
+        p = path_stem.with_suffix(f".{ext}")
+        fig.savefig(p, dpi=150, bbox_inches="tight")
+        out.append(p)
+    _plt().close(fig)
+    return out
+
+
+def synchronous_orbit(
+    response: dict, dofs: tuple[int, int], since_s: float = 0.0
+) -> tuple[float, complex, complex]:
+    """The 1× (shaft-synchronous) component of the orbit of the node whose lateral DOFs are
+    ``dofs``, from ``since_s`` on at constant speed: (semi-major axis in m, complex amplitudes
+    X, Y with x(t) ≈ Re(X·e^{iΩt})). Removes the free vibration at the natural frequencies that
+    a start from rest leaves in a lightly damped rotor (use a whole number of revolutions)."""
+    t = np.asarray(response["time_s"])
+    keep = t >= since_s
+    w = float(np.mean(np.asarray(response["speed_rad_s"])[keep]))
+    e = np.exp(-1j * w * t[keep])
+    xs = [column(response, d)[keep] for d in dofs]
+    amp = [2.0 * np.mean((x - x.mean()) * e) for x in xs]
+    ph = np.linspace(0.0, 2 * np.pi, 721)
+    r = np.hypot(np.real(amp[0] * np.exp(1j * ph)), np.real(amp[1] * np.exp(1j * ph)))
+    return float(r.max()), complex(amp[0]), complex(amp[1])
+
+
+def orbit(
+    responses: dict[str, dict],
+    dofs: tuple[int, int],
+    title: str = "",
+    since_s: float = 0.0,
+    about_mean: bool = True,
+) -> Any:
+    """Orbit plot (µm) of the node whose lateral DOFs are ``dofs`` (ROSS x, y) for each labelled
+    response in ``responses``, from ``since_s`` on; ``about_mean`` subtracts each orbit's mean
+    (the static deflection). Returns the matplotlib figure."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(5, 5))
+    for label, r in responses.items():
+        keep = np.asarray(r["time_s"]) >= since_s
+        x = column(r, dofs[0])[keep]
+        y = column(r, dofs[1])[keep]
+        if about_mean:
+            x, y = x - x.mean(), y - y.mean()
+        ax.plot(1e6 * x, 1e6 * y, lw=0.8, label=label)
+    ax.set_xlabel("x (ROSS), µm")
+    ax.set_ylabel("y (ROSS, vertical), µm")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(title, fontsize=9)
+    return fig
+
+
+def amplitude_spectrum(signal: np.ndarray, step_s: float) -> tuple[np.ndarray, np.ndarray]:
+    """One-sided amplitude spectrum (Hann window, amplitude-corrected) of a uniformly sampled
+    signal with its mean removed: (frequency Hz, amplitude in the signal's unit)."""
+    s = np.asarray(signal, dtype=float)
+    s = s - s.mean()
+    w = np.hanning(len(s))
+    a = 2.0 * np.abs(np.fft.rfft(s * w)) / w.sum()
+    return np.fft.rfftfreq(len(s), step_s), a
+
+
+def spectrum(
+    responses: dict[str, dict],
+    dof: int,
+    title: str = "",
+    since_s: float = 0.0,
+    marks_hz: Optional[dict[str, float]] = None,
+    max_hz: Optional[float] = None,
+) -> Any:
+    """Displacement spectrum (µm, log scale) of global DOF ``dof`` for each labelled response,
+    from ``since_s`` on, with vertical marks at ``marks_hz`` (label → Hz, e.g. 1× and Z·f_cage)."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(7, 4))
+    for label, r in responses.items():
+        t = np.asarray(r["time_s"])
+        keep = t >= since_s
+        f, a = amplitude_spectrum(column(r, dof)[keep], t[1] - t[0])
+        ax.semilogy(f[1:], 1e6 * a[1:] + 1e-12, lw=0.8, label=label)
+    for name, fm in (marks_hz or {}).items():
+        ax.axvline(fm, color="k", ls=":", lw=0.8)
+        ax.text(fm, ax.get_ylim()[1], f" {name}", rotation=90, va="top", fontsize=7)
+    if max_hz:
+        ax.set_xlim(0, max_hz)
+    ax.set_xlabel("frequency, Hz")
+    ax.set_ylabel("amplitude, µm")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    ax.set_title(title, fontsize=9)
+    return fig
+
+
+def waterfall(
+    response: dict,
+    dof: int,
+    window_s: float,
+    title: str = "",
+    max_hz: Optional[float] = None,
+    orders: Sequence[float] = (1.0,),
+    order_labels: Optional[Sequence[str]] = None,
+) -> Any:
+    """Waterfall of a run-up: amplitude spectra (µm) of global DOF ``dof`` over consecutive
+    windows of ``window_s`` against the mean shaft speed of each window (rpm), as a colour map
+    (frequency × speed), with order lines (multiples of the shaft speed, e.g. 1× and the
+    ball-pass order Z·f_cage/f_shaft)."""
+    plt = _plt()
+    t = np.asarray(response["time_s"])
+    h = t[1] - t[0]
+    n = max(round(window_s / h), 8)
+    x = column(response, dof)
+    speed = np.asarray(response["speed_rad_s"])
+    rows, rpm = [], []
+    for k in range(0, len(x) - n + 1, n):
+        f, a = amplitude_spectrum(x[k : k + n], h)
+        rows.append(1e6 * a)
+        rpm.append(speed[k : k + n].mean() * 30 / np.pi)
+    amp = np.array(rows)
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    mesh = ax.pcolormesh(
+        f, rpm, np.log10(amp + 1e-9), shading="nearest", cmap="viridis", rasterized=True
+    )
+    fig.colorbar(mesh, ax=ax, label="log10 amplitude, µm")
+    labels = order_labels or [f"{o:g}×" for o in orders]
+    for o, lab in zip(orders, labels):
+        ax.plot(np.array(rpm) / 60 * o, rpm, "w--", lw=0.7)
+        ax.text(rpm[-1] / 60 * o, rpm[-1], lab, color="w", fontsize=7, va="bottom")
+    if max_hz:
+        ax.set_xlim(0, max_hz)
+    ax.set_xlabel("frequency, Hz")
+    ax.set_ylabel("shaft speed, rpm")
+    ax.set_title(title, fontsize=9)
+    return fig
+
+
+def time_history_csv(
+    response: dict,
+    path: pathlib.Path,
+    dofs: Sequence[int],
+    names: Sequence[str],
+    every: int = 1,
+) -> pathlib.Path:
+    """Write ``time_s``, ``speed_rad_s`` and the displacement of each of ``dofs`` (SI; column
+    names ``names``) and every bearing's reaction (N, N·m; ours) as CSV, every ``every``-th
+    record."""
+    path = pathlib.Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    cols = [column(response, d) for d in dofs]
+    reac = np.asarray(response.get("bearing_reaction", np.zeros((len(response["time_s"]), 0, 5))))
+    rnames = [
+        f"bearing{b}_{c}"
+        for b in range(reac.shape[1])
+        for c in ("fx_n", "fy_n", "fz_n", "my_n_m", "mz_n_m")
+    ]
+    with path.open("w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["time_s", "speed_rad_s", *names, *rnames])
+        for i in range(0, len(response["time_s"]), every):
+            t = response["time_s"][i]
+            w.writerow(
+                [
+                    repr(float(t)),
+                    repr(float(response["speed_rad_s"][i])),
+                    *(repr(float(c[i])) for c in cols),
+                    *(repr(float(v)) for v in reac[i].reshape(-1)),
+                ]
+            )
+    return path

@@ -1,0 +1,789 @@
+//! Python bindings of `ehl-bearing` (module `ehl_bearing._native`; the Python package
+//! `ehl_bearing` re-exports and documents it). Results with many fields come back as Python
+//! dicts (the library's JSON, SI units), matrices and vectors as numpy arrays. Long computations
+//! release the GIL; progress callbacks re-acquire it.
+
+// pyo3 0.22's macros expand `?` on PyResult into a PyErr → PyErr conversion that clippy flags in
+// the user's code (a known false positive of pyo3 0.22's macros, gone in later pyo3).
+#![allow(clippy::useless_conversion)]
+
+use ehl_bearing::bearing::{solve_equilibrium, ContactLaws};
+use ehl_bearing::characterize::{
+    characterization_json, characterize_bearing_with_progress, BearingCharacterization,
+    CharacterizeSettings, Progress,
+};
+use ehl_bearing::force_element::{
+    ElementInput, ElementOutput, ElementState, ForceElement, LawElement, TrendForceElement,
+};
+use ehl_bearing::io::{json::equilibrium_json, parse_case, read_case, Case, FsStore};
+use ehl_bearing::study::{
+    finish_study, points_csv, read_study, results_csv, run_study, RunOptions, StudyEvent,
+};
+use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::create_exception;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::f64::consts::PI;
+use std::sync::{Arc, Mutex};
+
+mod rotor;
+
+create_exception!(
+    _native,
+    EhlBearingError,
+    PyValueError,
+    "An error of the ehl-bearing library (invalid input, a solver that did not converge, a file \
+     that could not be read); the message is the library's."
+);
+
+/// A library error as a Python `EhlBearingError` with the library's message.
+pub(crate) fn err<E: std::fmt::Display>(e: E) -> PyErr {
+    EhlBearingError::new_err(e.to_string())
+}
+
+/// A JSON value as a Python object (dicts, lists, floats, strings) via the `json` module.
+pub(crate) fn to_py(py: Python<'_>, v: &serde_json::Value) -> PyResult<PyObject> {
+    let text = serde_json::to_string(v).map_err(err)?;
+    Ok(py
+        .import_bound("json")?
+        .call_method1("loads", (text,))?
+        .unbind())
+}
+
+/// A Python object (dict, list, numbers, strings) as a JSON value via the `json` module.
+fn from_py(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<serde_json::Value> {
+    let text: String = py
+        .import_bound("json")?
+        .call_method1("dumps", (obj,))?
+        .extract()?;
+    serde_json::from_str(&text).map_err(err)
+}
+
+/// Call a Python progress callback with a dict, from any thread; errors are printed, not raised
+/// (a progress display must not abort a computation).
+fn report(callback: &Option<PyObject>, event: serde_json::Value) {
+    if let Some(cb) = callback {
+        Python::with_gil(|py| {
+            let r = to_py(py, &event).and_then(|d| cb.call1(py, (d,)));
+            if let Err(e) = r {
+                e.print(py);
+            }
+        });
+    }
+}
+
+fn progress_json(p: &Progress) -> serde_json::Value {
+    match p {
+        Progress::IterationStarted {
+            iteration,
+            contacts,
+        } => {
+            serde_json::json!({"event": "iteration_started", "iteration": iteration, "contacts": contacts})
+        }
+        Progress::ContactDone { iteration } => {
+            serde_json::json!({"event": "contact_done", "iteration": iteration})
+        }
+        Progress::IterationDone(r) => serde_json::json!({
+            "event": "iteration_done",
+            "record": serde_json::to_value(r).unwrap_or(serde_json::Value::Null),
+        }),
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Case
+// ---------------------------------------------------------------------------------------------
+
+/// A validated bearing case (geometry, materials, lubricant, operating point, solver settings),
+/// SI inside. Build with `Case.from_file`, `Case.from_toml` or `Case.from_dict`.
+#[pyclass(module = "ehl_bearing._native", name = "Case", frozen)]
+#[derive(Clone)]
+pub struct PyCase {
+    pub(crate) case: Case,
+}
+
+#[pymethods]
+impl PyCase {
+    /// Read and validate a case file (TOML, e.g. `examples/7006.toml`).
+    #[staticmethod]
+    fn from_file(path: std::path::PathBuf) -> PyResult<Self> {
+        Ok(PyCase {
+            case: read_case(&path).map_err(err)?,
+        })
+    }
+
+    /// Parse and validate a case from TOML text (`origin` names it in error messages).
+    #[staticmethod]
+    #[pyo3(signature = (text, origin = "<string>"))]
+    fn from_toml(text: &str, origin: &str) -> PyResult<Self> {
+        Ok(PyCase {
+            case: parse_case(text, origin).map_err(err)?,
+        })
+    }
+
+    /// Build a case from a dict with the case file's tables and keys (units in the key names,
+    /// as in the file: `{"bearing": {"ball_count": 11, "ball_diameter_mm": 7.0, ...},
+    /// "operating": {"inner_speed_rpm": 5000.0, ...}}`); validated by the same parser.
+    #[staticmethod]
+    fn from_dict(py: Python<'_>, values: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let v = from_py(py, values)?;
+        let text = toml::to_string(&v).map_err(|e| err(format!("case dict as TOML: {e}")))?;
+        Self::from_toml(&text, "<dict>")
+    }
+
+    /// The bearing's name, if the case gives one.
+    #[getter]
+    fn name(&self) -> Option<String> {
+        self.case.name.clone()
+    }
+
+    /// Inner-ring speed, rad/s.
+    #[getter]
+    fn inner_speed_rad_s(&self) -> f64 {
+        self.case.operating.inner_speed
+    }
+
+    /// Outer-ring speed, rad/s.
+    #[getter]
+    fn outer_speed_rad_s(&self) -> f64 {
+        self.case.operating.outer_speed
+    }
+
+    /// Number of balls Z.
+    #[getter]
+    fn ball_count(&self) -> usize {
+        self.case.bearing.geometry.ball_count
+    }
+
+    /// Pitch diameter d_m, m.
+    #[getter]
+    fn pitch_diameter_m(&self) -> f64 {
+        self.case.bearing.geometry.pitch_diameter
+    }
+
+    /// Ball diameter D, m.
+    #[getter]
+    fn ball_diameter_m(&self) -> f64 {
+        self.case.bearing.geometry.ball_diameter
+    }
+
+    /// Free contact angle, rad.
+    #[getter]
+    fn contact_angle_rad(&self) -> f64 {
+        self.case.bearing.geometry.free_contact_angle
+    }
+
+    /// The same case with the inner-ring speed set to `rpm`.
+    fn with_inner_speed_rpm(&self, rpm: f64) -> PyResult<Self> {
+        if !rpm.is_finite() {
+            return Err(err(format!(
+                "inner speed {rpm} rpm: expected a finite speed"
+            )));
+        }
+        let mut c = self.case.clone();
+        c.operating.inner_speed = rpm * PI / 30.0;
+        Ok(PyCase { case: c })
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Case({:?}, Z={}, inner speed {:.1} rpm)",
+            self.case.name.as_deref().unwrap_or("unnamed"),
+            self.case.bearing.geometry.ball_count,
+            self.case.operating.inner_speed * 30.0 / PI
+        )
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Equilibrium, EHL, contact, characterize
+// ---------------------------------------------------------------------------------------------
+
+/// Dry (Hertz) quasi-static equilibrium of the case's bearing under its loads: a dict with the
+/// displacements, reactions, 5×5 stiffness and every ball's contact states (SI).
+#[pyfunction]
+fn equilibrium(py: Python<'_>, case: &PyCase) -> PyResult<PyObject> {
+    let c = &case.case;
+    let eq = py
+        .allow_threads(|| {
+            let laws = ContactLaws::hertz(&c.bearing)?;
+            solve_equilibrium(&c.bearing, &laws, &c.operating, &c.settings)
+        })
+        .map_err(err)?;
+    to_py(py, &equilibrium_json(&eq))
+}
+
+/// Steady EHL solution of one point contact given as contact-file TOML text (the `ehl`
+/// command's input: `load_n`, `rx_mm`, `ry_mm`, `sum_velocity_m_s`, lubricant, materials).
+/// Returns a dict (SI): film thicknesses, pressure, Moes parameters, convergence; with
+/// `fields=True` also the pressure and film fields on the grid.
+#[pyfunction]
+#[pyo3(signature = (contact_toml, grid = None, fields = false))]
+fn ehl(
+    py: Python<'_>,
+    contact_toml: &str,
+    grid: Option<usize>,
+    fields: bool,
+) -> PyResult<PyObject> {
+    use ehl_bearing::ehl::{input::parse_contact_file, solve_steady, EhlSettings};
+    let file = parse_contact_file(contact_toml).map_err(err)?;
+    let mut s = EhlSettings::default();
+    if let Some(g) = grid {
+        s.grid = g;
+    }
+    let sol = py
+        .allow_threads(|| solve_steady(&file.contact, &s))
+        .map_err(err)?;
+    let mut v = serde_json::to_value(&sol).map_err(err)?;
+    if !fields {
+        if let Some(o) = v.as_object_mut() {
+            o.remove("fields");
+        }
+    }
+    to_py(py, &v)
+}
+
+/// Characterize one EHL point contact (contact-file TOML text) with `method`
+/// ("quasi-static" or "harmonic"; the harmonic method needs the ball mass from the file):
+/// the fitted law Q = K·δ^d + ΔF (+ c·δ̇) and its samples, as a dict (SI).
+#[pyfunction]
+#[pyo3(signature = (contact_toml, method = "quasi-static"))]
+fn contact(py: Python<'_>, contact_toml: &str, method: &str) -> PyResult<PyObject> {
+    use ehl_bearing::contact::{characterize_harmonic, characterize_quasi_static};
+    use ehl_bearing::ehl::input::parse_contact_file;
+    use ehl_bearing::method::Method;
+    let file = parse_contact_file(contact_toml).map_err(err)?;
+    let m = Method::parse(method, None).map_err(err)?;
+    let fit = py
+        .allow_threads(|| match m {
+            Method::Harmonic(s) => match file.ball_mass.or(s.mass) {
+                Some(mass) => characterize_harmonic(&file.contact, mass, &s).map_err(err),
+                None => Err(err(
+                    "the harmonic method needs the ball's mass: give ball_mass_kg or ball_diameter_mm in the contact file",
+                )),
+            },
+            Method::QuasiStatic(s) => characterize_quasi_static(&file.contact, &s).map_err(err),
+            other => Err(err(format!(
+                "method {other} does not characterize a single contact"
+            ))),
+        })?;
+    to_py(py, &serde_json::to_value(&fit).map_err(err)?)
+}
+
+/// The coupled characterization of a case (fitted laws, their equilibrium, the iterations).
+/// `report()` gives the dict of `characterization.json`; `law_element()` the bearing with the
+/// fitted laws as a force element.
+#[pyclass(module = "ehl_bearing._native", frozen)]
+pub struct Characterization {
+    case: Case,
+    inner: Arc<BearingCharacterization>,
+}
+
+#[pymethods]
+impl Characterization {
+    /// The characterization as a dict (the `characterize` command's JSON, SI).
+    #[pyo3(signature = (timing = false))]
+    fn report(&self, py: Python<'_>, timing: bool) -> PyResult<PyObject> {
+        to_py(py, &characterization_json(&self.inner, timing))
+    }
+
+    /// Whether the coupled loop converged.
+    #[getter]
+    fn converged(&self) -> bool {
+        self.inner.converged
+    }
+
+    /// Equilibrium ring displacements x, y, z (m) and tilts θy, θz (rad), shape (5,).
+    #[getter]
+    fn displacement<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice_bound(py, &self.inner.equilibrium.displacement)
+    }
+
+    /// Lubricated stiffness at the equilibrium, (5, 5), SI.
+    #[getter]
+    fn stiffness<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        mat(py, &self.inner.ehl_stiffness())
+    }
+
+    /// Dry Hertz stiffness at the same loads, (5, 5), SI.
+    #[getter]
+    fn dry_stiffness<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        mat(py, &self.inner.dry_stiffness())
+    }
+
+    /// The bearing with the fitted laws as a force element (`LawElement`).
+    fn law_element(&self) -> PyResult<PyLawElement> {
+        let e = LawElement::from_characterization(&self.case, &self.inner).map_err(err)?;
+        Ok(PyLawElement::new(Arc::new(e), false))
+    }
+}
+
+fn method_of(case: &Case, method: Option<&str>) -> PyResult<ehl_bearing::method::Method> {
+    case.method_or(method).map_err(err)
+}
+
+/// Characterize the bearing of `case` with `method` (default: the case file's method, else
+/// quasi-static; "harmonic" also fits each contact's damping): the coupled loop of EHL contact
+/// characterizations and bearing equilibrium. `progress`, if given, is called with a dict per
+/// event (`{"event": "iteration_started" | "contact_done" | "iteration_done", ...}`), from worker
+/// threads. Releases the GIL. About 15 s for the seed case on 2 cores.
+#[pyfunction]
+#[pyo3(signature = (case, method = None, progress = None))]
+fn characterize(
+    py: Python<'_>,
+    case: &PyCase,
+    method: Option<&str>,
+    progress: Option<PyObject>,
+) -> PyResult<Characterization> {
+    let c = case.case.clone();
+    let m = method_of(&c, method)?;
+    let settings = CharacterizeSettings::default();
+    let ch = py
+        .allow_threads(|| {
+            characterize_bearing_with_progress(&c, &m, &settings, &|p| {
+                report(&progress, progress_json(&p))
+            })
+        })
+        .map_err(err)?;
+    Ok(Characterization {
+        case: c,
+        inner: Arc::new(ch),
+    })
+}
+
+/// Run a load × speed study file into `output_dir` (resumable point files, `results.csv`,
+/// `points.csv`, `trends.json` when the trends fit): all points, with `method` overriding the
+/// file's. `progress` is called with a dict per event (`planned`, `point_started`, `loop`,
+/// `point_done`). Returns a summary dict with the paths written and the trend model's JSON path
+/// (None if the trends could not be fitted, with the reason). Releases the GIL.
+#[pyfunction]
+#[pyo3(signature = (study_file, output_dir, method = None, progress = None))]
+fn study(
+    py: Python<'_>,
+    study_file: std::path::PathBuf,
+    output_dir: std::path::PathBuf,
+    method: Option<&str>,
+    progress: Option<PyObject>,
+) -> PyResult<PyObject> {
+    let mut s = read_study(&study_file).map_err(err)?;
+    if let Some(m) = method {
+        s.set_method(m).map_err(err)?;
+    }
+    let store = FsStore::create(&output_dir).map_err(err)?;
+    let summary = py.allow_threads(|| -> PyResult<serde_json::Value> {
+        let events = |e: StudyEvent| {
+            let v = match e {
+                StudyEvent::Planned {
+                    points,
+                    to_compute,
+                    redone,
+                } => serde_json::json!({"event": "planned", "points": points, "to_compute": to_compute, "redone": redone}),
+                StudyEvent::PointStarted(p) => serde_json::json!({"event": "point_started", "index": p.index, "inner_speed_rpm": p.inner_speed_rpm, "load_scale": p.load_scale}),
+                StudyEvent::Loop(l) => serde_json::json!({"event": "loop", "progress": progress_json(&l)}),
+                StudyEvent::PointDone { point, converged, error, seconds } => serde_json::json!({"event": "point_done", "index": point.index, "converged": converged, "error": error, "seconds": seconds}),
+            };
+            report(&progress, v)
+        };
+        let run = run_study(&s, &store, &RunOptions::default(), &events).map_err(err)?;
+        let out = finish_study(&s, &store).map_err(err)?;
+        let dir = store.dir();
+        let write = |name: &str, text: &str| {
+            ehl_bearing::io::write_atomic(&dir.join(name), text.as_bytes()).map_err(err)
+        };
+        write("results.csv", &results_csv(&out.rows))?;
+        write("points.csv", &points_csv(&out.records, &out.trend_errors))?;
+        let (trends, trend_error) = match &out.trends {
+            Ok(m) => {
+                write("trends.json", &m.to_json())?;
+                (Some(dir.join("trends.json").display().to_string()), None)
+            }
+            Err(e) => (None, Some(e.clone())),
+        };
+        Ok(serde_json::json!({
+            "points": run.points,
+            "computed": run.computed,
+            "loaded": run.loaded,
+            "failed": out.failed.iter().map(|(p, e)| serde_json::json!({"inner_speed_rpm": p.inner_speed_rpm, "load_scale": p.load_scale, "error": e})).collect::<Vec<_>>(),
+            "not_converged": out.not_converged(),
+            "results_csv": dir.join("results.csv").display().to_string(),
+            "points_csv": dir.join("points.csv").display().to_string(),
+            "trends_json": trends,
+            "trend_error": trend_error,
+            "worst_trend_error": out.worst_trend_error(),
+        }))
+    })?;
+    to_py(py, &summary)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Force elements
+// ---------------------------------------------------------------------------------------------
+
+pub(crate) fn mat<'py>(py: Python<'py>, m: &[[f64; 5]; 5]) -> Bound<'py, PyArray2<f64>> {
+    let rows: Vec<Vec<f64>> = m.iter().map(|r| r.to_vec()).collect();
+    PyArray2::from_vec2_bound(py, &rows).expect("5×5 rows")
+}
+
+fn vec5(a: &PyReadonlyArray1<'_, f64>, what: &str) -> PyResult<[f64; 5]> {
+    // Any layout (e.g. a row or column of a 2-D array): copy element-wise.
+    let s: Vec<f64> = a.as_array().iter().copied().collect();
+    let n = s.len();
+    s.try_into()
+        .map_err(|_| err(format!("{what}: expected 5 values, got {n}")))
+}
+
+/// Shared implementation of the Python force-element classes: the element and one warm-start
+/// state per Python object.
+pub(crate) struct ElementCore {
+    pub(crate) element: Arc<dyn ForceElement>,
+    state: Mutex<ElementState>,
+}
+
+impl ElementCore {
+    fn new(element: Arc<dyn ForceElement>) -> Self {
+        ElementCore {
+            element,
+            state: Mutex::new(ElementState::default()),
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn evaluate<'py>(
+        &self,
+        py: Python<'py>,
+        displacement: PyReadonlyArray1<'_, f64>,
+        velocity: Option<PyReadonlyArray1<'_, f64>>,
+        inner_speed_rad_s: f64,
+        outer_speed_rad_s: f64,
+        cage_angle_rad: f64,
+        full: bool,
+    ) -> PyResult<PyObject> {
+        let q = vec5(&displacement, "displacement")?;
+        let v = match &velocity {
+            Some(v) => vec5(v, "velocity")?,
+            None => [0.0; 5],
+        };
+        let input = ElementInput {
+            displacement: q,
+            velocity: v,
+            inner_speed: inner_speed_rad_s,
+            outer_speed: outer_speed_rad_s,
+            cage_angle: cage_angle_rad,
+        };
+        let out: ElementOutput = py
+            .allow_threads(|| {
+                let mut st = self.state.lock().unwrap_or_else(|p| p.into_inner());
+                self.element.evaluate(&input, &mut st)
+            })
+            .map_err(err)?;
+        let r = PyArray1::from_slice_bound(py, &out.reaction);
+        let k = mat(py, &out.stiffness);
+        let c = mat(py, &out.damping);
+        if !full {
+            return Ok((r, k, c).into_py(py));
+        }
+        let d = PyDict::new_bound(py);
+        d.set_item("reaction", r)?;
+        d.set_item("stiffness", k)?;
+        d.set_item("damping", c)?;
+        let loads: Vec<Vec<f64>> = out.loads.iter().map(|l| l.to_vec()).collect();
+        let appr: Vec<Vec<f64>> = out.approaches.iter().map(|l| l.to_vec()).collect();
+        d.set_item("loads", PyArray2::from_vec2_bound(py, &loads).map_err(err)?)?;
+        d.set_item(
+            "approaches",
+            PyArray2::from_vec2_bound(py, &appr).map_err(err)?,
+        )?;
+        let outside: Vec<(usize, String)> = out
+            .outside_range
+            .iter()
+            .map(|(b, r)| (*b, format!("{r:?}").to_lowercase()))
+            .collect();
+        d.set_item("outside_range", outside)?;
+        d.set_item("speed_outside", out.speed_outside)?;
+        Ok(d.into_any().unbind())
+    }
+}
+
+macro_rules! element_methods {
+    ($t:ty) => {
+        #[pymethods]
+        impl $t {
+            /// Evaluate the bearing at ring displacement `displacement` (x, y, z in m; θy, θz in
+            /// rad; inner relative to outer ring, x axial), rates `velocity` (m/s, rad/s; default
+            /// zero), ring speeds (rad/s) and cage angle (rad; ball j at 2πj/Z + cage angle).
+            /// Returns `(reaction (5,), stiffness (5, 5), damping (5, 5))` as numpy arrays: the
+            /// load on the inner ring (N, N·m; the bearing acts on the shaft with the opposite),
+            /// ∂reaction/∂q and ∂reaction/∂q̇ (SI). With `full=True` a dict that also has the
+            /// per-ball contact `loads` and `approaches` (Z, 2) [inner, outer] and the range flags.
+            /// The object keeps warm starts between calls (results do not depend on them beyond
+            /// the solvers' tolerances). Raises `EhlBearingError` if a ball's equilibrium fails.
+            #[pyo3(signature = (displacement, velocity = None, inner_speed_rad_s = 0.0, outer_speed_rad_s = 0.0, cage_angle_rad = 0.0, full = false))]
+            #[allow(clippy::too_many_arguments)]
+            fn evaluate(
+                &self,
+                py: Python<'_>,
+                displacement: PyReadonlyArray1<'_, f64>,
+                velocity: Option<PyReadonlyArray1<'_, f64>>,
+                inner_speed_rad_s: f64,
+                outer_speed_rad_s: f64,
+                cage_angle_rad: f64,
+                full: bool,
+            ) -> PyResult<PyObject> {
+                self.core.evaluate(
+                    py,
+                    displacement,
+                    velocity,
+                    inner_speed_rad_s,
+                    outer_speed_rad_s,
+                    cage_angle_rad,
+                    full,
+                )
+            }
+
+            /// Cage speed under pure rolling at ring speeds `inner_speed_rad_s`,
+            /// `outer_speed_rad_s`, rad/s: ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)], γ = D·cos α0/d_m.
+            #[pyo3(signature = (inner_speed_rad_s, outer_speed_rad_s = 0.0))]
+            fn cage_speed(&self, inner_speed_rad_s: f64, outer_speed_rad_s: f64) -> f64 {
+                self.core
+                    .element
+                    .cage_speed(inner_speed_rad_s, outer_speed_rad_s)
+            }
+
+            /// Number of balls Z.
+            #[getter]
+            fn ball_count(&self) -> usize {
+                self.core.element.ball_count()
+            }
+
+            /// Pitch diameter d_m, m.
+            #[getter]
+            fn pitch_diameter_m(&self) -> f64 {
+                self.core.element.bearing().geometry.pitch_diameter
+            }
+
+            /// Equilibrium of the element under `case`'s loads (its load-controlled DOFs; the
+            /// others imposed) at the case's speeds, by Newton from the dry equilibrium: returns
+            /// `(displacement (5,), stiffness (5, 5), damping (5, 5))`.
+            fn equilibrium<'py>(
+                &self,
+                py: Python<'py>,
+                case: &PyCase,
+            ) -> PyResult<(
+                Bound<'py, PyArray1<f64>>,
+                Bound<'py, PyArray2<f64>>,
+                Bound<'py, PyArray2<f64>>,
+            )> {
+                let c = &case.case;
+                let e = self.core.element.clone();
+                let (q, out) = py
+                    .allow_threads(|| -> Result<_, ehl_bearing::Error> {
+                        let laws = ContactLaws::hertz(&c.bearing)?;
+                        let dry = solve_equilibrium(&c.bearing, &laws, &c.operating, &c.settings)?;
+                        ehl_bearing::coefficients::element_equilibrium(
+                            e.as_ref(),
+                            c,
+                            dry.displacement,
+                        )
+                    })
+                    .map_err(err)?;
+                Ok((
+                    PyArray1::from_slice_bound(py, &q),
+                    mat(py, &out.stiffness),
+                    mat(py, &out.damping),
+                ))
+            }
+        }
+    };
+}
+
+/// A bearing whose contacts have fixed laws: dry Hertz (`LawElement.hertz(case)`) or the fitted
+/// laws of a characterization (`Characterization.law_element()`), with each contact's damping
+/// c·δ̇ where the harmonic method fitted one.
+#[pyclass(module = "ehl_bearing._native", name = "LawElement", frozen)]
+pub struct PyLawElement {
+    pub(crate) core: ElementCore,
+    #[pyo3(get)]
+    /// Whether this is the dry Hertz element.
+    dry: bool,
+}
+
+impl PyLawElement {
+    fn new(e: Arc<LawElement>, dry: bool) -> Self {
+        PyLawElement {
+            core: ElementCore::new(e),
+            dry,
+        }
+    }
+}
+
+#[pymethods]
+impl PyLawElement {
+    /// Dry Hertz laws for the bearing, race control and kinematics model of `case`.
+    #[staticmethod]
+    fn hertz(case: &PyCase) -> PyResult<Self> {
+        Ok(Self::new(
+            Arc::new(LawElement::hertz_case(&case.case).map_err(err)?),
+            true,
+        ))
+    }
+
+    /// The fitted laws of a characterization report dict (a study point's `result` or
+    /// `Characterization.report()`) for the bearing of `case`.
+    #[staticmethod]
+    fn from_report(py: Python<'_>, case: &PyCase, report: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let v = from_py(py, report)?;
+        let r: ehl_bearing::characterize::CharacterizationReport =
+            serde_json::from_value(v).map_err(|e| err(format!("characterization report: {e}")))?;
+        let e = LawElement::from_report(&case.case.bearing, case.case.operating.race_control, &r)
+            .map_err(err)?;
+        Ok(Self::new(
+            Arc::new(e.with_kinematics(case.case.settings.kinematics)),
+            false,
+        ))
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "LawElement({}, Z={})",
+            if self.dry { "dry Hertz" } else { "fitted laws" },
+            self.core.element.ball_count()
+        )
+    }
+}
+element_methods!(PyLawElement);
+
+/// The bearing with contact laws from a study's trend curves (`trends.json`): load- and
+/// speed-dependent, no EHL run.
+#[pyclass(module = "ehl_bearing._native", name = "TrendForceElement", frozen)]
+pub struct PyTrendElement {
+    pub(crate) core: ElementCore,
+}
+
+#[pymethods]
+impl PyTrendElement {
+    /// From trend JSON text (a study's `trends.json`).
+    #[staticmethod]
+    fn from_json(text: &str) -> PyResult<Self> {
+        let e = TrendForceElement::from_json(text).map_err(err)?;
+        Ok(PyTrendElement {
+            core: ElementCore::new(Arc::new(e)),
+        })
+    }
+
+    /// From a trend file (a study's `trends.json`).
+    #[staticmethod]
+    fn from_file(path: std::path::PathBuf) -> PyResult<Self> {
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| err(format!("reading {}: {e}", path.display())))?;
+        Self::from_json(&text)
+    }
+
+    fn __repr__(&self) -> String {
+        format!("TrendForceElement(Z={})", self.core.element.ball_count())
+    }
+}
+element_methods!(PyTrendElement);
+
+/// The force element inside a Python element object (for the rotor model).
+pub(crate) fn element_of(obj: &Bound<'_, PyAny>) -> PyResult<Arc<dyn ForceElement>> {
+    if let Ok(e) = obj.downcast::<PyLawElement>() {
+        return Ok(e.get().core.element.clone());
+    }
+    if let Ok(e) = obj.downcast::<PyTrendElement>() {
+        return Ok(e.get().core.element.clone());
+    }
+    Err(err("expected a LawElement or TrendForceElement"))
+}
+
+// ---------------------------------------------------------------------------------------------
+// Coefficients
+// ---------------------------------------------------------------------------------------------
+
+/// Linearized 5×5 stiffness and damping of the lubricated bearing of `case` at each inner-ring
+/// speed in `speeds_rpm`: from the coupled characterization with `method` (default: the case's,
+/// else quasi-static; "harmonic" gives damping) or, with `element`, from that force element's
+/// equilibrium (e.g. a `TrendForceElement`: no EHL run). Returns a list of dicts (SI):
+/// `inner_speed_rpm`, `inner_speed_rad_s`, `displacement`, `stiffness`, `damping`,
+/// `dry_stiffness`, `converged`, `source`; matrices as nested lists in the order x, y, z, θy, θz.
+#[pyfunction]
+#[pyo3(signature = (case, speeds_rpm, method = None, element = None, progress = None))]
+fn coefficients(
+    py: Python<'_>,
+    case: &PyCase,
+    speeds_rpm: Vec<f64>,
+    method: Option<&str>,
+    element: Option<&Bound<'_, PyAny>>,
+    progress: Option<PyObject>,
+) -> PyResult<PyObject> {
+    let c = case.case.clone();
+    let out = match element {
+        Some(e) => {
+            let e = element_of(e)?;
+            py.allow_threads(|| {
+                ehl_bearing::coefficients::from_element(&c, &speeds_rpm, e.as_ref(), "element")
+            })
+            .map_err(err)?
+        }
+        None => {
+            let m = method_of(&c, method)?;
+            py.allow_threads(|| {
+                ehl_bearing::coefficients::from_characterization(
+                    &c,
+                    &speeds_rpm,
+                    &m,
+                    &CharacterizeSettings::default(),
+                    &|i, p| {
+                        let mut v = progress_json(&p);
+                        v["speed_index"] = i.into();
+                        report(&progress, v)
+                    },
+                )
+            })
+            .map_err(err)?
+        }
+    };
+    to_py(py, &serde_json::to_value(&out).map_err(err)?)
+}
+
+/// ROSS's speed-dependent bearing table (CSV text: frequency in rad/s, kxx, kxy, kyx, kyy, cxx,
+/// cxy, cyx, cyy, kzz, czz) of coefficient dicts from `coefficients`, in ROSS's axes (ROSS
+/// x ← our y, y ← our z, z ← our x).
+#[pyfunction]
+fn ross_table_csv(py: Python<'_>, coefficients: &Bound<'_, PyAny>) -> PyResult<String> {
+    let v = from_py(py, coefficients)?;
+    let c: Vec<ehl_bearing::coefficients::SpeedCoefficients> =
+        serde_json::from_value(v).map_err(|e| err(format!("coefficients: {e}")))?;
+    Ok(ehl_bearing::coefficients::ross_table_csv(&c))
+}
+
+/// Check a 2-D array's shape.
+pub(crate) fn square(a: &PyReadonlyArray2<'_, f64>, n: usize, what: &str) -> PyResult<Vec<f64>> {
+    let s = a.shape();
+    if s != [n, n] {
+        return Err(err(format!("{what}: expected shape ({n}, {n}), got {s:?}")));
+    }
+    Ok(a.as_array().iter().copied().collect())
+}
+
+/// The native module.
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add(
+        "EhlBearingError",
+        m.py().get_type_bound::<EhlBearingError>(),
+    )?;
+    m.add_class::<PyCase>()?;
+    m.add_class::<Characterization>()?;
+    m.add_class::<PyLawElement>()?;
+    m.add_class::<PyTrendElement>()?;
+    m.add_function(wrap_pyfunction!(equilibrium, m)?)?;
+    m.add_function(wrap_pyfunction!(ehl, m)?)?;
+    m.add_function(wrap_pyfunction!(contact, m)?)?;
+    m.add_function(wrap_pyfunction!(characterize, m)?)?;
+    m.add_function(wrap_pyfunction!(study, m)?)?;
+    m.add_function(wrap_pyfunction!(coefficients, m)?)?;
+    m.add_function(wrap_pyfunction!(ross_table_csv, m)?)?;
+    rotor::register(m)?;
+    Ok(())
+}

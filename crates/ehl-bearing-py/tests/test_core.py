@@ -1,0 +1,140 @@
+"""The bindings of the library: cases, equilibrium, EHL, force elements, coefficients, errors."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import tomllib
+
+import ehl_bearing as eb
+
+
+def test_case_from_file_toml_and_dict_agree(case, examples):
+    text = (examples / "7006.toml").read_text()
+    from_toml = eb.Case.from_toml(text)
+    from_dict = eb.Case.from_dict(tomllib.loads(text))
+    for c in (from_toml, from_dict):
+        assert c.ball_count == case.ball_count == 11
+        assert c.pitch_diameter_m == pytest.approx(0.0425, rel=1e-12)
+        assert c.inner_speed_rad_s == pytest.approx(5000 * math.pi / 30, rel=1e-12)
+    assert case.with_inner_speed_rpm(3000).inner_speed_rad_s == pytest.approx(100 * math.pi)
+
+
+def test_library_errors_are_python_exceptions_with_the_message(examples):
+    assert issubclass(eb.EhlBearingError, ValueError)
+    text = (examples / "7006.toml").read_text().replace("ball_count = 11", "ball_count = 2")
+    with pytest.raises(eb.EhlBearingError, match="ball_count"):
+        eb.Case.from_toml(text, "bad.toml")
+    with pytest.raises(eb.EhlBearingError, match=r"nope\.toml"):
+        eb.Case.from_file("nope.toml")
+
+
+def test_equilibrium_balances_the_case_loads(case):
+    eq = eb.equilibrium(case)
+    assert eq["converged"]
+    r = eq["reaction"]
+    reaction = [r[k] for k in r] if isinstance(r, dict) else r
+    # The case's loads: F_x = F_y = F_z = 1000 N (examples/7006.toml); tolerance of the solver.
+    np.testing.assert_allclose(reaction[:3], [1000.0, 1000.0, 1000.0], rtol=1e-6)
+
+
+def _displacement(eq):
+    d = eq["displacement"]
+    return np.array(list(d.values()) if isinstance(d, dict) else d, dtype=float)
+
+
+def test_force_element_arrays_and_jacobian(case):
+    el = eb.LawElement.hertz(case)
+    q = _displacement(eb.equilibrium(case))
+    w = case.inner_speed_rad_s
+    r, k, c = el.evaluate(q, inner_speed_rad_s=w)
+    assert r.shape == (5,) and k.shape == (5, 5) and c.shape == (5, 5)
+    np.testing.assert_allclose(r[:3], [1000.0, 1000.0, 1000.0], rtol=1e-5)
+    assert np.all(c == 0.0)  # dry laws carry no damping
+    # The stiffness is ∂reaction/∂q: central differences (1 nm, 1 µrad) agree to 1e-3 of the
+    # diagonal (the laws are smooth at this load; step error O(h²)).
+    for j, h in enumerate([1e-9, 1e-9, 1e-9, 1e-6, 1e-6]):
+        dq = np.zeros(5)
+        dq[j] = h
+        rp = el.evaluate(q + dq, inner_speed_rad_s=w)[0]
+        rm = el.evaluate(q - dq, inner_speed_rad_s=w)[0]
+        fd = (rp - rm) / (2 * h)
+        scale = np.abs(np.diag(k))
+        assert np.all(np.abs(fd - k[:, j]) <= 1e-3 * np.maximum(scale, np.abs(k[:, j]))), j
+    column = np.stack([q, 2 * q], axis=1)[:, 0]  # a non-contiguous view
+    np.testing.assert_allclose(el.evaluate(column, inner_speed_rad_s=w)[0], r, rtol=1e-9)
+    full = el.evaluate(q, inner_speed_rad_s=w, full=True)
+    assert full["loads"].shape == (11, 2) and full["approaches"].shape == (11, 2)
+    with pytest.raises(eb.EhlBearingError, match="displacement"):
+        el.evaluate(np.zeros(4))
+
+
+def test_cage_speed_pure_rolling(case):
+    el = eb.LawElement.hertz(case)
+    g = case.ball_diameter_m * math.cos(case.contact_angle_rad) / case.pitch_diameter_m
+    assert el.cage_speed(100.0) == pytest.approx(0.5 * 100.0 * (1 - g), rel=1e-12)
+
+
+def test_coefficients_from_element_and_ross_table(case):
+    el = eb.LawElement.hertz(case)
+    co = eb.coefficients(case, [3000.0, 5000.0], element=el)
+    assert [c["inner_speed_rpm"] for c in co] == [3000.0, 5000.0]
+    for c in co:
+        k = np.array(c["stiffness"])
+        # The dry element's own equilibrium: its stiffness is the dry stiffness (Newton to the
+        # case's tolerance; 1e-4 relative).
+        np.testing.assert_allclose(k, np.array(c["dry_stiffness"]), rtol=1e-4, atol=1e-4 * k.max())
+    table = eb.ross_table_csv(co).splitlines()
+    assert table[0].split(",")[:5] == ["frequency", "kxx", "kxy", "kyx", "kyy"]
+    row = [float(x) for x in table[2].split(",")]
+    k = np.array(co[1]["stiffness"])
+    assert row[0] == pytest.approx(co[1]["inner_speed_rad_s"])
+    # ROSS x ← our y, ROSS y ← our z, ROSS z ← our x.
+    assert row[1] == k[1, 1] and row[2] == k[1, 2] and row[3] == k[2, 1] and row[4] == k[2, 2]
+    assert row[9] == k[0, 0]
+
+
+def test_characterize_hertz_reports_progress_and_gives_an_element(case):
+    events = []
+    ch = eb.characterize(case, method="hertz", progress=events.append)
+    assert ch.converged
+    assert any(e["event"] == "iteration_done" for e in events)
+    rep = ch.report()
+    assert len(rep["contacts"]) == 22
+    el = ch.law_element()
+    r, _, _ = el.evaluate(ch.displacement, inner_speed_rad_s=case.inner_speed_rad_s)
+    np.testing.assert_allclose(r[:3], [1000.0] * 3, rtol=1e-4)
+    # The same laws through the report dict (as cached by the worked example).
+    el2 = eb.LawElement.from_report(case, rep)
+    np.testing.assert_allclose(
+        el2.evaluate(ch.displacement, inner_speed_rad_s=case.inner_speed_rad_s)[0], r, rtol=1e-9
+    )
+
+
+def test_ehl_point_contact(examples):
+    text = (examples / "contact_7006_inner.toml").read_text()
+    sol = eb.ehl(text, grid=65)
+    # Central film of this contact (M ≈ 2.4e3, L ≈ 25): the Hamrock–Dowson/NVM estimates are
+    # ~0.2–0.3 µm (examples/contact_7006_inner.toml); the coarse grid is within a factor 1.5.
+    assert 0.1e-6 < sol["h_central"] < 0.5e-6
+    assert sol["h_min"] < sol["h_central"]
+    assert "fields" not in sol
+    with pytest.raises(eb.EhlBearingError, match="load_n"):
+        eb.ehl(text.replace("load_n = 600.0", "load_n = -1.0"))
+
+
+def test_study_runs_and_reports_progress(tmp_path, examples):
+    study_file = tmp_path / "s.toml"
+    study_file.write_text(
+        f'case = "{examples / "7006.toml"}"\nmethod = "hertz"\n'
+        "inner_speeds_rpm = [3000.0, 5000.0]\nload_scales = [0.5, 1.0, 1.5]\n"
+    )
+    events = []
+    out = eb.study(str(study_file), str(tmp_path / "out"), progress=events.append)
+    assert out["points"] == 6 and out["computed"] == 6 and not out["failed"]
+    assert sum(e["event"] == "point_done" for e in events) == 6
+    assert (tmp_path / "out" / "results.csv").exists()
+    again = eb.study(str(study_file), str(tmp_path / "out"))
+    assert again["computed"] == 0 and again["loaded"] == 6
