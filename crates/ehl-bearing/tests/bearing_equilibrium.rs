@@ -583,6 +583,36 @@ proptest! {
     }
 }
 
+/// A knife edge of the per-ball Newton path (found by `jacobian_matches_finite_differences`):
+/// at x + 0.1 nm every start of ball 0 stalled (residual 3.2 N) 10 µm from its solution, while
+/// x − 0.1 nm and x solved. The ball solver now restarts from a neighbouring problem's solution;
+/// the reaction must be smooth across the three points (second difference ≪ first).
+#[test]
+fn ball_newton_knife_edge_is_crossed_by_continuation() {
+    let b = b7006();
+    let laws = ContactLaws::hertz(&b).unwrap();
+    let model =
+        BearingModel::new(&b, &laws, 7760.6267946695125 * RPM, 0.0, RaceControl::Outer).unwrap();
+    let q = [
+        2.3691876344347476e-5,
+        -7.753754240690137e-6,
+        0.0,
+        0.0,
+        -7.131781859148633e-5,
+    ];
+    let h = 1e-10;
+    let f = |dx: f64| {
+        let mut qq = q;
+        qq[0] += dx;
+        model.evaluate(&qq).unwrap().reaction[0]
+    };
+    let (fm, f0, fp) = (f(-h), f(0.0), f(h));
+    let first = (fp - fm).abs();
+    let second = (fp - 2.0 * f0 + fm).abs();
+    assert!(first > 1e-3, "no slope: {fm} {f0} {fp}");
+    assert!(second < 1e-3 * first, "not smooth: {fm} {f0} {fp}");
+}
+
 #[test]
 fn stiffness_is_the_jacobian_at_equilibrium_and_symmetric_only_at_rest() {
     let b = b7006();
