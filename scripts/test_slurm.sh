@@ -9,7 +9,7 @@
 #                                       # quasi-static at its default options; tens of minutes)
 #
 # What it does:
-#  1. builds the ehl-bearing binary (test profile, optimized, as cargo test; EHL_BEARING_BIN overrides);
+#  1. builds the ehl-bearing binary (as cargo test --workspace does; EHL_BEARING_BIN overrides);
 #  2. installs Debian's slurm-wlm and munge with apt-get if they are missing (the stage is
 #     SKIPPED, not failed, only if they cannot be installed or the script is not run as root);
 #  3. (scripts/slurm_local_cluster.sh) writes a munge key and a one-node slurm.conf (NodeName=localhost CPUs=2, proctrack/linuxproc,
@@ -45,10 +45,12 @@ fail() {
 if [ -n "${EHL_BEARING_BIN:-}" ]; then
     BIN=$EHL_BEARING_BIN
 else
-    # The test profile (optimized, Cargo.toml): the binary `cargo test` already built, so no
-    # second compilation of the library after the cargo test stage.
-    log "building ehl-bearing (cargo build --profile test -p ehl-bearing-cli)"
-    cargo build -q --profile test -p ehl-bearing-cli --bin ehl-bearing
+    # The binary `cargo test --workspace` builds for the CLI's integration tests (test profile,
+    # optimized, Cargo.toml; the workspace's test feature set): after the cargo test stage of
+    # scripts/test.sh this compiles nothing (`cargo build -p ehl-bearing-cli` would build the
+    # dependencies again with another feature set: 90 s on a clean clone).
+    log "building ehl-bearing (cargo test --workspace --no-run)"
+    cargo test -q --workspace --no-run
     BIN=$ROOT/target/debug/ehl-bearing
 fi
 [ -x "$BIN" ] || fail "no executable ehl-bearing at $BIN"
