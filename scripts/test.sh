@@ -1,17 +1,20 @@
 #!/usr/bin/env bash
 # All the project's tests: the README's test command, run by CI (.ci/run).
-# Formatting, lints and the Rust tests, then the Python package (scripts/test_python.sh); further stages are added below as they land.
+# Formatting, lints, docs and the Rust tests, then the Slurm route (scripts/test_slurm.sh) and the
+# Python package (scripts/test_python.sh). Each stage line gives the time since the start.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-echo "== cargo fmt --check"
+stage() { echo "== [$((SECONDS / 60)) min $((SECONDS % 60)) s] $*"; }
+stage "cargo fmt --check"
 cargo fmt --all -- --check
-echo "== cargo clippy"
+stage "cargo clippy"
 cargo clippy --all-targets -- -D warnings
-echo "== cargo doc (broken links are errors)"
+stage "cargo doc (broken links are errors)"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --quiet
-echo "== cargo test"
+stage "cargo test"
 cargo test --workspace
-echo "== Slurm route (scripts/test_slurm.sh; SKIPPED without root or Debian's slurm-wlm/munge)"
+stage "Slurm route (scripts/test_slurm.sh; SKIPPED without root or Debian's slurm-wlm/munge)"
 scripts/test_slurm.sh
-echo "== python package (scripts/test_python.sh)"
+stage "python package (scripts/test_python.sh)"
 scripts/test_python.sh
+stage "all stages passed"
