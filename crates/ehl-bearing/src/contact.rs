@@ -7,9 +7,10 @@
 //! the harmonic method for slow excitation, where the squeeze term vanishes.
 //!
 //! The **harmonic method** runs the transient EHL solver ([`crate::ehl::TransientSolver`]) with
-//! the ball's equation of motion m·δ̈ = w(t) − ∬p dA under w(t) = w0·(1 + ε·sin Ωt), from the steady
-//! solution at w0, for some settling periods, records the (δ, δ̇, ∬p dA) history over the
-//! recorded periods, and fits Q = K·δ^d + ΔF (+ c·δ̇) to it. See `docs/contact.md`.
+//! the ball's equation of motion m·δ̈ = w(t) − ∬p dA under w(t) = w0·(1 + ε·sin Ωt), from a steady
+//! solution at the load maximum (or at w0 near resonance), settles until the measured periodicity
+//! is below its bound, records the (δ, δ̇, ∬p dA) history over the recorded periods, and fits
+//! Q = K·δ^d + ΔF (+ c·δ̇) to it. See `docs/contact.md`.
 
 use crate::ehl::{
     solve_steady, solve_steady_from, EhlContact, EhlSettings, EhlSolution, TransientSolver,
