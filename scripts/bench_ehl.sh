@@ -3,6 +3,7 @@
 # crates/ehl-bearing/benches/{ehl,contact}.rs, with the load average before and after.
 #   scripts/bench_ehl.sh            # everything except the harmonic method (~15 min on 2 cores)
 #   scripts/bench_ehl.sh quick      # circular 257², seed contact, kernel cache on/off (~3 min)
+#   scripts/bench_ehl.sh harmonic   # the harmonic method (issue 16), see the block at the end
 # Write down the two `uptime` lines next to every figure you copy.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -10,8 +11,18 @@ args=(-- --warm-up-time 1 --measurement-time 5)
 uptime
 if [[ "${1:-}" == quick ]]; then
   cargo bench -p ehl-bearing --bench ehl "${args[@]}" 'ehl_circular|ehl_7006_inner/257|ehl_kernel_cache'
-else
+elif [[ "${1:-}" != harmonic ]]; then
   cargo bench -p ehl-bearing --bench ehl "${args[@]}"
   cargo bench -p ehl-bearing --bench contact "${args[@]}" 'quasi_static'
 fi
 uptime
+# Harmonic method (issue 16, BENCHMARKS.md "Harmonic method speed-up"): the seed contact at the
+# defaults, with the two whole settling periods of before, and on 65² (~6 min on 2 cores).
+#   scripts/bench_ehl.sh harmonic
+if [[ "${1:-}" == harmonic ]]; then
+  uptime
+  cargo bench -p ehl-bearing --bench contact -- --warm-up-time 1 'harmonic'
+  /usr/bin/time -v target/release/ehl-bearing contact examples/contact_7006_inner.toml \
+    --method harmonic --json > /dev/null
+  uptime
+fi

@@ -461,7 +461,7 @@ fn settings_summary(v: &Value) -> String {
             _ => "Ω ?".into(),
         };
         return format!(
-            "w0·(1 + {a}·sin Ωt), {freq}, {} settling + {} recorded periods, {} steps per period, {}",
+            "w0·(1 + {a}·sin Ωt), {freq}, ≤ {} settling + {} recorded periods, {} steps per period, {}",
             num("/settling_periods").unwrap_or(f64::NAN),
             num("/recorded_periods").unwrap_or(f64::NAN),
             num("/steps_per_period").unwrap_or(f64::NAN),

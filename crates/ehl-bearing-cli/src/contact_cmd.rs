@@ -41,9 +41,14 @@ pub struct ContactArgs {
     /// Harmonic method: excitation frequency Ω in rad/s.
     #[arg(long)]
     pub frequency_rad_s: Option<f64>,
-    /// Harmonic method: periods before recording (default 2).
+    /// Harmonic method: largest number of periods before recording (default 2; settling stops
+    /// after a quarter period, or more quarter periods, once the periodicity is below its bound)
     #[arg(long)]
     pub settling_periods: Option<usize>,
+    /// Harmonic method: periodicity bound that ends the settling (default 1e-3; 0 settles
+    /// --settling-periods whole periods)
+    #[arg(long)]
+    pub periodicity_tol: Option<f64>,
     /// Harmonic method: periods recorded and fitted (default 1).
     #[arg(long)]
     pub recorded_periods: Option<usize>,
@@ -120,18 +125,25 @@ fn table(f: &ContactFit) -> String {
         let _ = writeln!(
             s,
             "excitation: ε = {}, Ω = {:.5e} rad/s = {:.3}·ω_n (ω_n = {:.5e} rad/s; dry Hertz {:.5e}), \
-             m = {:.4e} kg, {} settling + {} recorded periods × {} steps; periodicity {:.1e}; \
-             {} steps not converged",
+             m = {:.4e} kg, {} settling steps (at most {} periods) + {} recorded periods × {} \
+             steps; periodicity {:.1e} (bound {:.0e}: {}); {} steps not converged",
             g("amplitude"),
             g("frequency_rad_s"),
             g("frequency_over_natural"),
             g("natural_frequency_rad_s"),
             g("natural_frequency_hertz_rad_s"),
             g("mass_kg"),
+            e["settling_steps"],
             e["settling_periods"],
             e["recorded_periods"],
             e["steps_per_period"],
             g("periodicity"),
+            g("periodicity_tol"),
+            if e["settled"].as_bool() == Some(true) {
+                "settled"
+            } else {
+                "NOT settled"
+            },
             e["steps_not_converged"],
         );
     }
@@ -231,6 +243,10 @@ fn method_of(args: &ContactArgs) -> Result<ehl_bearing::method::Method> {
                 args.frequency_rad_s.map(toml::Value::Float),
             );
             put("settling_periods", int(args.settling_periods));
+            put(
+                "periodicity_tol",
+                args.periodicity_tol.map(toml::Value::Float),
+            );
             put("recorded_periods", int(args.recorded_periods));
             put("steps_per_period", int(args.steps_per_period));
             put("mass_kg", args.mass_kg.map(toml::Value::Float));
@@ -283,6 +299,7 @@ pub fn run(args: &ContactArgs) -> Result<()> {
             let harmonic_only = args.frequency_fraction.is_some()
                 || args.frequency_rad_s.is_some()
                 || args.settling_periods.is_some()
+                || args.periodicity_tol.is_some()
                 || args.recorded_periods.is_some()
                 || args.steps_per_period.is_some()
                 || args.mass_kg.is_some()

@@ -4,8 +4,12 @@
 //! - quasi-static: 7 steady EHL solutions over w0·(1 ± 0.2) on 129 × 129, LM fit;
 //! - quasi-static at 257² with the DC-FFT kernel/plan cache off and on (before/after keeping
 //!   plans);
-//! - harmonic: steady start and ±5 % solutions (ω_n), then 2 settling + 1 recorded periods of
-//!   64 transient steps at Ω = 0.1·ω_n on 129 × 129, LM fit with the damping term.
+//! - harmonic: steady start and ±5 % solutions (ω_n), the start at the load maximum, then the
+//!   settling (quarter periods until the periodicity is ≤ 1e-3: 32 steps on this contact) and
+//!   1 recorded period of 64 transient steps at Ω = 0.1·ω_n on 129 × 129, LM fit with the
+//!   damping term (issue 16); `harmonic_two_settled_periods`: the same with the settling of
+//!   before issue 16 (two whole periods, `periodicity_tol` = 0), for the comparison;
+//!   `harmonic_65`: the default settings on 65².
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use ehl_bearing::contact::{
@@ -62,9 +66,21 @@ fn harmonic(c: &mut Criterion) {
     let m = ball_mass(7e-3, Solid::AISI_52100.density);
     let mut g = c.benchmark_group("contact");
     g.sample_size(10);
-    g.measurement_time(std::time::Duration::from_secs(150));
+    g.measurement_time(std::time::Duration::from_secs(80));
     g.bench_function("harmonic_7006_inner_600N_5000rpm", |b| {
         b.iter(|| characterize_harmonic(black_box(&contact), m, &s).unwrap())
+    });
+    let two = HarmonicSettings {
+        periodicity_tol: 0.0,
+        ..s
+    };
+    g.bench_function("harmonic_two_settled_periods", |b| {
+        b.iter(|| characterize_harmonic(black_box(&contact), m, &two).unwrap())
+    });
+    let mut small = s;
+    small.ehl.grid = 65;
+    g.bench_function("harmonic_65", |b| {
+        b.iter(|| characterize_harmonic(black_box(&contact), m, &small).unwrap())
     });
     g.finish();
 }

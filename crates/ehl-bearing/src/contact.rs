@@ -7,9 +7,10 @@
 //! the harmonic method for slow excitation, where the squeeze term vanishes.
 //!
 //! The **harmonic method** runs the transient EHL solver ([`crate::ehl::TransientSolver`]) with
-//! the ball's equation of motion m·δ̈ = w(t) − ∬p dA under w(t) = w0·(1 + ε·sin Ωt), from the steady
-//! solution at w0, for some settling periods, records the (δ, δ̇, ∬p dA) history over the
-//! recorded periods, and fits Q = K·δ^d + ΔF (+ c·δ̇) to it. See `docs/contact.md`.
+//! the ball's equation of motion m·δ̈ = w(t) − ∬p dA under w(t) = w0·(1 + ε·sin Ωt), from a steady
+//! solution at the load maximum (or at w0 near resonance), settles until the measured periodicity
+//! is below its bound, records the (δ, δ̇, ∬p dA) history over the recorded periods, and fits
+//! Q = K·δ^d + ΔF (+ c·δ̇) to it. See `docs/contact.md`.
 
 use crate::ehl::{
     solve_steady, solve_steady_from, EhlContact, EhlSettings, EhlSolution, TransientSolver,
@@ -152,8 +153,19 @@ pub struct HarmonicExcitation {
     pub linearized_stiffness_n_m: f64,
     /// Mass on the contact, kg.
     pub mass_kg: f64,
-    /// Settling periods run before recording.
+    /// Largest number of settling periods (the setting).
     pub settling_periods: usize,
+    /// Time steps actually run before recording: a quarter period, then further quarter periods
+    /// until the periodicity is at most `periodicity_tol` or `settling_periods` are reached.
+    #[serde(default)]
+    pub settling_steps: usize,
+    /// Bound on the periodicity that ends the settling (the setting).
+    #[serde(default)]
+    pub periodicity_tol: f64,
+    /// True when the measured periodicity is at most `periodicity_tol` (the recorded period is
+    /// settled); false also when it could not be measured (no settling steps).
+    #[serde(default)]
+    pub settled: bool,
     /// Periods recorded and fitted.
     pub recorded_periods: usize,
     /// Time steps per period.
@@ -176,8 +188,9 @@ pub struct HarmonicExcitation {
     pub max_step_residual: f64,
     /// Mean FAS cycles per step.
     pub cycles_per_step: f64,
-    /// Relative difference between the last settling period and the recorded one (the periodic
-    /// state's error).
+    /// The periodic state's error: the largest change of δ between the last quarter period
+    /// before recording and the same phase one period later (at the end of the recorded
+    /// period), relative to the recorded peak-to-peak δ (NaN without settling steps).
     pub periodicity: f64,
 }
 
@@ -343,9 +356,19 @@ pub struct HarmonicSettings {
     /// contact resonance — ω_n/2π ≈ 40 kHz for the seed's contacts — and at 0.1·ω_n the ball's
     /// inertia force is ≈ 1 % of the load variation while the squeeze film already shows).
     pub frequency: ExcitationFrequency,
-    /// Periods run before recording, to let the start transient decay (default 2; the
-    /// `periodicity` reported compares the last settling period with the recorded one).
+    /// Largest number of periods run before recording, to let the start transient decay
+    /// (default 2). The run settles a quarter period, records one period, and measures the
+    /// periodicity (the last settled quarter period against the same phase one period later);
+    /// while it exceeds `periodicity_tol` it runs one more quarter period and moves the recorded
+    /// period along, up to `settling_periods` periods of settling. 0: record from the start,
+    /// periodicity not measured.
     pub settling_periods: usize,
+    /// Periodicity bound that ends the settling (relative to the recorded peak-to-peak δ,
+    /// ≥ 0; default 1e-3: on the seed contact a recorded period with periodicity 4.7e-3 moves
+    /// the fitted d by 2.4e-4 and ΔF by 0.3 % against a run settled for two periods, one with
+    /// 1.1e-4 by 2e-5 — docs/contact.md). 0 settles `settling_periods` whole periods.
+    #[serde(default = "default_periodicity_tol")]
+    pub periodicity_tol: f64,
     /// Periods recorded and fitted (default 1).
     pub recorded_periods: usize,
     /// Time steps per excitation period (default 64; docs/contact.md shows the effect of 32 and
@@ -366,12 +389,17 @@ pub struct HarmonicSettings {
     pub ehl: EhlSettings,
 }
 
+fn default_periodicity_tol() -> f64 {
+    1e-3
+}
+
 impl Default for HarmonicSettings {
     fn default() -> Self {
         HarmonicSettings {
             amplitude: 0.2,
             frequency: ExcitationFrequency::FractionOfNatural(0.1),
             settling_periods: 2,
+            periodicity_tol: default_periodicity_tol(),
             recorded_periods: 1,
             steps_per_period: 64,
             mass: None,
@@ -420,6 +448,12 @@ impl HarmonicSettings {
                 self.settling_periods
             )));
         }
+        if !(self.periodicity_tol.is_finite() && self.periodicity_tol >= 0.0) {
+            return Err(invalid(format!(
+                "periodicity_tol = {}: expected finite and ≥ 0",
+                self.periodicity_tol
+            )));
+        }
         if !(1..=100).contains(&self.recorded_periods) {
             return Err(invalid(format!(
                 "recorded_periods = {}: expected 1 to 100",
@@ -456,6 +490,51 @@ impl HarmonicSettings {
 /// Mass of a solid ball, kg, from its diameter (m) and density (kg/m³).
 pub fn ball_mass(diameter: f64, density: f64) -> f64 {
     density * std::f64::consts::PI / 6.0 * diameter.powi(3)
+}
+
+/// The harmonic method's start at the load maximum (see `characterize_harmonic`): a steady
+/// solution under the film force w0·(1 + ε) + m·Ω²·δa, δa = ε·w0/(k − m·Ω²), solved on the
+/// physical domain and grid of the centre solution at w0 (its domain in semi-axes scaled by
+/// the ratio of the semi-axes, which grow as w^(1/3)) and returned with its pressure in units of
+/// w0's Hertz pressure, with the start's acceleration δ̈ = −Ω²·δa (m/s²). None when the centre's
+/// domain is automatic (nearly rigid contacts) or the solution does not converge.
+#[allow(clippy::too_many_arguments)]
+fn peak_start(
+    c: &EhlContact,
+    ehl: &EhlSettings,
+    centre: &EhlSolution,
+    warm: &EhlSolution,
+    amplitude: f64,
+    mass: f64,
+    omega: f64,
+    k_lin: f64,
+) -> Option<(EhlSolution, f64)> {
+    let delta_a = amplitude * c.load / (k_lin - mass * omega * omega);
+    let load = c.load * (1.0 + amplitude) + mass * omega * omega * delta_a;
+    let domain = family_domain(ehl, centre);
+    let (Some(inlet), Some(half_width)) = (domain.inlet, domain.half_width) else {
+        return None;
+    };
+    let scale = (c.load / load).cbrt();
+    let settings = EhlSettings {
+        inlet: Some(inlet * scale),
+        outlet: domain.outlet * scale,
+        half_width: Some(half_width * scale),
+        ..*ehl
+    };
+    let mut sol = solve_steady_from(&EhlContact { load, ..*c }, &settings, warm).ok()?;
+    let (x0, x1) = (centre.fields.x.first()?, sol.fields.x.first()?);
+    if !sol.converged
+        || sol.fields.x.len() != centre.fields.x.len()
+        || (x1 - x0).abs() > 1e-9 * centre.fields.a_x
+    {
+        return None;
+    }
+    let ratio = sol.p_hertz / centre.p_hertz;
+    for p in &mut sol.fields.p_dimensionless {
+        *p *= ratio;
+    }
+    Some((sol, -omega * omega * delta_a))
 }
 
 /// Characterize a contact by the harmonic method (see the module documentation). `ball_mass` is
@@ -516,8 +595,6 @@ pub fn characterize_harmonic(
     let period = 2.0 * std::f64::consts::PI / omega;
     let n_per = s.steps_per_period;
     let dt = period / n_per as f64;
-    // Start on the quasi-static response: δ̇(0) = ε·w0·Ω/k.
-    let v0 = s.amplitude * c.load * omega / k_lin;
     let samples = vec![
         sample(&lo, 0.95 * c.load),
         sample(&centre, c.load),
@@ -527,23 +604,84 @@ pub fn characterize_harmonic(
         tol_film: s.step_tol_film,
         ..s.ehl
     };
-    let mut solver = TransientSolver::from_steady(
-        c,
-        &step_settings,
-        centre.clone(),
-        mass,
-        dt,
-        v0,
-        s.max_cycles_per_step,
-    )?;
-    let settling = s.settling_periods * n_per;
-    let total = settling + s.recorded_periods * n_per;
-    let mut history = Vec::with_capacity(total);
-    for k in 1..=total {
-        let t = k as f64 * dt;
-        let w = c.load * (1.0 + s.amplitude * (omega * t).sin());
-        history.push(solver.step(w)?);
+    // The start. Below 0.7·ω_n: at the load maximum (phase 0 of w(t) = w0·(1 + ε·cos Ωt)),
+    // where the periodic response is nearly at rest — δ̇ = 0 up to the squeeze film's phase lag
+    // (≈ c·Ω/k, 2 % of the rate's amplitude on the seed contact) and δ̈ = −Ω²·δa with
+    // δa = ε·w0/(k − m·Ω²) — from a steady solution under the film force w0·(1 + ε) + m·Ω²·δa
+    // on the grid of w0. Its start transient is ≈ 40× smaller than that of a start at w0 with
+    // the quasi-static rate (the steady film there carries no squeeze), so a fraction of a
+    // period settles it (docs/contact.md). Otherwise, or if that solution fails: the steady
+    // solution at w0 with the quasi-static rate δ̇(0) = ε·w0·Ω/k (phase 0 of w0·(1 + ε·sin Ωt)).
+    let peak = if omega < 0.7 * omega_n {
+        peak_start(c, &s.ehl, &centre, &hi, s.amplitude, mass, omega, k_lin)
+    } else {
+        None
+    };
+    let phase = if peak.is_some() {
+        0.5 * std::f64::consts::PI
+    } else {
+        0.0
+    };
+    let mut solver = match peak {
+        Some((start, acceleration)) => TransientSolver::from_steady(
+            c,
+            &step_settings,
+            start,
+            mass,
+            dt,
+            0.0,
+            s.max_cycles_per_step,
+        )?
+        .with_initial_acceleration(acceleration)?,
+        None => TransientSolver::from_steady(
+            c,
+            &step_settings,
+            centre.clone(),
+            mass,
+            dt,
+            s.amplitude * c.load * omega / k_lin,
+            s.max_cycles_per_step,
+        )?,
+    };
+    // Settling: a quarter period, then more quarter periods while the measured periodicity
+    // exceeds its bound.
+    let quarter = n_per.div_ceil(4);
+    let max_settling = s.settling_periods * n_per;
+    let recorded = s.recorded_periods * n_per;
+    let mut settling = quarter.min(max_settling);
+    let mut history = Vec::with_capacity(max_settling + recorded);
+    let mut advance = |history: &mut Vec<TransientStep>, upto: usize| -> Result<(), Error> {
+        for k in history.len() + 1..=upto {
+            let t = k as f64 * dt;
+            let w = c.load * (1.0 + s.amplitude * (omega * t + phase).sin());
+            history.push(solver.step(w)?);
+        }
+        Ok(())
+    };
+    advance(&mut history, settling + recorded)?;
+    let periodicity_of = |history: &[TransientStep], settling: usize| {
+        let window = settling.min(quarter);
+        if window == 0 {
+            return f64::NAN;
+        }
+        let (lo, hi) = history[settling..]
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(x.approach), b.max(x.approach))
+            });
+        (settling - window..settling)
+            .map(|i| (history[i + n_per].approach - history[i].approach).abs())
+            .fold(0.0, f64::max)
+            / (hi - lo)
+    };
+    let mut periodicity = periodicity_of(&history, settling);
+    let settled = |p: f64| p <= s.periodicity_tol;
+    while !settled(periodicity) && settling < max_settling {
+        settling = (settling + quarter).min(max_settling);
+        advance(&mut history, settling + recorded)?;
+        periodicity = periodicity_of(&history, settling);
     }
+    let total = history.len();
     let rec = &history[settling..];
     if let Some(bad) = rec.iter().find(|x| x.approach <= 0.0) {
         return Err(invalid(format!(
@@ -562,23 +700,6 @@ pub fn characterize_harmonic(
         fit_power_law(&delta, &force, &FitOptions::default())?
     };
     let law = fit.law()?;
-    // Periodicity: the last settling period against the first recorded one, relative to the
-    // recorded peak-to-peak approach.
-    let (dmin, dmax) = delta
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-            (a.min(x), b.max(x))
-        });
-    let periodicity = if settling >= n_per {
-        (0..n_per)
-            .map(|i| {
-                (history[settling + i].approach - history[settling - n_per + i].approach).abs()
-            })
-            .fold(0.0, f64::max)
-            / (dmax - dmin)
-    } else {
-        f64::NAN
-    };
     let not_converged = history.iter().filter(|x| !x.converged).count();
     let max_res = history.iter().map(|x| x.residual).fold(0.0, f64::max);
     let cycles: usize = history.iter().map(|x| x.cycles).sum();
@@ -606,6 +727,9 @@ pub fn characterize_harmonic(
             linearized_stiffness_n_m: k_lin,
             mass_kg: mass,
             settling_periods: s.settling_periods,
+            settling_steps: settling,
+            periodicity_tol: s.periodicity_tol,
+            settled: settled(periodicity),
             recorded_periods: s.recorded_periods,
             steps_per_period: n_per,
             time_step_s: dt,

@@ -699,6 +699,7 @@ struct HarmonicOptions {
     frequency_fraction: Option<f64>,
     frequency_rad_s: Option<f64>,
     settling_periods: Option<usize>,
+    periodicity_tol: Option<f64>,
     recorded_periods: Option<usize>,
     steps_per_period: Option<usize>,
     mass_kg: Option<f64>,
@@ -814,6 +815,7 @@ impl Method {
                     (None, None) => {}
                 }
                 s.settling_periods = o.settling_periods.unwrap_or(s.settling_periods);
+                s.periodicity_tol = o.periodicity_tol.unwrap_or(s.periodicity_tol);
                 s.recorded_periods = o.recorded_periods.unwrap_or(s.recorded_periods);
                 s.steps_per_period = o.steps_per_period.unwrap_or(s.steps_per_period);
                 if o.mass_kg.is_some() {
@@ -943,6 +945,13 @@ impl Method {
                     }
                 }
                 count("settling_periods", s.settling_periods, 0, 100)?;
+                if !(s.periodicity_tol.is_finite() && s.periodicity_tol >= 0.0) {
+                    return Err(MethodError::setting(
+                        key("periodicity_tol"),
+                        s.periodicity_tol,
+                        "a finite number ≥ 0",
+                    ));
+                }
                 count("recorded_periods", s.recorded_periods, 1, 100)?;
                 count("steps_per_period", s.steps_per_period, 8, 4096)?;
                 if let Some(m) = s.mass {

@@ -195,10 +195,11 @@ fn harmonic_agrees_with_quasi_static_at_low_frequency() {
     let ehl_bearing::contact::Excitation::Harmonic(x) = h.excitation else {
         panic!("{:?}", h.excitation)
     };
-    assert!(x.periodicity < 1e-3);
+    assert!(x.periodicity <= x.periodicity_tol && x.settled, "{x:?}");
     assert_eq!(x.steps_not_converged, 0);
-    assert_eq!(h.history.len(), 3 * 64);
-    assert_eq!(h.settling_steps, 2 * 64);
+    assert_eq!(x.settling_steps, h.settling_steps);
+    assert!(h.settling_steps <= 2 * 64 && h.settling_steps % 16 == 0);
+    assert_eq!(h.history.len(), h.settling_steps + 64);
     // The film force follows the load (inertia ∝ (Ω/ω_n)² = 1e-4 of the load variation).
     for x in &h.history[h.settling_steps..] {
         assert!((x.film_force - x.load).abs() < 1e-3 * c.load, "{x:?}");
@@ -312,6 +313,10 @@ fn harmonic_settings_are_validated() {
             step_tol_film: 0.0,
             ..HarmonicSettings::default()
         },
+        HarmonicSettings {
+            periodicity_tol: -1.0,
+            ..HarmonicSettings::default()
+        },
     ];
     let names = [
         "amplitude",
@@ -321,6 +326,7 @@ fn harmonic_settings_are_validated() {
         "steps_per_period",
         "mass",
         "step_tol_film",
+        "periodicity_tol",
     ];
     for (s, name) in bad.iter().zip(names) {
         let e = characterize_harmonic(&c, mass(), s)
@@ -332,4 +338,121 @@ fn harmonic_settings_are_validated() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("mass"), "{e}");
+}
+
+/// The defaults' short settling (from the load maximum, a fraction of a period until the
+/// measured periodicity is below its bound) gives the law of a run settled for two whole
+/// periods with tight steps (step_tol_film 1e-5): d within 1e-3, ΔF within 2 % (the fit's
+/// standard errors are 0.002 and 0.7 N on 129², docs/contact.md), the force and stiffness at
+/// δ0 within 1e-4, c within 0.5 %. The reference's own error is not in this bound: the
+/// time-step error (docs/contact.md) is the same in both.
+#[test]
+fn short_settling_gives_the_law_of_a_settled_run() {
+    let c = inner(600.0);
+    let base = HarmonicSettings {
+        ehl: ehl(65),
+        ..HarmonicSettings::default()
+    };
+    let fast = characterize_harmonic(&c, mass(), &base).unwrap();
+    let slow = characterize_harmonic(
+        &c,
+        mass(),
+        &HarmonicSettings {
+            periodicity_tol: 0.0,
+            step_tol_film: 1e-5,
+            ..base
+        },
+    )
+    .unwrap();
+    let (
+        ehl_bearing::contact::Excitation::Harmonic(xf),
+        ehl_bearing::contact::Excitation::Harmonic(xs),
+    ) = (fast.excitation, slow.excitation)
+    else {
+        panic!()
+    };
+    eprintln!(
+        "fast: d {:.5} K {:.4e} ΔF {:.3} c {:?} settling {} periodicity {:.1e} cycles/step {:.2}; \
+         slow: d {:.5} K {:.4e} ΔF {:.3} c {:?} settling {} periodicity {:.1e} cycles/step {:.2}",
+        fast.d,
+        fast.k,
+        fast.delta_f,
+        fast.c,
+        xf.settling_steps,
+        xf.periodicity,
+        xf.cycles_per_step,
+        slow.d,
+        slow.k,
+        slow.delta_f,
+        slow.c,
+        xs.settling_steps,
+        xs.periodicity,
+        xs.cycles_per_step
+    );
+    // The reference's tight steps may stall at the Reynolds residual's floor (docs/contact.md,
+    // known limits: δ and the force are converged there); the default run must converge.
+    assert!(fast.converged, "{xf:?}");
+    assert!(xs.max_step_residual < 1e-3, "{xs:?}");
+    assert!(xf.settled && xf.periodicity <= 1e-3, "{xf:?}");
+    // It did settle for less than the reference's two periods.
+    assert!(fast.settling_steps < 2 * 64, "{}", fast.settling_steps);
+    assert_eq!(slow.settling_steps, 2 * 64);
+    assert!((fast.d - slow.d).abs() < 1e-3, "d {} vs {}", fast.d, slow.d);
+    assert!(
+        (fast.delta_f / slow.delta_f - 1.0).abs() < 0.02,
+        "ΔF {} vs {}",
+        fast.delta_f,
+        slow.delta_f
+    );
+    let d0 = fast.approach;
+    let (ff, fs) = (fast.law.force(d0), slow.law.force(d0));
+    assert!((ff.0 / fs.0 - 1.0).abs() < 1e-4, "F(δ0) {ff:?} vs {fs:?}");
+    assert!(
+        (ff.1 / fs.1 - 1.0).abs() < 1e-3,
+        "dF/dδ(δ0) {ff:?} vs {fs:?}"
+    );
+    let (cf, cs) = (fast.c.unwrap(), slow.c.unwrap());
+    assert!((cf / cs - 1.0).abs() < 5e-3, "c {cf} vs {cs}");
+}
+
+/// A run that cannot reach its periodicity bound within `settling_periods` says so
+/// (`settled: false`, its periodicity above the bound); without settling the periodicity is not
+/// measured (NaN, not settled).
+#[test]
+fn an_unsettled_run_is_reported_as_such() {
+    let c = inner(600.0);
+    let base = HarmonicSettings {
+        ehl: ehl(65),
+        steps_per_period: 32,
+        ..HarmonicSettings::default()
+    };
+    let f = characterize_harmonic(
+        &c,
+        mass(),
+        &HarmonicSettings {
+            settling_periods: 1,
+            periodicity_tol: 1e-12,
+            ..base
+        },
+    )
+    .unwrap();
+    let ehl_bearing::contact::Excitation::Harmonic(x) = f.excitation else {
+        panic!()
+    };
+    assert!(!x.settled && x.periodicity > 1e-12, "{x:?}");
+    assert_eq!(f.settling_steps, 32);
+    let f = characterize_harmonic(
+        &c,
+        mass(),
+        &HarmonicSettings {
+            settling_periods: 0,
+            ..base
+        },
+    )
+    .unwrap();
+    let ehl_bearing::contact::Excitation::Harmonic(x) = f.excitation else {
+        panic!()
+    };
+    assert!(!x.settled && x.periodicity.is_nan(), "{x:?}");
+    assert_eq!((f.settling_steps, f.history.len()), (0, 32));
 }

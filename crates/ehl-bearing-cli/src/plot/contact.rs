@@ -159,13 +159,13 @@ pub fn time_history(f: &ContactFit, c: &EhlContact, dir: &Path) -> Result<()> {
         ),
     ];
     let periods = match &f.excitation {
-        ehl_bearing::contact::Excitation::Harmonic(h) => (h.settling_periods, h.recorded_periods),
+        ehl_bearing::contact::Excitation::Harmonic(h) => (h.settling_steps, h.recorded_periods),
         _ => (0, 0),
     };
     stacked_charts_with(
         &dir.join("time_history"),
         &format!(
-            "Harmonic excitation, {} settling + {} recorded periods — {}",
+            "Harmonic excitation, {} settling steps + {} recorded periods — {}",
             periods.0,
             periods.1,
             case_tag(f, c)

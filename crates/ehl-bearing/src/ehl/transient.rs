@@ -203,6 +203,28 @@ impl TransientSolver {
         })
     }
 
+    /// Sets the start's approach acceleration δ̈(0) (m/s², finite; the constructors assume 0),
+    /// so that the BDF2 history of the equation of motion is that of a motion with the start's
+    /// rate and this acceleration (for a start on a periodic response, e.g. at a load extremum).
+    /// Call before the first step.
+    pub fn with_initial_acceleration(mut self, acceleration: f64) -> Result<Self, EhlError> {
+        if !acceleration.is_finite() || self.time != 0.0 {
+            return Err(EhlError::Invalid {
+                field: "initial acceleration [m/s²] (before the first step)",
+                value: acceleration,
+                range: "finite",
+            });
+        }
+        let length = self.sc.ax * self.sc.ax / self.sc.rx;
+        let um_over_ax = self.dtt / self.dt;
+        // A = d²H0/dT² = −δ̈ / (length · (u_m/a_x)²)
+        let a = -acceleration / (length * um_over_ax * um_over_ax);
+        let (h0, v, dtt) = (self.hier.h0, self.v_now, self.dtt);
+        self.h0_prev = h0 - v * dtt + 0.5 * a * dtt * dtt;
+        self.v_prev = v - a * dtt;
+        Ok(self)
+    }
+
     /// The steady solution the run started from.
     pub fn steady(&self) -> &EhlSolution {
         &self.steady
