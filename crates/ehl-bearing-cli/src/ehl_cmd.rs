@@ -145,6 +145,8 @@ fn json(r: &EhlSolution) -> serde_json::Value {
         "attempts": r.attempts,
         "seconds": r.seconds,
         "residual_history": r.residual_history,
+        "discretization_estimate": r.discretization_estimate,
+        "stopped_by_discretization": r.stopped_by_discretization,
     })
 }
 
@@ -182,6 +184,21 @@ pub fn table(r: &EhlSolution) -> String {
     );
     let _ = writeln!(s, "  Reynolds residual    {:.2e} (relative)", r.residual);
     let _ = writeln!(s, "  grid                 {} × {}", r.grid[0], r.grid[1]);
+    if let Some(d) = r.discretization_estimate {
+        let _ = writeln!(
+            s,
+            "  discretization err.  {:.1e} (H_c), {:.1e} (H0), relative, estimated from the next coarser grid",
+            d[0], d[1]
+        );
+    }
+    let rule = if !r.converged {
+        "not met"
+    } else if r.stopped_by_discretization {
+        "iteration error below a fraction of the discretization error"
+    } else {
+        "fixed tolerances"
+    };
+    let _ = writeln!(s, "  stopping rule        {rule}");
     let _ = writeln!(
         s,
         "  cycles               {} ({} starts, {} continuation steps)",

@@ -41,6 +41,19 @@ fn bench_circular(c: &mut Criterion) {
             r.h_central
         })
     });
+    // The same with the fixed tolerances alone (the stopping rule before issue 16's
+    // discretization-following one).
+    let fixed = EhlSettings {
+        discretization_fraction: 0.0,
+        ..s
+    };
+    g.bench_function("257_fixed_tolerances", |b| {
+        b.iter(|| {
+            let r = solve_moes(black_box(&circular()), &fixed).expect("solves");
+            assert!(r.converged);
+            r.h_central
+        })
+    });
     g.finish();
 }
 
@@ -163,6 +176,13 @@ fn bench_seed_22(c: &mut Criterion) {
                 let r = solve_steady(black_box(ct), &s).expect("solves");
                 assert!(r.converged);
             }
+        })
+    });
+    // The slowest of them alone (ball 4 inner, 263 N, M 1030: start 5 first, 9 cycles).
+    g.bench_function("5000rpm_257_ball4_inner", |b| {
+        b.iter(|| {
+            let r = solve_steady(black_box(&contacts[8]), &s).expect("solves");
+            assert!(r.converged);
         })
     });
     g.finish();

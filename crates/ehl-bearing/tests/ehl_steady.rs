@@ -164,12 +164,21 @@ fn agrees_with_nijenbanning_venner_moes() {
 
 /// Second-order discretization: H_c and H_min on 65, 129, 257 points (circular, M = 20, L = 10,
 /// Barus, incompressible); observed order log2(|H65 − H129|/|H129 − H257|) within [1.5, 2.5].
+/// The fixed tolerances alone (discretization-following rule off): the test measures the
+/// discretization, so the iteration error must be far below the differences (the default rule
+/// leaves up to a quarter of the discretization error, enough to move the observed order).
 #[test]
 fn grid_convergence_is_second_order() {
     let c = barus(20.0, 10.0, 1.0);
     let v: Vec<EhlSolution> = [65, 129, 257]
         .iter()
-        .map(|&g| solve_moes(&c, &settings(g)).unwrap())
+        .map(|&g| {
+            let s = EhlSettings {
+                discretization_fraction: 0.0,
+                ..settings(g)
+            };
+            solve_moes(&c, &s).unwrap()
+        })
         .collect();
     let order =
         |f: fn(&EhlSolution) -> f64| ((f(&v[0]) - f(&v[1])) / (f(&v[1]) - f(&v[2]))).abs().log2();
@@ -247,7 +256,7 @@ fn residual_falls_every_cycle_and_force_balance_holds() {
             x.cycles, x.force_balance_residual, x.residual_history
         );
         assert!(x.converged, "M {m} L {l} R {r}");
-        assert!(x.force_balance_residual < 1e-5);
+        assert!(x.force_balance_residual <= x.tolerances(&settings(g)).1);
         // Every cycle lowers the residual until it is below the tolerance; below it (~1e-5) the
         // complementarity noise of the cavitation boundary may bounce it while the film and h0
         // criteria finish converging.
@@ -262,14 +271,15 @@ fn residual_falls_every_cycle_and_force_balance_holds() {
 
 #[test]
 fn non_converged_run_is_flagged() {
+    // One cycle: the discretization-following rule needs two to measure a convergence factor.
     let s = EhlSettings {
-        max_cycles: 2,
+        max_cycles: 1,
         grid: 65,
         ..Default::default()
     };
     let x = solve_moes(&barus(20.0, 10.0, 1.0), &s).unwrap();
     assert!(!x.converged);
-    assert_eq!(x.residual_history.len(), 2);
+    assert_eq!(x.residual_history.len(), 1);
     assert!(x.residual > 0.0);
 }
 
@@ -280,7 +290,7 @@ fn non_converged_run_is_flagged() {
 fn nearly_rigid_elongated_contact_converges() {
     let x = solve_moes(&barus(5.0, 10.0, 61.0), &settings(129)).unwrap();
     assert!(x.converged, "residual {}", x.residual);
-    assert!(x.force_balance_residual < 1e-5);
+    assert!(x.force_balance_residual <= x.tolerances(&settings(129)).1);
     assert!(x.cycles <= 30, "cycles {}", x.cycles);
     assert!(
         (215.0..260.0).contains(&x.h_central_moes),
@@ -305,7 +315,7 @@ fn isoviscous_elongated_high_load_converges() {
     let x = solve_moes(&c, &settings(129)).unwrap();
     assert!(x.converged, "residual {}", x.residual);
     assert_eq!(x.attempts, 6);
-    assert!(x.force_balance_residual < 1e-5);
+    assert!(x.force_balance_residual <= x.tolerances(&settings(129)).1);
     assert!(
         rel(x.h_central_moes, 2.777).abs() < 0.03,
         "H_c {}",
@@ -314,7 +324,7 @@ fn isoviscous_elongated_high_load_converges() {
 }
 
 /// Prints a fallback run's summary and asserts it converged in start `start` (`attempts`), below
-/// the default residual and force-balance tolerances.
+/// the residual and force-balance bounds of the default stopping rules.
 fn assert_converged_in_start(x: &EhlSolution, start: usize) {
     println!(
         "cycles {} steps {} t {:.2}s H_c {:.4} H_min {:.4} p_max/p_h {:.3} res {:.2e} fb {:.1e}",
@@ -329,8 +339,9 @@ fn assert_converged_in_start(x: &EhlSolution, start: usize) {
     );
     assert!(x.converged, "residual {}", x.residual);
     assert_eq!(x.attempts, start);
-    assert!(x.residual < 1e-4);
-    assert!(x.force_balance_residual < 1e-5);
+    let (res, fb) = x.tolerances(&EhlSettings::default());
+    assert!(x.residual < res);
+    assert!(x.force_balance_residual <= fb);
 }
 
 /// Barus at large αp_h (circular, M 20, L 25: αp_h = 24.7, a piezoviscous pressure peak of about
@@ -487,4 +498,61 @@ proptest::proptest! {
             proptest::prop_assert!(mass.is_finite() && mass > 0.0);
         }
     }
+}
+
+/// The default stopping rule follows the discretization error (docs/ehl.md §2): on the circular
+/// Roelands/D–H case (M 20, L 10) at 129² it stops with H_c within the estimate it promises
+/// (a quarter of the estimated discretization error, at most 0.1 %) of the same grid iterated to
+/// a residual of 1e-9, in fewer cycles than the fixed tolerances, and says that it stopped there.
+/// A warm start carries the estimate over.
+#[test]
+fn discretization_rule_stops_within_its_estimate() {
+    let c = MoesCase::new(
+        20.0,
+        10.0,
+        1.0,
+        ViscosityModel::Roelands,
+        DensityModel::DowsonHigginson,
+    );
+    let s = settings(129);
+    let fixed = EhlSettings {
+        discretization_fraction: 0.0,
+        ..s
+    };
+    let tight = EhlSettings {
+        tol_residual: 1e-9,
+        tol_film: 1e-10,
+        tol_force: 1e-11,
+        max_cycles: 80,
+        ..fixed
+    };
+    let full = solve_moes(&c, &tight).unwrap();
+    let rule = solve_moes(&c, &s).unwrap();
+    let old = solve_moes(&c, &fixed).unwrap();
+    assert!(full.converged && rule.converged && old.converged);
+    assert!(rule.stopped_by_discretization && !old.stopped_by_discretization);
+    let d = rule
+        .discretization_estimate
+        .expect("a cold start has an estimate");
+    let promised = s.discretization_fraction
+        * d[0].clamp(
+            ehl_bearing::ehl::DISCRETIZATION_FLOOR,
+            ehl_bearing::ehl::DISCRETIZATION_CAP,
+        );
+    let err = rel(rule.h_central, full.h_central).abs();
+    println!(
+        "cycles rule {} fixed {}; H_c error {err:.2e}, promised {promised:.2e}, estimate {d:?}",
+        rule.cycles, old.cycles
+    );
+    assert!(err <= promised && err <= 1e-3);
+    assert!(rule.cycles < old.cycles);
+    let s65 = settings(65);
+    let a = solve_steady(&seed_contact(), &s65).unwrap();
+    let c2 = EhlContact {
+        load: 660.0,
+        ..seed_contact()
+    };
+    let warm = solve_steady_from(&c2, &s65, &a).unwrap();
+    assert!(a.discretization_estimate.is_some());
+    assert_eq!(warm.discretization_estimate, a.discretization_estimate);
 }

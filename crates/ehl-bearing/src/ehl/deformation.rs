@@ -85,9 +85,26 @@ impl KernelPlan {
         // both offsets: compute one quadrant and mirror it.
         let mut k = vec![Complex::new(0.0, 0.0); lx * ly];
         let norm = 1.0 / (lx * ly) as f64;
+        // F at the cell corners ((i − ½)·hx, (j − ½)·hy), i, j = 0…n: each corner is shared by
+        // four cells, and F is odd in each argument, so F(−½hx, ·) = −F(½hx, ·).
+        let cx = |i: usize| (i as f64 - 0.5) * hx;
+        let cy = |j: usize| (j as f64 - 0.5) * hy;
+        let ncx = nx + 1;
+        let mut corner = vec![0.0; ncx * (ny + 1)];
+        for j in 1..=ny {
+            for i in 1..=nx {
+                corner[j * ncx + i] = prim(cx(i), cy(j));
+            }
+            corner[j * ncx] = -corner[j * ncx + 1];
+        }
+        for i in 0..ncx {
+            corner[i] = -corner[ncx + i];
+        }
         for dy in 0..ny {
             for dx in 0..nx {
-                let v = rect_influence(dx as f64 * hx, dy as f64 * hy, hx, hy) * norm;
+                // rect_influence(dx·hx, dy·hy, hx, hy) from the corner table.
+                let f = |i: usize, j: usize| corner[j * ncx + i];
+                let v = (f(dx + 1, dy + 1) - f(dx, dy + 1) - f(dx + 1, dy) + f(dx, dy)) * norm;
                 let c = Complex::new(v, 0.0);
                 let ixs = [dx, (lx - dx) % lx];
                 let iys = [dy, (ly - dy) % ly];

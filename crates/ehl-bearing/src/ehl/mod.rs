@@ -158,6 +158,22 @@ pub struct EhlSettings {
     /// ≤ 5e-6, 20–200× below the 257² discretization error; 1e-5 before, which cost 1–4 more
     /// cycles per solution, docs/ehl.md §2).
     pub tol_film: f64,
+    /// Stopping rule that follows the discretization error (cold starts, which solve the next
+    /// coarser grid first in the full-multigrid start): stop as soon as the estimated algebraic
+    /// error of both H_c and H0 is below this fraction of their estimated discretization error,
+    /// and the force-balance error below the same fraction of it (dimensionless, default 0.25;
+    /// 0 turns the rule off and leaves only the fixed tolerances above, which also stop a solve
+    /// when they are met first). The discretization error of a quantity is estimated as
+    /// |q_h − q_2h|/3 (second order, q_2h its value on the next coarser grid at the end of the
+    /// full-multigrid start), limited to [`DISCRETIZATION_FLOOR`]…[`DISCRETIZATION_CAP`]; the algebraic
+    /// error as Δ·ρ/(1 − ρ), Δ the change over the last cycle and ρ < 0.9 the observed
+    /// convergence factor, the largest of Δ/Δ_previous, the ratio of the last two residuals and
+    /// 0.3 (so never after the first finest-grid cycle).
+    /// The relative Reynolds residual must also be below [`DISCRETIZATION_RESIDUAL_GUARD`].
+    /// Warm starts ([`solve_steady_from`]) have no coarse-grid value: they use the estimate of
+    /// the solution they start from, and the fixed tolerances if it has none (docs/ehl.md §2).
+    #[serde(default = "default_discretization_fraction")]
+    pub discretization_fraction: f64,
     /// Cycle type (default W).
     pub cycle: CycleType,
     /// Relaxation sweeps before the coarse-grid correction (default 2).
@@ -184,6 +200,26 @@ pub struct EhlSettings {
     pub deadline: Option<crate::budget::Deadline>,
 }
 
+/// Default of [`EhlSettings::discretization_fraction`].
+pub const DISCRETIZATION_FRACTION: f64 = 0.25;
+/// Smallest discretization-error estimate (relative) the stopping rule of
+/// [`EhlSettings::discretization_fraction`] uses, so that a coarse-grid value that happens to
+/// agree with the fine one does not demand an exact solution: 1e-4.
+pub const DISCRETIZATION_FLOOR: f64 = 1e-4;
+/// Largest discretization-error estimate (relative) the stopping rule of
+/// [`EhlSettings::discretization_fraction`] uses: 4e-3, so that with the default fraction the
+/// estimated algebraic error never exceeds 0.1 % however coarse the grid (an unconverged
+/// coarse-grid value can also inflate the estimate).
+pub const DISCRETIZATION_CAP: f64 = 4e-3;
+/// The relative Reynolds residual below which the discretization-following rule may stop a
+/// solve (a guard against stopping on a lucky pair of H_c and H0 values while the pressure
+/// field is still far off): 1e-2.
+pub const DISCRETIZATION_RESIDUAL_GUARD: f64 = 1e-2;
+
+fn default_discretization_fraction() -> f64 {
+    DISCRETIZATION_FRACTION
+}
+
 impl Default for EhlSettings {
     /// Defaults: 257 × 257 points, automatic inlet (4.5 a_x circular, 6 to 10.5 a_x elongated),
     /// outlet 1.5 a_x, automatic half-width (3 a_y circular to 2 a_y elongated) (see docs/ehl.md for the domain- and grid-convergence
@@ -199,6 +235,7 @@ impl Default for EhlSettings {
             tol_residual: 1e-4,
             tol_force: 1e-5,
             tol_film: 1e-4,
+            discretization_fraction: DISCRETIZATION_FRACTION,
             cycle: CycleType::W,
             pre_sweeps: 2,
             post_sweeps: 1,
@@ -340,6 +377,17 @@ pub struct EhlSolution {
     pub seconds: f64,
     /// Relative residual after each finest-grid cycle.
     pub residual_history: Vec<f64>,
+    /// Estimated relative discretization error of [H_c, H0] on this grid, |q_h − q_2h|/(3·|q_h|)
+    /// with q_2h the value on the next coarser grid at the end of the full-multigrid start
+    /// (H0 scaled by max(|H0|, H_c)); for a warm start, the estimate of the solution it started
+    /// from; `None` when there was none (single level, continuation steps, or a warm start from
+    /// a solution without one). It is what [`EhlSettings::discretization_fraction`] compares with.
+    #[serde(default)]
+    pub discretization_estimate: Option<[f64; 2]>,
+    /// True when the discretization-following rule stopped the iteration (false: the fixed
+    /// tolerances, or not converged).
+    #[serde(default)]
+    pub stopped_by_discretization: bool,
     /// Continuation steps used, in load (`attempts` = 7) or in α (`attempts` = 8, and 9 with the
     /// final single-grid relaxation counted as one step); 0 when a direct start converged.
     pub continuation_steps: usize,
@@ -357,6 +405,25 @@ pub struct EhlSolution {
     pub attempt_log: Vec<EhlAttempt>,
     /// Fields on the finest grid.
     pub fields: EhlFields,
+}
+
+impl EhlSolution {
+    /// The (relative Reynolds residual, relative force-balance error) bounds a converged solution
+    /// solved with settings `s` was held to: [`DISCRETIZATION_RESIDUAL_GUARD`] and
+    /// `s.discretization_fraction` × its clamped discretization estimate when the
+    /// discretization-following rule stopped it, else `s.tol_residual` and `s.tol_force`.
+    pub fn tolerances(&self, s: &EhlSettings) -> (f64, f64) {
+        match (self.stopped_by_discretization, self.discretization_estimate) {
+            (true, Some(d)) => (
+                DISCRETIZATION_RESIDUAL_GUARD,
+                s.discretization_fraction
+                    * d[0]
+                        .max(d[1])
+                        .clamp(DISCRETIZATION_FLOOR, DISCRETIZATION_CAP),
+            ),
+            _ => (s.tol_residual, s.tol_force),
+        }
+    }
 }
 
 /// A start strategy of the steady solver (docs/ehl.md §2). [`StartStrategy::number`] is the

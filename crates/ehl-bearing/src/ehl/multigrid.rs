@@ -58,12 +58,52 @@ pub(crate) struct Problem {
     pub load_slope: f64,
 }
 
-impl Problem {
-    fn eta(&self, p: f64) -> f64 {
-        self.lub.viscosity_ratio(self.ph * p.max(0.0))
+/// The rheology of a [`Problem`] with its constants evaluated once (per film update, not per
+/// node): the same operations as [`Lubricant::viscosity_ratio`] and
+/// [`Lubricant::density_ratio`] at p = p_h·P, bit for bit, without the two logarithms of
+/// Roelands' constants at every node.
+#[derive(Debug, Clone, Copy)]
+struct Rheology {
+    ph: f64,
+    roelands: bool,
+    /// Roelands: ln η0 + 9.67; Barus: α.
+    c: f64,
+    /// Roelands' exponent z.
+    z: f64,
+    dowson_higginson: bool,
+}
+
+impl Rheology {
+    fn new(pr: &Problem) -> Self {
+        let lub = &pr.lub;
+        let roelands = lub.viscosity_model == crate::material::ViscosityModel::Roelands;
+        Rheology {
+            ph: pr.ph,
+            roelands,
+            c: if roelands {
+                lub.viscosity.ln() + crate::material::ROELANDS_LN_ETA_INF
+            } else {
+                lub.pressure_viscosity
+            },
+            z: if roelands { lub.roelands_z() } else { 0.0 },
+            dowson_higginson: lub.density_model == crate::material::DensityModel::DowsonHigginson,
+        }
     }
-    fn rho(&self, p: f64) -> f64 {
-        self.lub.density_ratio(self.ph * p.max(0.0))
+    /// (ρ̄, η̄) at P > 0.
+    #[inline]
+    fn at(&self, p: f64) -> (f64, f64) {
+        let p = self.ph * p;
+        let eta = if self.roelands {
+            (self.c * (-1.0 + (1.0 + p / crate::material::ROELANDS_P0).powf(self.z))).exp()
+        } else {
+            (self.c * p).exp()
+        };
+        let rho = if self.dowson_higginson {
+            (5.9e8 + 1.34 * p) / (5.9e8 + p)
+        } else {
+            1.0
+        };
+        (rho, eta)
     }
 }
 
@@ -176,6 +216,7 @@ impl Level {
     /// Recomputes H, ρ̄ and ε from P and H0.
     pub fn update_film(&mut self, pr: &Problem, h0: f64) {
         self.def.apply(&self.p, &mut self.w);
+        let rheo = Rheology::new(pr);
         let nx = self.nx;
         for j in 0..self.ny {
             let yy = pr.gy * self.y[j] * self.y[j];
@@ -186,11 +227,7 @@ impl Level {
                 let p = self.p[idx];
                 // ρ̄(0) = η̄(0) = 1 exactly in every model: skip the pow/exp of the rheology
                 // at the (many) unloaded and cavitated nodes.
-                let (r, eta) = if p > 0.0 {
-                    (pr.rho(p), pr.eta(p))
-                } else {
-                    (1.0, 1.0)
-                };
+                let (r, eta) = if p > 0.0 { rheo.at(p) } else { (1.0, 1.0) };
                 self.rho[idx] = r;
                 let hp = hh.max(0.0);
                 self.eps[idx] = r * hp * hp * hp / (eta * pr.lambda);
@@ -434,10 +471,14 @@ fn solve_band<const B: usize>(a: &mut [f64], x: &mut [f64], n: usize) -> bool {
         if piv.abs() <= 1e-300 || !piv.is_finite() {
             return false;
         }
+        // One division per row: the pivot's reciprocal is kept in its place for the back
+        // substitution.
+        let inv = 1.0 / piv;
+        a[r * nb + B] = inv;
         let xr = x[r];
         let end = (r + B + 1).min(n);
         for rr in r + 1..end {
-            let f = a[rr * nb + (r + B - rr)] / piv;
+            let f = a[rr * nb + (r + B - rr)] * inv;
             if f == 0.0 {
                 continue;
             }
@@ -453,7 +494,7 @@ fn solve_band<const B: usize>(a: &mut [f64], x: &mut [f64], n: usize) -> bool {
         for c in r + 1..(r + B + 1).min(n) {
             s -= a[r * nb + (c + B - r)] * x[c];
         }
-        x[r] = s / a[r * nb + B];
+        x[r] = s * a[r * nb + B];
         if !x[r].is_finite() {
             return false;
         }

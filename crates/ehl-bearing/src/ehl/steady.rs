@@ -5,7 +5,8 @@ use super::formulas::nijenbanning_central;
 use super::multigrid::{Hierarchy, MgParams, Problem};
 use super::{
     AttemptOutcome, CycleType, EhlAttempt, EhlContact, EhlError, EhlFields, EhlSettings,
-    EhlSolution, MoesCase, StartStrategy,
+    EhlSolution, MoesCase, StartStrategy, DISCRETIZATION_CAP, DISCRETIZATION_FLOOR,
+    DISCRETIZATION_RESIDUAL_GUARD,
 };
 use crate::hertz::HertzGeometry;
 use crate::material::{Lubricant, ROELANDS_LN_ETA_INF, ROELANDS_P0};
@@ -103,6 +104,14 @@ pub(crate) fn validate_settings(s: &EhlSettings) -> Result<(), EhlError> {
         if !(v.is_finite() && v > 0.0) {
             return Err(invalid(f, v, "finite and > 0"));
         }
+    }
+    let f = s.discretization_fraction;
+    if !(f.is_finite() && (0.0..=1.0).contains(&f)) {
+        return Err(invalid(
+            "settings.discretization_fraction",
+            f,
+            "0 (off) to 1",
+        ));
     }
     if s.max_cycles == 0 || s.max_cycles > 10_000 {
         return Err(invalid(
@@ -241,6 +250,10 @@ struct Core {
     fb: f64,
     /// Stopped by the stagnation test (not by the cycle limit).
     stagnated: bool,
+    /// See [`EhlSolution::discretization_estimate`].
+    disc: Option<[f64; 2]>,
+    /// See [`EhlSolution::stopped_by_discretization`].
+    by_disc: bool,
 }
 
 impl Core {
@@ -293,7 +306,13 @@ pub(crate) fn params(s: &EhlSettings) -> MgParams {
 /// Starting pressure on the finest grid: given, or Hertz.
 enum Start {
     Hertz,
-    Given { p: Vec<f64>, h0: Option<f64> },
+    /// `disc`: a discretization-error estimate carried over from a neighbouring solution (warm
+    /// starts), for the stopping rule of [`EhlSettings::discretization_fraction`].
+    Given {
+        p: Vec<f64>,
+        h0: Option<f64>,
+        disc: Option<[f64; 2]>,
+    },
 }
 
 /// Sets H0 so that the central film equals `h_est` for the current pressure of level `k`.
@@ -328,6 +347,13 @@ fn iterate(
     let mut hier = Hierarchy::new(pr, s.grid, s.coarsest);
     let nl = hier.levels.len();
     let top = nl - 1;
+    let centre_of = |h: &Hierarchy, k: usize| {
+        let lv = &h.levels[k];
+        bilinear(&lv.h, &lv.x, &lv.y, 0.0, 0.0)
+    };
+    // (H_c, H0) on the next coarser grid at the end of the full-multigrid start.
+    let mut coarse_ref: Option<(f64, f64)> = None;
+    let mut prior: Option<[f64; 2]> = None;
     match start {
         Start::Hertz => {
             hertz_fill(&mut hier.levels[0]);
@@ -335,16 +361,23 @@ fn iterate(
             for _ in 0..4 {
                 hier.cycle(pr, &prm, 0);
             }
+            if top == 1 {
+                coarse_ref = Some((centre_of(&hier, 0), hier.h0));
+            }
             for k in 1..nl {
                 hier.prolong_solution(pr, k);
                 if k < top {
                     for _ in 0..s.fmg_cycles {
                         hier.cycle(pr, &prm, k);
                     }
+                    if k + 1 == top {
+                        coarse_ref = Some((centre_of(&hier, k), hier.h0));
+                    }
                 }
             }
         }
-        Start::Given { p, h0 } => {
+        Start::Given { p, h0, disc } => {
+            prior = disc;
             hier.levels[top].p.copy_from_slice(&p);
             match h0 {
                 Some(h0) => {
@@ -361,10 +394,11 @@ fn iterate(
     let mut fb = f64::NAN;
     let mut cycles = 0;
     let mut stagnated = false;
-    let centre = |h: &Hierarchy| {
-        let lv = &h.levels[top];
-        bilinear(&lv.h, &lv.x, &lv.y, 0.0, 0.0)
-    };
+    let mut disc = None;
+    let mut by_disc = false;
+    // Changes of (H_c, H0) over the previous cycle, relative.
+    let mut prev_change: Option<[f64; 2]> = None;
+    let centre = |h: &Hierarchy| centre_of(h, top);
     for _ in 0..max_cycles {
         // The wall-time budget ends the iteration like the cycle limit; the caller reports it.
         if crate::budget::expired(&s.deadline) {
@@ -391,8 +425,49 @@ fn iterate(
         let scale = hc.abs().max(1e-12);
         let dh =
             ((hc - hc_old).abs() / scale).max((hier.h0 - h0_old).abs() / hier.h0.abs().max(scale));
+        let s0 = hier.h0.abs().max(scale);
+        let estimate = match (coarse_ref, prior) {
+            (Some((hc2, h02)), _) => Some([
+                (hc - hc2).abs() / scale / 3.0,
+                (hier.h0 - h02).abs() / s0 / 3.0,
+            ]),
+            (None, p) => p,
+        };
+        if let Some(d) = estimate {
+            disc = Some(d);
+            let change = [(hc - hc_old).abs() / scale, (hier.h0 - h0_old).abs() / s0];
+            let theta = s.discretization_fraction;
+            if let (Some(prev), true) = (prev_change, theta > 0.0) {
+                // Convergence factor: the more pessimistic of the last change ratio and the
+                // residual ratio (the film can oscillate from cycle to cycle while the
+                // residual falls steadily).
+                let n = history.len();
+                let rho_res = history[n - 1] / history[n - 2];
+                let small = (0..2).all(|q| {
+                    let rho = if change[q] == 0.0 {
+                        rho_res.max(DISC_RHO_MIN)
+                    } else {
+                        (change[q] / prev[q]).max(rho_res).max(DISC_RHO_MIN)
+                    };
+                    let allowed = theta * d[q].clamp(DISCRETIZATION_FLOOR, DISCRETIZATION_CAP);
+                    rho < DISC_RHO_MAX && change[q] * rho / (1.0 - rho) <= allowed
+                });
+                let allowed_fb = theta
+                    * d[0]
+                        .max(d[1])
+                        .clamp(DISCRETIZATION_FLOOR, DISCRETIZATION_CAP);
+                if small && fb <= allowed_fb && rel < DISCRETIZATION_RESIDUAL_GUARD {
+                    converged = true;
+                    by_disc = true;
+                }
+            }
+            prev_change = Some(change);
+        }
         if rel < s.tol_residual && fb < s.tol_force && dh < s.tol_film {
             converged = true;
+            by_disc = false;
+        }
+        if converged {
             break;
         }
         let best = history.iter().cloned().fold(f64::INFINITY, f64::min);
@@ -414,8 +489,16 @@ fn iterate(
         residual,
         fb,
         stagnated,
+        disc,
+        by_disc,
     })
 }
+
+/// Smallest convergence factor the discretization-following stopping rule assumes (the first
+/// cycles after the full-multigrid start can fall much faster than the asymptotic rate).
+const DISC_RHO_MIN: f64 = 0.3;
+/// Observed convergence factor at and above which that rule does not stop.
+const DISC_RHO_MAX: f64 = 0.9;
 
 fn h_estimate(sc: &Scales) -> f64 {
     let hm = nijenbanning_central(sc.m, sc.l.max(1e-6), 1.0 / sc.ratio);
@@ -469,6 +552,8 @@ fn finish(
         cycles: cycles_total,
         seconds: t0.elapsed().as_secs_f64(),
         residual_history: core.history,
+        discretization_estimate: core.disc,
+        stopped_by_discretization: core.by_disc,
         continuation_steps: steps,
         attempts: 1,
         attempt_log: Vec::new(),
@@ -832,7 +917,11 @@ fn polish(
         coarsest: s.grid,
         ..*s
     };
-    let start = Start::Given { p, h0: Some(h0) };
+    let start = Start::Given {
+        p,
+        h0: Some(h0),
+        disc: None,
+    };
     match iterate(pr, &single, start, h_estimate(sc), s.max_cycles) {
         Ok(core) => {
             let n = cycles_total + core.cycles;
@@ -936,6 +1025,7 @@ fn alpha_continuation(
         let start = Start::Given {
             p: state.0.clone(),
             h0: Some(state.1),
+            disc: None,
         };
         let maxc = if last {
             warm.max_cycles
@@ -1062,7 +1152,11 @@ fn continuation(
         let last = k + 1 == steps;
         let start = match p_prev.take() {
             None => Start::Hertz,
-            Some(p) => Start::Given { p, h0: None },
+            Some(p) => Start::Given {
+                p,
+                h0: None,
+                disc: None,
+            },
         };
         let maxc = if last {
             s.max_cycles
@@ -1150,7 +1244,11 @@ pub fn solve_steady_from(
     let spent = match iterate(
         &pr,
         &ws,
-        Start::Given { p, h0: Some(h0) },
+        Start::Given {
+            p,
+            h0: Some(h0),
+            disc: previous.discretization_estimate,
+        },
         h_est,
         s.max_cycles,
     ) {
