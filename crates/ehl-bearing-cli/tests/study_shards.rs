@@ -4,27 +4,8 @@
 
 mod study_common;
 
-use assert_cmd::cargo::CommandCargoExt;
 use std::path::Path;
-use std::process::{Command, Output};
-use study_common::{assert_same_tree, study_file, tree};
-
-fn run(args: &[&str]) -> Output {
-    Command::cargo_bin("ehl-bearing")
-        .unwrap()
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn ok(o: Output) -> String {
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    String::from_utf8_lossy(&o.stdout).to_string()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
+use study_common::{assert_same_tree, ok, run, s, study_file, tree};
 
 /// Run `study` once into `full`, as 3 shards into `shared` + merge, and as 3 shards into
 /// separate folders + merge into `merged`; assert the three trees are identical.

@@ -7,29 +7,10 @@
 
 mod study_common;
 
-use assert_cmd::cargo::CommandCargoExt;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use study_common::{assert_same_tree, study_file};
-
-fn run(args: &[&str]) -> Output {
-    Command::cargo_bin("ehl-bearing")
-        .unwrap()
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn ok(o: Output) -> String {
-    assert!(
-        o.status.success(),
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8_lossy(&o.stdout).to_string()
-}
+use study_common::{assert_same_tree, ok, run, s, study_file};
 
 fn err(o: Output) -> String {
     assert!(
@@ -38,10 +19,6 @@ fn err(o: Output) -> String {
         String::from_utf8_lossy(&o.stdout)
     );
     String::from_utf8_lossy(&o.stderr).to_string()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
 }
 
 /// The seed bearing, dry method, 3 speeds × 4 loads (12 points).

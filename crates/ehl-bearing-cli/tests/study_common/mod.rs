@@ -1,10 +1,37 @@
 //! Helpers shared by the study tests (included with `mod`).
 #![allow(dead_code)]
 
+use assert_cmd::cargo::CommandCargoExt;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
 
 pub const SEED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/7006.toml");
+
+/// Run the `ehl-bearing` binary with `args`.
+pub fn run(args: &[&str]) -> Output {
+    Command::cargo_bin("ehl-bearing")
+        .unwrap()
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+/// Assert that `o` succeeded (showing its stdout and stderr if not) and return its stdout.
+pub fn ok(o: Output) -> String {
+    assert!(
+        o.status.success(),
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    String::from_utf8_lossy(&o.stdout).to_string()
+}
+
+/// A path as a command-line argument.
+pub fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
 
 /// Write a study file into `dir` and return its path.
 pub fn study_file(dir: &Path, method: &str, speeds: &str, scales: &str, extra: &str) -> PathBuf {
