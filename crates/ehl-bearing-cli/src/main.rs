@@ -64,12 +64,18 @@ fn main() -> ExitCode {
     }
 }
 
+/// The fuzzing tests' SplitMix64 generator.
+#[cfg(test)]
+#[path = "../../ehl-bearing/tests/splitmix/mod.rs"]
+mod splitmix;
+
 /// Command-line parsing over many generated argument lists, in process (the runs themselves:
 /// `tests/fuzz_cli.rs`): clap must return arguments or an error, never panic. Default: 20 000
 /// lists; `FUZZ_ARGS=1000000 cargo test -p ehl-bearing-cli --bin ehl-bearing fuzz_parse --
 /// --ignored` for more.
 #[cfg(test)]
 mod fuzz_parse {
+
     use super::Cli;
     use clap::Parser;
 
@@ -117,14 +123,8 @@ mod fuzz_parse {
     ];
 
     fn lists(seed: u64, n: u64) -> usize {
-        let mut state = seed;
-        let mut next = move || {
-            state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = state;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^ (z >> 31)
-        };
+        let mut rng = super::splitmix::Rng(seed);
+        let mut next = move || rng.next();
         let mut parsed = 0;
         for _ in 0..n {
             let len = (next() % 8) as usize;
