@@ -447,4 +447,51 @@ fn invalid_inputs_name_the_field_and_value() {
     assert!(e.to_string().contains("step_s = -1"), "{e}");
     let e = model.static_equilibrium(f64::INFINITY).unwrap_err();
     assert!(e.to_string().contains("shaft speed = inf"), "{e}");
+    let e = RotorModel::new(
+        rigid_ring(0.0),
+        vec![hertz_site(&case)],
+        vec![],
+        vec![0.0; 4],
+    )
+    .unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("constant_force has 4 entries; 5 expected"),
+        "{e}"
+    );
+    let mut force = vec![0.0; 5];
+    force[2] = f64::NAN;
+    let e = RotorModel::new(rigid_ring(0.0), vec![hertz_site(&case)], vec![], force).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("constant_force[2] = NaN; must be finite (N or N·m)"),
+        "{e}"
+    );
+    for (displacement, velocity, expected) in [
+        (
+            vec![0.0; 3],
+            vec![0.0; 5],
+            "start displacement has 3 entries; 5 expected",
+        ),
+        (
+            vec![0.0; 5],
+            vec![0.0, f64::INFINITY, 0.0, 0.0, 0.0],
+            "start velocity[1] = inf",
+        ),
+    ] {
+        let e = model
+            .simulate(
+                &SpeedProfile::Constant { speed_rad_s: 100.0 },
+                &TimeOptions {
+                    start: Start::Given {
+                        displacement,
+                        velocity,
+                    },
+                    ..TimeOptions::default()
+                },
+                None,
+            )
+            .unwrap_err();
+        assert!(e.to_string().contains(expected), "{e}");
+    }
 }

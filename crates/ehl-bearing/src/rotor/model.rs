@@ -281,18 +281,7 @@ impl RotorModel {
                 )));
             }
         }
-        if constant_force.len() != n {
-            return Err(RotorError::Invalid(format!(
-                "constant_force has {} entries; {n} expected",
-                constant_force.len()
-            )));
-        }
-        if let Some(i) = constant_force.iter().position(|v| !v.is_finite()) {
-            return Err(RotorError::Invalid(format!(
-                "constant_force[{i}] = {}; must be finite (N or N·m)",
-                constant_force[i]
-            )));
-        }
+        check_vector("constant_force", &constant_force, n, " (N or N·m)")?;
         Ok(RotorModel {
             mass: matrices.matrix(&matrices.mass),
             damping: matrices.matrix(&matrices.damping),
@@ -496,6 +485,24 @@ impl RotorModel {
         )?;
         Ok((matrices, eq))
     }
+}
+
+/// A vector input of the rotor: `n` entries, all finite; the error names `name`, the entry and
+/// its value (`unit`, e.g. " (N or N·m)", follows "must be finite").
+pub(crate) fn check_vector(name: &str, v: &[f64], n: usize, unit: &str) -> Result<(), RotorError> {
+    if v.len() != n {
+        return Err(RotorError::Invalid(format!(
+            "{name} has {} entries; {n} expected",
+            v.len()
+        )));
+    }
+    if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+        return Err(RotorError::Invalid(format!(
+            "{name}[{i}] = {}; must be finite{unit}",
+            v[i]
+        )));
+    }
+    Ok(())
 }
 
 pub(crate) fn check_speed(speed_rad_s: f64) -> Result<(), RotorError> {

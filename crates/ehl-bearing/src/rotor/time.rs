@@ -1,7 +1,7 @@
 //! Time response: Newmark average acceleration with the bearing forces implicit (Newton on the
 //! bearing DOFs of the condensed rotor) or lagged by one step.
 
-use super::model::{check_speed, RotorModel};
+use super::model::{check_speed, check_vector, RotorModel};
 use super::RotorError;
 use crate::force_element::{ElementOutput, ElementState};
 use nalgebra::{DMatrix, DVector};
@@ -230,20 +230,8 @@ impl TimeOptions {
             velocity,
         } = &self.start
         {
-            for (name, v) in [("displacement", displacement), ("velocity", velocity)] {
-                if v.len() != n {
-                    return Err(RotorError::Invalid(format!(
-                        "start {name} has {} entries; {n} expected",
-                        v.len()
-                    )));
-                }
-                if let Some(i) = v.iter().position(|x| !x.is_finite()) {
-                    return Err(RotorError::Invalid(format!(
-                        "start {name}[{i}] = {}; must be finite",
-                        v[i]
-                    )));
-                }
-            }
+            check_vector("start displacement", displacement, n, "")?;
+            check_vector("start velocity", velocity, n, "")?;
         }
         Ok(steps as usize)
     }
