@@ -296,18 +296,24 @@ pub fn run(args: &ContactArgs) -> Result<()> {
             method_of(args)?
         }
         Method::QuasiStatic => {
-            let harmonic_only = args.frequency_fraction.is_some()
-                || args.frequency_rad_s.is_some()
-                || args.settling_periods.is_some()
-                || args.periodicity_tol.is_some()
-                || args.recorded_periods.is_some()
-                || args.steps_per_period.is_some()
-                || args.mass_kg.is_some()
-                || args.no_damping_term;
-            if harmonic_only {
+            let given: Vec<&str> = [
+                (args.frequency_fraction.is_some(), "--frequency-fraction"),
+                (args.frequency_rad_s.is_some(), "--frequency-rad-s"),
+                (args.settling_periods.is_some(), "--settling-periods"),
+                (args.periodicity_tol.is_some(), "--periodicity-tol"),
+                (args.recorded_periods.is_some(), "--recorded-periods"),
+                (args.steps_per_period.is_some(), "--steps-per-period"),
+                (args.mass_kg.is_some(), "--mass-kg"),
+                (args.no_damping_term, "--no-damping-term"),
+            ]
+            .into_iter()
+            .filter_map(|(set, name)| set.then_some(name))
+            .collect();
+            if !given.is_empty() {
                 bail!(
-                    "--frequency-*, --*-periods, --steps-per-period, --mass-kg and \
-                     --no-damping-term apply to --method harmonic only"
+                    "{} {} to --method harmonic only (the method is quasi-static)",
+                    given.join(", "),
+                    if given.len() == 1 { "applies" } else { "apply" }
                 );
             }
             method_of(args)?

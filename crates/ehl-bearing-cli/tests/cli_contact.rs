@@ -135,7 +135,52 @@ fn harmonic_options_are_refused_for_the_quasi_static_method() {
         .output()
         .unwrap();
     assert!(!out.status.success());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("--method harmonic"));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--steps-per-period applies to --method harmonic only"),
+        "{err}"
+    );
+    // Every harmonic-only option given is named.
+    let out = Command::cargo_bin("ehl-bearing")
+        .unwrap()
+        .args([
+            "contact",
+            SEED,
+            "--periodicity-tol",
+            "0",
+            "--mass-kg",
+            "0.01",
+        ])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--periodicity-tol, --mass-kg apply to --method harmonic only"),
+        "{err}"
+    );
+}
+
+#[test]
+fn invalid_periodicity_tol_names_the_option_and_value() {
+    for (value, shown) in [("-1", "-1"), ("nan", "NaN")] {
+        let mut args = fast_harmonic();
+        let flag = format!("--periodicity-tol={value}");
+        args.push(&flag);
+        let out = Command::cargo_bin("ehl-bearing")
+            .unwrap()
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(!out.status.success());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains(&format!(
+                "--periodicity-tol = {shown}: expected a finite number ≥ 0"
+            )),
+            "{err}"
+        );
+    }
 }
 
 #[test]
