@@ -959,6 +959,15 @@ fn with_alpha(pr: &Problem, sc: &Scales, f: f64) -> (Problem, Scales) {
 /// or the 33² coarsest grid, the warm starts diverge within 2–5 cycles at αp_max ≳ 60–90).
 /// Intermediate steps get `ALPHA_STEP_CYCLES` cycles and need not converge; the last one must.
 /// [`AlphaFailure`] if it cannot be completed.
+/// Settings of an intermediate stage of a continuation (a solution that only starts the next
+/// stage): `s` with the fixed tolerances alone (`discretization_fraction` 0).
+fn intermediate(s: &EhlSettings) -> EhlSettings {
+    EhlSettings {
+        discretization_fraction: 0.0,
+        ..*s
+    }
+}
+
 fn alpha_continuation(
     c: &EhlContact,
     pr: &Problem,
@@ -981,6 +990,10 @@ fn alpha_continuation(
     let h_est0 = h_estimate(&sc0);
     let mut state = None;
     for sk in ladder.iter() {
+        // The reduced-α start only feeds the continuation: converged to the fixed tolerances
+        // (the discretization-following rule is for solutions that are returned; stopping
+        // this one at the grid's error left Barus, L 25, M 5 diverging later in the steps).
+        let sk = &intermediate(sk);
         match iterate(&pr0, sk, Start::Hertz, h_est0, sk.max_cycles) {
             Ok(core) => {
                 cycles_total += core.cycles;
@@ -1163,7 +1176,8 @@ fn continuation(
         } else {
             6.min(s.max_cycles)
         };
-        match iterate(&pr, s, start, h_est, maxc) {
+        let sk = if last { *s } else { intermediate(s) };
+        match iterate(&pr, &sk, start, h_est, maxc) {
             Ok(core) => {
                 cycles_total += core.cycles;
                 last_res = core.residual;
