@@ -17,6 +17,7 @@ pub mod deformation;
 pub mod formulas;
 pub mod input;
 mod multigrid;
+mod rheology;
 mod steady;
 mod transient;
 

@@ -58,55 +58,6 @@ pub(crate) struct Problem {
     pub load_slope: f64,
 }
 
-/// The rheology of a [`Problem`] with its constants evaluated once (per film update, not per
-/// node): the same operations as [`Lubricant::viscosity_ratio`] and
-/// [`Lubricant::density_ratio`] at p = p_h·P, bit for bit, without the two logarithms of
-/// Roelands' constants at every node.
-#[derive(Debug, Clone, Copy)]
-struct Rheology {
-    ph: f64,
-    roelands: bool,
-    /// Roelands: ln η0 + 9.67; Barus: α.
-    c: f64,
-    /// Roelands' exponent z.
-    z: f64,
-    dowson_higginson: bool,
-}
-
-impl Rheology {
-    fn new(pr: &Problem) -> Self {
-        let lub = &pr.lub;
-        let roelands = lub.viscosity_model == crate::material::ViscosityModel::Roelands;
-        Rheology {
-            ph: pr.ph,
-            roelands,
-            c: if roelands {
-                lub.viscosity.ln() + crate::material::ROELANDS_LN_ETA_INF
-            } else {
-                lub.pressure_viscosity
-            },
-            z: if roelands { lub.roelands_z() } else { 0.0 },
-            dowson_higginson: lub.density_model == crate::material::DensityModel::DowsonHigginson,
-        }
-    }
-    /// (ρ̄, η̄) at P > 0.
-    #[inline]
-    fn at(&self, p: f64) -> (f64, f64) {
-        let p = self.ph * p;
-        let eta = if self.roelands {
-            (self.c * (-1.0 + (1.0 + p / crate::material::ROELANDS_P0).powf(self.z))).exp()
-        } else {
-            (self.c * p).exp()
-        };
-        let rho = if self.dowson_higginson {
-            (5.9e8 + 1.34 * p) / (5.9e8 + p)
-        } else {
-            1.0
-        };
-        (rho, eta)
-    }
-}
-
 /// Relaxation and cycle parameters.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct MgParams {
@@ -216,7 +167,7 @@ impl Level {
     /// Recomputes H, ρ̄ and ε from P and H0.
     pub fn update_film(&mut self, pr: &Problem, h0: f64) {
         self.def.apply(&self.p, &mut self.w);
-        let rheo = Rheology::new(pr);
+        let rheo = super::rheology::table(&pr.lub, pr.ph);
         let nx = self.nx;
         for j in 0..self.ny {
             let yy = pr.gy * self.y[j] * self.y[j];
@@ -404,7 +355,7 @@ impl Level {
             let n = nx - 2;
             bsave.copy_from_slice(&band);
             rsave.copy_from_slice(&rhs);
-            if !solve_band::<BAND>(&mut band, &mut rhs[1..nx - 1], n) {
+            if !solve_band(&mut band, &mut rhs[1..nx - 1], n) {
                 continue;
             }
             // Projected solve: Gauss–Seidel points that would become negative are held at zero
@@ -424,7 +375,7 @@ impl Level {
             if clamp {
                 band.copy_from_slice(&bsave);
                 rhs.copy_from_slice(&rsave);
-                if !solve_band::<BAND>(&mut band, &mut rhs[1..nx - 1], n) {
+                if !solve_band(&mut band, &mut rhs[1..nx - 1], n) {
                     continue;
                 }
             }
@@ -461,40 +412,61 @@ impl Level {
     }
 }
 
-/// Solves a banded system in place (no pivoting): `a` holds n rows of 2B+1 entries, row r's
-/// entry for column c at a[r·(2B+1) + c − r + B]. The solution overwrites `x`. The half
-/// bandwidth is a constant so that the inner loops unroll.
-fn solve_band<const B: usize>(a: &mut [f64], x: &mut [f64], n: usize) -> bool {
-    let nb = 2 * B + 1;
+/// Solves the line's pentadiagonal system in place (no pivoting): `a` holds n rows of 5
+/// entries, row r's entry for column r + d (d = −2…2) at a[5r + d + 2]. The solution overwrites
+/// `x`. False if a pivot vanishes or the solution is not finite. Written out for the half
+/// bandwidth 2 of [`BAND`] (the generic loop spent a quarter of a steady solve in its bounds and
+/// loop logic); the operations and their order are those of Gaussian elimination without
+/// pivoting, as in the generic [`tests::solve_band_generic`] it is tested against.
+fn solve_band(a: &mut [f64], x: &mut [f64], n: usize) -> bool {
+    const _: () = assert!(BAND == 2, "solve_band is written for a half bandwidth of 2");
+    debug_assert!(a.len() >= 5 * n && x.len() >= n);
+    let a = &mut a[..5 * n];
+    let x = &mut x[..n];
     for r in 0..n {
-        let piv = a[r * nb + B];
+        let (head, tail) = a.split_at_mut(5 * r + 5);
+        let row: &mut [f64; 5] = (&mut head[5 * r..]).try_into().expect("5 entries");
+        let piv = row[2];
         if piv.abs() <= 1e-300 || !piv.is_finite() {
             return false;
         }
         // One division per row: the pivot's reciprocal is kept in its place for the back
         // substitution.
         let inv = 1.0 / piv;
-        a[r * nb + B] = inv;
+        row[2] = inv;
+        let (u1, u2) = (row[3], row[4]);
         let xr = x[r];
-        let end = (r + B + 1).min(n);
-        for rr in r + 1..end {
-            let f = a[rr * nb + (r + B - rr)] * inv;
-            if f == 0.0 {
-                continue;
+        if r + 1 < n {
+            let next = &mut tail[..5];
+            let f = next[1] * inv;
+            if f != 0.0 {
+                next[2] -= f * u1;
+                if r + 2 < n {
+                    next[3] -= f * u2;
+                }
+                x[r + 1] -= f * xr;
             }
-            // Column r of row rr becomes zero and is never read again: start at r + 1.
-            for c in r + 1..end {
-                a[rr * nb + (c + B - rr)] -= f * a[r * nb + (c + B - r)];
+        }
+        if r + 2 < n {
+            let next2 = &mut tail[5..10];
+            let f = next2[0] * inv;
+            if f != 0.0 {
+                next2[1] -= f * u1;
+                next2[2] -= f * u2;
+                x[r + 2] -= f * xr;
             }
-            x[rr] -= f * xr;
         }
     }
     for r in (0..n).rev() {
+        let row = &a[5 * r..5 * r + 5];
         let mut s = x[r];
-        for c in r + 1..(r + B + 1).min(n) {
-            s -= a[r * nb + (c + B - r)] * x[c];
+        if r + 1 < n {
+            s -= row[3] * x[r + 1];
         }
-        x[r] = s * a[r * nb + B];
+        if r + 2 < n {
+            s -= row[4] * x[r + 2];
+        }
+        x[r] = s * row[2];
         if !x[r].is_finite() {
             return false;
         }
@@ -634,5 +606,86 @@ impl Hierarchy {
         let nfx = fine.nx;
         interpolate(&coarse.p, coarse.nx, coarse.ny, &mut fine.p, nfx);
         fine.update_film(pr, self.h0);
+    }
+}
+
+#[cfg(test)]
+pub(super) mod tests {
+    use super::*;
+
+    /// The generic banded solver the written-out one replaced: solves a banded system in place (no pivoting): `a` holds n rows of 2B+1 entries, row r's
+    /// entry for column c at a[r·(2B+1) + c − r + B]. The solution overwrites `x`. The half
+    /// bandwidth is a constant so that the inner loops unroll.
+    pub(super) fn solve_band_generic<const B: usize>(
+        a: &mut [f64],
+        x: &mut [f64],
+        n: usize,
+    ) -> bool {
+        let nb = 2 * B + 1;
+        for r in 0..n {
+            let piv = a[r * nb + B];
+            if piv.abs() <= 1e-300 || !piv.is_finite() {
+                return false;
+            }
+            // One division per row: the pivot's reciprocal is kept in its place for the back
+            // substitution.
+            let inv = 1.0 / piv;
+            a[r * nb + B] = inv;
+            let xr = x[r];
+            let end = (r + B + 1).min(n);
+            for rr in r + 1..end {
+                let f = a[rr * nb + (r + B - rr)] * inv;
+                if f == 0.0 {
+                    continue;
+                }
+                // Column r of row rr becomes zero and is never read again: start at r + 1.
+                for c in r + 1..end {
+                    a[rr * nb + (c + B - rr)] -= f * a[r * nb + (c + B - r)];
+                }
+                x[rr] -= f * xr;
+            }
+        }
+        for r in (0..n).rev() {
+            let mut s = x[r];
+            for c in r + 1..(r + B + 1).min(n) {
+                s -= a[r * nb + (c + B - r)] * x[c];
+            }
+            x[r] = s * a[r * nb + B];
+            if !x[r].is_finite() {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// The written-out pentadiagonal solver gives the generic elimination's result bit for bit
+    /// on random diagonally weighted systems of 1 to 40 rows, and refuses a zero pivot.
+    #[test]
+    fn pentadiagonal_solver_matches_the_generic_one() {
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        for n in 1..=40 {
+            for _ in 0..20 {
+                let mut a: Vec<f64> = (0..5 * n).map(|_| next()).collect();
+                for r in 0..n {
+                    a[5 * r + 2] += 3.0 * next().signum();
+                }
+                let x: Vec<f64> = (0..n).map(|_| next()).collect();
+                let (mut a1, mut x1) = (a.clone(), x.clone());
+                let (mut a2, mut x2) = (a.clone(), x.clone());
+                assert!(solve_band(&mut a1, &mut x1, n));
+                assert!(solve_band_generic::<2>(&mut a2, &mut x2, n));
+                assert_eq!(x1, x2, "n = {n}");
+            }
+        }
+        let mut a = vec![1.0; 15];
+        a[7] = 0.0;
+        let mut x = vec![1.0; 3];
+        assert!(!solve_band(&mut a, &mut x, 3));
     }
 }
