@@ -344,13 +344,15 @@ fn assert_converged_in_start(x: &EhlSolution, start: usize) {
     assert!(x.force_balance_residual <= fb);
 }
 
-/// Barus at large αp_h (circular, M 20, L 25: αp_h = 24.7, a piezoviscous pressure peak of about
-/// 4·p_h): every direct start diverges within a few cycles and so does load continuation; the
-/// continuation in α from L/4 (start 8, ω_GS ≤ 0.1 and a coarsest grid of 65² on the warm-started
-/// steps) converges (docs/ehl.md §5.8).
+/// Barus at large αp_h (circular, M 5, L 25: αp_h = 17.9): every direct start diverges within a
+/// few cycles and so does load continuation; the continuation in α from L/4 (start 8, ω_GS ≤ 0.1
+/// and a coarsest grid of 65² on the warm-started steps) converges (docs/ehl.md §5.8). (The case
+/// of this test was M 20 until the line relaxation's active set was iterated, issue 16: since
+/// then M 20 converges on 129² in start 4, and still needs start 8 on 257²; M 5 needs start 8 on
+/// both.)
 #[test]
 fn barus_large_alpha_converges_by_alpha_continuation() {
-    let x = solve_moes(&barus(20.0, 25.0, 1.0), &settings(129)).unwrap();
+    let x = solve_moes(&barus(5.0, 25.0, 1.0), &settings(129)).unwrap();
     assert_converged_in_start(&x, 8);
     // Every start is in the log, in ladder order; only the last one converged, and the cycles
     // of all of them add up to the reported total.
@@ -369,10 +371,15 @@ fn barus_large_alpha_converges_by_alpha_continuation() {
     let integral: f64 = f.p.iter().sum::<f64>() * dx * dy;
     assert!(rel(integral, w).abs() < 1e-4, "{integral} vs {w}");
     assert!(f.p.iter().all(|p| *p >= 0.0));
-    // A positive film, in the range of the NVM fit (8.12) and of the 257² solution (8.41).
+    // A positive film, within 5 % of the 257² solution (7.997, start 8 as well; 129²: 7.967).
     assert!(x.h_min > 0.0 && x.h_central > x.h_min);
+    println!(
+        "p_max/p_h {:.3}, NVM H_c {:.3}",
+        x.p_max / x.p_hertz,
+        nijenbanning_central(5.0, 25.0, 1.0)
+    );
     assert!(
-        rel(x.h_central_moes, 8.41).abs() < 0.05,
+        rel(x.h_central_moes, 7.997).abs() < 0.05,
         "H_c {}",
         x.h_central_moes
     );
@@ -400,10 +407,18 @@ fn barus_spike_single_grid_polish_converges() {
 }
 
 /// The seed's most loaded inner contact converges; a warm start from it at 10 % more load gives
-/// the cold-start answer in fewer cycles.
+/// the cold-start answer in fewer cycles. Both to the fixed tolerances (the quasi-static family's
+/// setting), against the same contact iterated to 1e-8: each within 1e-3 in H_c and 1e-5 in δ
+/// (the film-change tolerance 1e-4 with a convergence factor up to 0.6 leaves ≲ 2e-4). With the
+/// discretization-following rule the cold start stops 1.5e-3 from it in H_c (its promise, a
+/// quarter of the capped estimate, is 1e-3: the factor it measures over the first cycles, 0.38,
+/// misses the slower mode of this elongated contact; docs/ehl.md §2, a known weakness).
 #[test]
 fn seed_contact_and_warm_start() {
-    let s = settings(129);
+    let s = EhlSettings {
+        discretization_fraction: 0.0,
+        ..settings(129)
+    };
     let c = seed_contact();
     let a = solve_steady(&c, &s).unwrap();
     assert!(a.converged);
@@ -411,13 +426,32 @@ fn seed_contact_and_warm_start() {
     let c2 = EhlContact { load: 660.0, ..c };
     let cold = solve_steady(&c2, &s).unwrap();
     let warm = solve_steady_from(&c2, &s, &a).unwrap();
+    let tight = solve_steady(
+        &c2,
+        &EhlSettings {
+            tol_film: 1e-8,
+            tol_residual: 1e-8,
+            tol_force: 1e-9,
+            max_cycles: 200,
+            ..s
+        },
+    )
+    .unwrap();
     println!(
-        "cold {} cycles h_c {:.5e}; warm {} cycles h_c {:.5e}",
-        cold.cycles, cold.h_central, warm.cycles, warm.h_central
+        "cold {} cycles h_c {:+.2e} δ {:+.2e}; warm {} cycles h_c {:+.2e} δ {:+.2e} (relative to \
+         the tightly converged solution)",
+        cold.cycles,
+        rel(cold.h_central, tight.h_central),
+        rel(cold.approach, tight.approach),
+        warm.cycles,
+        rel(warm.h_central, tight.h_central),
+        rel(warm.approach, tight.approach)
     );
-    assert!(warm.converged && cold.converged);
-    assert!(rel(warm.h_central, cold.h_central).abs() < 2e-3);
-    assert!(rel(warm.approach, cold.approach).abs() < 2e-3);
+    assert!(warm.converged && cold.converged && tight.converged);
+    for x in [&cold, &warm] {
+        assert!(rel(x.h_central, tight.h_central).abs() < 1e-3);
+        assert!(rel(x.approach, tight.approach).abs() < 1e-5);
+    }
     assert!(warm.cycles <= cold.cycles);
 }
 
@@ -555,4 +589,56 @@ fn discretization_rule_stops_within_its_estimate() {
     let warm = solve_steady_from(&c2, &s65, &a).unwrap();
     assert!(a.discretization_estimate.is_some());
     assert_eq!(warm.discretization_estimate, a.discretization_estimate);
+}
+
+/// The converged discrete solution does not depend on the start that reached it (issue 16):
+/// the seed's inner contact at 240 N (M ≈ 945, L ≈ 25, Ry/Rx 60; a light member of the 300 N
+/// family, on that family's domain) solved to tight tolerances from four cold starts whose
+/// relaxation settings differ. Before the line relaxation's active set was iterated and the
+/// complementarity at P = 0 nodes entered the residual, nodes next to the outlet's side lobes
+/// stayed at zero where their equation asked for pressure, and the four "converged" answers
+/// differed by 9e-5 in δ and 0.5 % in h_min (which moved the fitted ΔF of a quasi-static family
+/// by up to 5 % with the relaxation settings). Now they agree to round-off of the stopping
+/// tolerances (1e-8).
+#[test]
+fn converged_solution_does_not_depend_on_the_start() {
+    let c = EhlContact {
+        load: 240.0,
+        ..seed_contact()
+    };
+    let s = EhlSettings {
+        grid: 129,
+        inlet: Some(6.0),
+        outlet: 1.5,
+        half_width: Some(2.0),
+        discretization_fraction: 0.0,
+        tol_film: 1e-8,
+        tol_residual: 1e-8,
+        tol_force: 1e-9,
+        max_cycles: 300,
+        ..Default::default()
+    };
+    let starts = [
+        StartStrategy::Given,
+        StartStrategy::SmallH0Gain,
+        StartStrategy::WideJacobi,
+        StartStrategy::Conservative,
+    ];
+    let x: Vec<EhlSolution> = starts
+        .iter()
+        .map(|st| solve_steady_starts(&c, &s, &[*st]).unwrap())
+        .collect();
+    for (st, a) in starts.iter().zip(&x) {
+        println!(
+            "{st:?}: {} cycles, δ {:.10e} m, h_min {:.8e} m, residual {:.2e}",
+            a.cycles, a.approach, a.h_min, a.residual
+        );
+        assert!(a.converged, "{st:?}: residual {}", a.residual);
+        assert_eq!(a.attempts, st.number(), "{st:?}");
+    }
+    for a in &x[1..] {
+        assert!(rel(a.approach, x[0].approach).abs() < 1e-8);
+        assert!(rel(a.h_central, x[0].h_central).abs() < 1e-6);
+        assert!(rel(a.h_min, x[0].h_min).abs() < 1e-6);
+    }
 }

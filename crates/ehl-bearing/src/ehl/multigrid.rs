@@ -20,6 +20,8 @@ use crate::material::Lubricant;
 
 /// Half bandwidth of the line systems.
 const BAND: usize = 2;
+/// Largest number of re-solves of a line's active set after the first projected solve.
+const ACTIVE_SET_PASSES: usize = 4;
 /// Largest |dx| of the local kernel table.
 const KX: usize = 2 * BAND + 3;
 
@@ -247,6 +249,17 @@ impl Level {
                     let c = if v > 0.0 { v.min(self.p[idx] * d) } else { -v };
                     sr += c;
                     sw += w;
+                } else {
+                    // A node held at P = 0 whose equation asks for a positive pressure (r < 0:
+                    // the change would be positive) violates the complementarity: it counts
+                    // with |r|. Without this term, solutions with nodes wrongly held at zero
+                    // near the outlet's side lobes passed as converged, and the solution
+                    // depended on the relaxation's path (docs/ehl.md §2, "Projection").
+                    let (l, _) = self.op(pr, i, j);
+                    let v = self.f[idx] - l;
+                    if v < 0.0 {
+                        sr -= v;
+                    }
                 }
             }
         }
@@ -277,6 +290,9 @@ impl Level {
         let mut om = vec![prm.omega_gs; nx];
         let mut bsave = band.clone();
         let mut rsave = rhs.clone();
+        let mut borig = band.clone();
+        let mut rorig = rhs.clone();
+        let mut held = vec![false; nx];
         for j in 1..ny - 1 {
             // classify and residuals
             for i in 1..nx - 1 {
@@ -358,24 +374,68 @@ impl Level {
             if !solve_band(&mut band, &mut rhs[1..nx - 1], n) {
                 continue;
             }
-            // Projected solve: Gauss–Seidel points that would become negative are held at zero
-            // and the line is solved again with those rows replaced by P + ω·δ = 0.
-            let mut clamp = false;
+            // Projected solve (an active-set iteration on the line): Gauss–Seidel points that
+            // would become negative are held at zero and the line is solved again with those
+            // rows replaced by P + ω·δ = 0; then every Gauss–Seidel row is checked against its
+            // own equation with the neighbours' new changes — a held point whose free change
+            // would keep it positive is released, a free one that would go negative is held —
+            // and the line solved again, until the set is stable (at most ACTIVE_SET_PASSES).
+            // Holding points on the first solve's verdict alone kept nodes next to the outlet's
+            // cavitation boundary at zero for good: the coupling with their cavitating
+            // neighbours made their unconstrained change negative, while their own equation
+            // asked for a positive pressure (docs/ehl.md §2, "Projection").
+            borig.copy_from_slice(&bsave);
+            rorig.copy_from_slice(&rsave);
+            let mut any = false;
             for i in 1..nx - 1 {
-                if !jd[i] && self.p[j * nx + i] + om[i] * rhs[i] < 0.0 {
-                    clamp = true;
-                    let r = i - 1;
-                    for c in 0..nb {
-                        bsave[r * nb + c] = 0.0;
-                    }
-                    bsave[r * nb + BAND] = 1.0;
-                    rsave[i] = -self.p[j * nx + i] / om[i];
-                }
+                held[i] = !jd[i] && self.p[j * nx + i] + om[i] * rhs[i] < 0.0;
+                any |= held[i];
             }
-            if clamp {
-                band.copy_from_slice(&bsave);
-                rhs.copy_from_slice(&rsave);
-                if !solve_band(&mut band, &mut rhs[1..nx - 1], n) {
+            if any {
+                let mut ok = true;
+                for pass in 0..=ACTIVE_SET_PASSES {
+                    bsave.copy_from_slice(&borig);
+                    rsave.copy_from_slice(&rorig);
+                    for i in 1..nx - 1 {
+                        if held[i] {
+                            let r = i - 1;
+                            bsave[r * nb..(r + 1) * nb].fill(0.0);
+                            bsave[r * nb + BAND] = 1.0;
+                            rsave[i] = -self.p[j * nx + i] / om[i];
+                        }
+                    }
+                    band.copy_from_slice(&bsave);
+                    rhs.copy_from_slice(&rsave);
+                    if !solve_band(&mut band, &mut rhs[1..nx - 1], n) {
+                        ok = false;
+                        break;
+                    }
+                    if pass == ACTIVE_SET_PASSES {
+                        break;
+                    }
+                    let mut changed = false;
+                    for i in 1..nx - 1 {
+                        if jd[i] {
+                            continue;
+                        }
+                        let r = i - 1;
+                        let row = &borig[r * nb..(r + 1) * nb];
+                        let mut free = rorig[i];
+                        for (c, a) in row.iter().enumerate() {
+                            let k = i + c;
+                            if c != BAND && k > BAND && k - BAND < nx - 1 {
+                                free -= a * rhs[k - BAND];
+                            }
+                        }
+                        let hold = self.p[j * nx + i] + om[i] * free / row[BAND] < 0.0;
+                        changed |= hold != held[i];
+                        held[i] = hold;
+                    }
+                    if !changed {
+                        break;
+                    }
+                }
+                if !ok {
                     continue;
                 }
             }
