@@ -288,8 +288,6 @@ impl Level {
         }
         let mut any_jd = false;
         let mut om = vec![prm.omega_gs; nx];
-        let mut bsave = band.clone();
-        let mut rsave = rhs.clone();
         let mut borig = band.clone();
         let mut rorig = rhs.clone();
         let mut held = vec![false; nx];
@@ -369,8 +367,8 @@ impl Level {
                 }
             }
             let n = nx - 2;
-            bsave.copy_from_slice(&band);
-            rsave.copy_from_slice(&rhs);
+            borig.copy_from_slice(&band);
+            rorig.copy_from_slice(&rhs);
             if !solve_band(&mut band, &mut rhs[1..nx - 1], n) {
                 continue;
             }
@@ -384,8 +382,6 @@ impl Level {
             // cavitation boundary at zero for good: the coupling with their cavitating
             // neighbours made their unconstrained change negative, while their own equation
             // asked for a positive pressure (docs/ehl.md §2, "Projection").
-            borig.copy_from_slice(&bsave);
-            rorig.copy_from_slice(&rsave);
             let mut any = false;
             for i in 1..nx - 1 {
                 held[i] = !jd[i] && self.p[j * nx + i] + om[i] * rhs[i] < 0.0;
@@ -394,18 +390,16 @@ impl Level {
             if any {
                 let mut ok = true;
                 for pass in 0..=ACTIVE_SET_PASSES {
-                    bsave.copy_from_slice(&borig);
-                    rsave.copy_from_slice(&rorig);
+                    band.copy_from_slice(&borig);
+                    rhs.copy_from_slice(&rorig);
                     for i in 1..nx - 1 {
                         if held[i] {
                             let r = i - 1;
-                            bsave[r * nb..(r + 1) * nb].fill(0.0);
-                            bsave[r * nb + BAND] = 1.0;
-                            rsave[i] = -self.p[j * nx + i] / om[i];
+                            band[r * nb..(r + 1) * nb].fill(0.0);
+                            band[r * nb + BAND] = 1.0;
+                            rhs[i] = -self.p[j * nx + i] / om[i];
                         }
                     }
-                    band.copy_from_slice(&bsave);
-                    rhs.copy_from_slice(&rsave);
                     if !solve_band(&mut band, &mut rhs[1..nx - 1], n) {
                         ok = false;
                         break;
@@ -673,9 +667,9 @@ impl Hierarchy {
 pub(super) mod tests {
     use super::*;
 
-    /// The generic banded solver the written-out one replaced: solves a banded system in place (no pivoting): `a` holds n rows of 2B+1 entries, row r's
-    /// entry for column c at a[r·(2B+1) + c − r + B]. The solution overwrites `x`. The half
-    /// bandwidth is a constant so that the inner loops unroll.
+    /// The generic banded solver that [`solve_band`] replaced, kept as its reference: solves a
+    /// banded system in place (no pivoting), `a` holding n rows of 2B+1 entries, row r's entry
+    /// for column c at a[r·(2B+1) + c − r + B]; the solution overwrites `x`.
     pub(super) fn solve_band_generic<const B: usize>(
         a: &mut [f64],
         x: &mut [f64],

@@ -1252,10 +1252,9 @@ pub fn solve_steady_from(
     // 33.6 → 28.5 s, no warm start failed — BENCHMARKS.md, issue 16). A warm start that fails
     // falls back to the cold starts in their order.
     let order = order_for(&pr, &sc);
-    let ws = *s;
     let spent = match iterate(
         &pr,
-        &ws,
+        s,
         Start::Given {
             p,
             h0: Some(h0),
