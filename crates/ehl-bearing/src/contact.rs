@@ -2,7 +2,8 @@
 //! solutions.
 //!
 //! The **quasi-static method** solves a family of steady EHL problems at loads
-//! w_k = w0·(1 + ε·(2k/(n−1) − 1)), k = 0…n−1, each warm-started from its neighbour, and fits the
+//! w_k = w0·(1 + ε·(2k/(n−1) − 1)), k = 0…n−1, from the operating load outward, each
+//! warm-started from its neighbour (from the third on, extrapolated from two), and fits the
 //! law to the (approach, load) pairs with Levenberg–Marquardt ([`crate::fit`]). It is the limit of
 //! the harmonic method for slow excitation, where the squeeze term vanishes.
 //!
@@ -13,8 +14,8 @@
 //! Q = K·δ^d + ΔF (+ c·δ̇) to it. See `docs/contact.md`.
 
 use crate::ehl::{
-    solve_steady, solve_steady_from, EhlContact, EhlSettings, EhlSolution, TransientSolver,
-    TransientStep,
+    solve_steady, solve_steady_extrapolated, solve_steady_from, EhlContact, EhlSettings,
+    EhlSolution, TransientSolver, TransientStep,
 };
 use crate::fit::{fit_power_law, fit_power_law_damped, FitOptions, FittedLaw, PowerLawStdErrors};
 use crate::Error;
@@ -262,7 +263,8 @@ pub fn characterize_quasi_static(
         .map(|k| c.load * (1.0 + s.amplitude * (2.0 * k as f64 / (n - 1) as f64 - 1.0)))
         .collect();
     // Solve from the operating load outward in both directions, warm-starting each solution from
-    // its neighbour (cheaper, and the discretization error varies smoothly along the family).
+    // its neighbour, or from the third on from the linear extrapolation of its two neighbours
+    // (cheaper, and the discretization error varies smoothly along the family).
     let mid = n / 2;
     let mut sols: Vec<Option<EhlSolution>> = vec![None; n];
     let centre = solve_steady(
@@ -281,14 +283,17 @@ pub fn characterize_quasi_static(
     for k in (0..mid).rev().chain(mid + 1..n) {
         let from = if k < mid { k + 1 } else { k - 1 };
         let prev = sols[from].as_ref().expect("neighbour solved first");
-        let sol = solve_steady_from(
-            &EhlContact {
-                load: loads[k],
-                ..*c
-            },
-            &ehl,
-            prev,
-        )?;
+        let before = if k < mid { k + 2 } else { k.wrapping_sub(2) };
+        let ck = EhlContact {
+            load: loads[k],
+            ..*c
+        };
+        let sol = match sols.get(before).and_then(|x| x.as_ref()) {
+            Some(e) => {
+                solve_steady_extrapolated(&ck, &ehl, (prev, loads[from]), (e, loads[before]))?
+            }
+            _ => solve_steady_from(&ck, &ehl, prev)?,
+        };
         sols[k] = Some(sol);
     }
     let sols: Vec<EhlSolution> = sols.into_iter().map(|x| x.expect("all solved")).collect();

@@ -26,7 +26,10 @@ use thiserror::Error;
 
 pub use crate::material::{DensityModel, ViscosityModel};
 pub(crate) use steady::validate_settings;
-pub use steady::{solve_moes, solve_steady, solve_steady_from, solve_steady_starts, start_order};
+pub use steady::{
+    solve_moes, solve_steady, solve_steady_extrapolated, solve_steady_from, solve_steady_starts,
+    start_order,
+};
 pub use transient::{TransientSolver, TransientStep};
 
 /// Errors of the EHL solver.

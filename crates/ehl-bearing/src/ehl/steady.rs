@@ -1210,38 +1210,98 @@ fn continuation(
     })
 }
 
-/// Solves a contact starting from a previous solution (warm start): the previous pressure,
-/// rescaled to the new Hertz pressure and semi-axes, and the previous approach. Useful for
-/// sweeps in load or speed and for the bearing loop. Falls back to the cold starts of
-/// [`solve_steady`] if the warm start does not converge (its cycles are counted, and it is the
-/// first entry of `attempt_log`; a converged warm start reports `attempts` = 1).
+/// Solves a contact starting from a previous solution (warm start): the previous dimensionless
+/// pressure P = p/p_h at the same point in Hertz semi-axes (X = x/a_x, Y = y/a_y) and the
+/// previous H0 = −δ·Rx/a_x², so that a Hertzian solution at another load starts exactly where it
+/// ends (on the seed's quasi-static family this halves the cycles per member, 7–8 → 4–5, against
+/// a start at the same physical point; BENCHMARKS.md, issue 16 session 7). Useful for sweeps in
+/// load or speed and for the bearing loop. Falls back to the cold starts of [`solve_steady`] if
+/// the warm start does not converge (its cycles are counted, and it is the first entry of
+/// `attempt_log`; a converged warm start reports `attempts` = 1).
 pub fn solve_steady_from(
     c: &EhlContact,
     s: &EhlSettings,
     previous: &EhlSolution,
 ) -> Result<EhlSolution, EhlError> {
-    let t0 = Instant::now();
-    let (pr, sc) = setup(c, s)?;
-    let f = &previous.fields;
-    if f.x.len() < 2 || f.y.len() < 2 || f.p.len() != f.x.len() * f.y.len() {
-        return solve_steady(c, s);
-    }
-    let n = s.grid;
+    solve_warm(c, s, previous, None)
+}
+
+/// Pressure of a solution at the dimensionless nodes of a new problem, at the same point in
+/// Hertz semi-axes (X = x/a_x, Y = y/a_y) and with the same P = p/p_h: a load change moves a
+/// Hertzian pressure to the same dimensionless field. Zero outside the solution's domain.
+fn warm_pressure(pr: &Problem, n: usize, f: &EhlFields) -> Vec<f64> {
     let hx = (pr.x_max - pr.x_min) / (n - 1) as f64;
     let hy = 2.0 * pr.y_half / (n - 1) as f64;
-    let (x0, x1) = (f.x[0], f.x[f.x.len() - 1]);
-    let (y0, y1) = (f.y[0], f.y[f.y.len() - 1]);
+    let xs: Vec<f64> = f.x.iter().map(|v| v / f.a_x).collect();
+    let ys: Vec<f64> = f.y.iter().map(|v| v / f.a_y).collect();
+    // Nodes of the same dimensionless grid land on the solution's nodes up to rounding.
+    let tol = 1e-9;
+    let (x0, x1) = (xs[0] - tol, xs[xs.len() - 1] + tol);
+    let (y0, y1) = (ys[0] - tol, ys[ys.len() - 1] + tol);
     let mut p = vec![0.0; n * n];
     for j in 1..n - 1 {
-        let y = (-pr.y_half + j as f64 * hy) * sc.ay;
+        let y = -pr.y_half + j as f64 * hy;
         for i in 1..n - 1 {
-            let x = (pr.x_min + i as f64 * hx) * sc.ax;
+            let x = pr.x_min + i as f64 * hx;
             if x > x0 && x < x1 && y > y0 && y < y1 {
-                p[j * n + i] = bilinear(&f.p, &f.x, &f.y, x, y) / sc.ph;
+                p[j * n + i] = bilinear(&f.p_dimensionless, &xs, &ys, x, y);
             }
         }
     }
-    let h0 = -previous.approach * sc.rx / (sc.ax * sc.ax);
+    p
+}
+
+/// [`solve_steady_from`] with the start extrapolated linearly in load from two solutions of a
+/// load family, each given with its load in N: `previous` (the nearer one) and `earlier`. With
+/// r = (w − w_prev)/(w_prev − w_earlier), the start is P = max(0, P_prev + r·(P_prev − P_earlier))
+/// in Hertz-scaled coordinates (as [`solve_steady_from`]) and H0 = H0_prev + r·(H0_prev −
+/// H0_earlier), each H0 = −δ·Rx/a_x² in its own solution's scale. For |r| > 4 (or r not finite)
+/// it is [`solve_steady_from`] from `previous`. Falls back to the cold starts like it.
+pub fn solve_steady_extrapolated(
+    c: &EhlContact,
+    s: &EhlSettings,
+    previous: (&EhlSolution, f64),
+    earlier: (&EhlSolution, f64),
+) -> Result<EhlSolution, EhlError> {
+    let (w1, w0) = (previous.1, earlier.1);
+    let r = (c.load - w1) / (w1 - w0);
+    if !(r.is_finite() && r.abs() <= 4.0) {
+        return solve_warm(c, s, previous.0, None);
+    }
+    solve_warm(c, s, previous.0, Some((earlier.0, r)))
+}
+
+fn solve_warm(
+    c: &EhlContact,
+    s: &EhlSettings,
+    previous: &EhlSolution,
+    earlier: Option<(&EhlSolution, f64)>,
+) -> Result<EhlSolution, EhlError> {
+    let t0 = Instant::now();
+    let (pr, sc) = setup(c, s)?;
+    let valid = |f: &EhlFields| {
+        f.x.len() >= 2
+            && f.y.len() >= 2
+            && f.p.len() == f.x.len() * f.y.len()
+            && f.p_dimensionless.len() == f.p.len()
+    };
+    if !valid(&previous.fields) {
+        return solve_steady(c, s);
+    }
+    let earlier = earlier.filter(|(e, _)| valid(&e.fields));
+    let n = s.grid;
+    let mut p = warm_pressure(&pr, n, &previous.fields);
+    // H0 = −δ·Rx/a_x²: kept from the previous solution (a Hertzian approach scales with a_x²),
+    // or extrapolated from the two in their own scales.
+    let h0_of = |sol: &EhlSolution| -sol.approach * sc.rx / (sol.fields.a_x * sol.fields.a_x);
+    let mut h0 = h0_of(previous);
+    if let Some((e, r)) = earlier {
+        let pe = warm_pressure(&pr, n, &e.fields);
+        for (a, b) in p.iter_mut().zip(&pe) {
+            *a = (*a + r * (*a - b)).max(0.0);
+        }
+        h0 += r * (h0 - h0_of(e));
+    }
     let h_est = h_estimate(&sc);
     let ta = Instant::now();
     let mut log = Vec::new();
