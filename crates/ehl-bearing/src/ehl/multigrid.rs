@@ -369,8 +369,23 @@ impl Level {
             let n = nx - 2;
             borig.copy_from_slice(&band);
             rorig.copy_from_slice(&rhs);
-            if !solve_band(&mut band, &mut rhs[1..nx - 1], n) {
-                continue;
+            // The active set starts from the Gauss–Seidel points at zero pressure (the last
+            // sweep's cavitated ones): where that is already the final set the line is solved
+            // once instead of twice (unconstrained, then constrained). A line without such points
+            // is solved unconstrained first and its set taken from that solve, as before.
+            let mut any = false;
+            for i in 1..nx - 1 {
+                held[i] = !jd[i] && self.p[j * nx + i] <= 0.0;
+                any |= held[i];
+            }
+            if !any {
+                if !solve_band(&mut band, &mut rhs[1..nx - 1], n) {
+                    continue;
+                }
+                for i in 1..nx - 1 {
+                    held[i] = !jd[i] && self.p[j * nx + i] + om[i] * rhs[i] < 0.0;
+                    any |= held[i];
+                }
             }
             // Projected solve (an active-set iteration on the line): Gauss–Seidel points that
             // would become negative are held at zero and the line is solved again with those
@@ -382,11 +397,6 @@ impl Level {
             // cavitation boundary at zero for good: the coupling with their cavitating
             // neighbours made their unconstrained change negative, while their own equation
             // asked for a positive pressure (docs/ehl.md §2, "Projection").
-            let mut any = false;
-            for i in 1..nx - 1 {
-                held[i] = !jd[i] && self.p[j * nx + i] + om[i] * rhs[i] < 0.0;
-                any |= held[i];
-            }
             if any {
                 let mut ok = true;
                 for pass in 0..=ACTIVE_SET_PASSES {
