@@ -34,6 +34,11 @@ pub struct ContactArgs {
     /// Grid points per side of the EHL solutions (2^k + 1; default 129).
     #[arg(long)]
     pub grid: Option<usize>,
+    /// Quasi-static method: skip the Richardson estimate of the central film and the approach at
+    /// w0 (by default one more steady solution at w0 on the twice finer grid; the law is the
+    /// family's either way).
+    #[arg(long)]
+    pub no_film_extrapolation: bool,
     /// Harmonic method: excitation frequency Ω as a fraction of the contact's linearized natural
     /// frequency (default 0.1).
     #[arg(long, conflicts_with = "frequency_rad_s")]
@@ -96,6 +101,7 @@ pub fn fit_json(f: &ContactFit) -> serde_json::Value {
         "L": f.moes_l,
         "ry_over_rx": f.ry_over_rx,
         "samples": f.samples,
+        "film": f.film,
     })
 }
 
@@ -156,6 +162,24 @@ fn table(f: &ContactFit) -> String {
         f.delta_range[1] * 1e6,
         f.approach * 1e6
     );
+    if let Some(x) = &f.film {
+        let _ = writeln!(
+            s,
+            "film at w0, Richardson {}²/{}²: h_c = {:.5} µm (±{:.1e}), δ = {:.5} µm (±{:.1e}); \
+             on {}²: h_c {:.5} µm, h_min {:.5} µm, δ {:.5} µm{}",
+            x.grid_fine.div_ceil(2),
+            x.grid_fine,
+            x.h_central * 1e6,
+            x.h_central_correction * 1e6,
+            x.approach * 1e6,
+            x.approach_correction * 1e6,
+            x.grid_fine,
+            x.h_central_fine * 1e6,
+            x.h_min_fine * 1e6,
+            x.approach_fine * 1e6,
+            if x.converged { "" } else { " (NOT CONVERGED)" }
+        );
+    }
     let _ = writeln!(
         s,
         "\n{:>10} {:>11} {:>10} {:>10} {:>9} {:>10} {:>5}",
@@ -290,8 +314,15 @@ pub fn run(args: &ContactArgs) -> Result<()> {
     }
     let method = match args.method {
         Method::Harmonic => {
-            if args.points.is_some() {
-                bail!("--points applies to the quasi-static method only");
+            if args.points.is_some() || args.no_film_extrapolation {
+                bail!(
+                    "{} applies to the quasi-static method only",
+                    if args.points.is_some() {
+                        "--points"
+                    } else {
+                        "--no-film-extrapolation"
+                    }
+                );
             }
             method_of(args)?
         }
@@ -343,7 +374,13 @@ pub fn run(args: &ContactArgs) -> Result<()> {
             };
             characterize_harmonic(&c, mass, &s)?
         }
-        ehl_bearing::method::Method::QuasiStatic(s) => characterize_quasi_static(&c, &s)?,
+        ehl_bearing::method::Method::QuasiStatic(s) => {
+            let s = ehl_bearing::contact::QuasiStaticSettings {
+                film_extrapolation: !args.no_film_extrapolation,
+                ..s
+            };
+            characterize_quasi_static(&c, &s)?
+        }
         other => bail!("method {other} does not characterize a single contact"),
     };
     spinner.finish_and_clear();

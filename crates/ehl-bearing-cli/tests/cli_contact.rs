@@ -199,3 +199,52 @@ fn invalid_harmonic_setting_names_the_setting() {
         "{err}"
     );
 }
+
+/// The quasi-static `contact` reports the Richardson film estimate by default (JSON `film`, one
+/// more solution on the twice finer grid), `--no-film-extrapolation` leaves it out, and the flag
+/// is refused for the harmonic method.
+#[test]
+fn quasi_static_film_estimate_in_json_and_its_flag() {
+    let run = |extra: &[&str]| {
+        Command::cargo_bin("ehl-bearing")
+            .unwrap()
+            .args(["contact", SEED, "--grid", "33", "--json"])
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let out = run(&[]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let film = &v["film"];
+    assert_eq!(film["grid_fine"], 65);
+    for k in [
+        "h_central",
+        "approach",
+        "h_central_fine",
+        "approach_fine",
+        "h_min_fine",
+    ] {
+        assert!(film[k].as_f64().is_some_and(|x| x > 0.0), "{k}: {film}");
+    }
+    let out = run(&["--no-film-extrapolation"]);
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(v["film"].is_null());
+    let out = Command::cargo_bin("ehl-bearing")
+        .unwrap()
+        .args(fast_harmonic())
+        .arg("--no-film-extrapolation")
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--no-film-extrapolation applies to the quasi-static method only"),
+        "{err}"
+    );
+}

@@ -246,10 +246,17 @@ fn ehl(
 
 /// Characterize one EHL point contact (contact-file TOML text) with `method`
 /// ("quasi-static" or "harmonic"; the harmonic method needs the ball mass from the file):
-/// the fitted law Q = K·δ^d + ΔF (+ c·δ̇) and its samples, as a dict (SI).
+/// the fitted law Q = K·δ^d + ΔF (+ c·δ̇) and its samples, as a dict (SI). The quasi-static
+/// method also gives the Richardson estimate of the central film and the approach at w0
+/// (`film`, as the `contact` command; `film_extrapolation=False` skips its extra solution).
 #[pyfunction]
-#[pyo3(signature = (contact_toml, method = "quasi-static"))]
-fn contact(py: Python<'_>, contact_toml: &str, method: &str) -> PyResult<PyObject> {
+#[pyo3(signature = (contact_toml, method = "quasi-static", film_extrapolation = true))]
+fn contact(
+    py: Python<'_>,
+    contact_toml: &str,
+    method: &str,
+    film_extrapolation: bool,
+) -> PyResult<PyObject> {
     use ehl_bearing::contact::{characterize_harmonic, characterize_quasi_static};
     use ehl_bearing::ehl::input::parse_contact_file;
     use ehl_bearing::method::Method;
@@ -263,7 +270,13 @@ fn contact(py: Python<'_>, contact_toml: &str, method: &str) -> PyResult<PyObjec
                     "the harmonic method needs the ball's mass: give ball_mass_kg or ball_diameter_mm in the contact file",
                 )),
             },
-            Method::QuasiStatic(s) => characterize_quasi_static(&file.contact, &s).map_err(err),
+            Method::QuasiStatic(s) => {
+                let s = ehl_bearing::contact::QuasiStaticSettings {
+                    film_extrapolation,
+                    ..s
+                };
+                characterize_quasi_static(&file.contact, &s).map_err(err)
+            }
             other => Err(err(format!(
                 "method {other} does not characterize a single contact"
             ))),

@@ -18,6 +18,11 @@ def test_contact_quasi_static_fit(examples):
     # The fitted law reproduces its samples: R² of the LM fit (docs/fit.md) close to 1.
     assert fit["r_squared"] > 0.999
     assert 1.0 < fit["d"] < 2.0  # between linear and beyond Hertz's 1.5 (docs/contact.md)
+    # The Richardson film estimate at w0 (129²/257²): the central film above the 129² one, which
+    # the coarse grid leaves 5.6 % low (docs/contact.md, "Default accuracy").
+    film = fit["film"]
+    assert film["grid_fine"] == 257
+    assert film["h_central"] > film["h_central_fine"] > fit["samples"][3]["h_central"]
 
 
 def test_characterize_quasi_static_element_reproduces_the_equilibrium(case):

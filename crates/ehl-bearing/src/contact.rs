@@ -35,6 +35,12 @@ pub struct QuasiStaticSettings {
     /// converged far below the discretization error — with the discretization-following rule
     /// ΔF of a heavy outer seed contact moved by 26 %; see `docs/contact.md`).
     pub ehl: EhlSettings,
+    /// Richardson estimate of the central film and the approach at w0 from the family's grid
+    /// and one more steady solution at w0 on the twice finer grid ([`FilmEstimate`], in
+    /// `ContactFit::film`; default false — the `contact` command turns it on). The law is the
+    /// family's either way; the bearing loop does not report films and leaves it off.
+    #[serde(default)]
+    pub film_extrapolation: bool,
 }
 
 impl Default for QuasiStaticSettings {
@@ -47,8 +53,40 @@ impl Default for QuasiStaticSettings {
                 discretization_fraction: 0.0,
                 ..EhlSettings::default()
             },
+            film_extrapolation: false,
         }
     }
+}
+
+/// Richardson estimate of the central film and the approach at the operating load w0 (SI):
+/// X = X_f + (X_f − X_c)/3 from the family's centre solution on grid n (X_c) and one on grid
+/// 2n − 1 over the same domain (X_f), second order as both converge on the seed contacts (the
+/// differences fall by 3.4–3.9 per halving of the mesh from 65² on; docs/contact.md, "Default
+/// accuracy"). The minimum film is not extrapolated (its node moves with the grid; order
+/// 1.2–2.7, docs/ehl.md §5.2).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FilmEstimate {
+    /// The finer grid, points per side.
+    pub grid_fine: usize,
+    /// Extrapolated central film, m.
+    pub h_central: f64,
+    /// Extrapolated approach, m.
+    pub approach: f64,
+    /// Central film on the finer grid, m.
+    pub h_central_fine: f64,
+    /// Approach on the finer grid, m.
+    pub approach_fine: f64,
+    /// Minimum film on the finer grid, m (not extrapolated).
+    pub h_min_fine: f64,
+    /// Size of the extrapolation step |X_f − X_c|/3 for the central film, m: the estimated
+    /// discretization error of the finer grid's value.
+    pub h_central_correction: f64,
+    /// The same for the approach, m.
+    pub approach_correction: f64,
+    /// Whether the finer solution met its tolerances.
+    pub converged: bool,
+    /// Wall time of the finer solution, s.
+    pub seconds: f64,
 }
 
 /// One steady EHL solution of the family.
@@ -119,6 +157,9 @@ pub struct ContactFit {
     pub history: Vec<TransientStep>,
     /// Number of leading steps of `history` in the settling periods (not fitted).
     pub settling_steps: usize,
+    /// Richardson estimate of h_c and δ at w0 (quasi-static method with
+    /// `film_extrapolation`; None otherwise).
+    pub film: Option<FilmEstimate>,
     /// The fitted law, ready for the bearing model.
     #[serde(skip)]
     pub law: FittedLaw,
@@ -258,6 +299,13 @@ pub fn characterize_quasi_static(
         ))
         .into());
     }
+    if s.film_extrapolation && s.ehl.grid > 513 {
+        return Err(invalid(format!(
+            "film_extrapolation needs the twice finer grid: grid = {}, expected grid ≤ 513 \
+             (the finest grid is 1025)",
+            s.ehl.grid
+        )));
+    }
     let n = s.points;
     let loads: Vec<f64> = (0..n)
         .map(|k| c.load * (1.0 + s.amplitude * (2.0 * k as f64 / (n - 1) as f64 - 1.0)))
@@ -315,6 +363,18 @@ pub fn characterize_quasi_static(
     let fit = fit_power_law(&delta, &loads, &FitOptions::default())?;
     let law = fit.law()?;
     let centre = &sols[mid];
+    let film = if s.film_extrapolation {
+        Some(film_estimate(
+            &EhlContact {
+                load: loads[mid],
+                ..*c
+            },
+            &ehl,
+            centre,
+        )?)
+    } else {
+        None
+    };
     Ok(ContactFit {
         method: "quasi-static".into(),
         k: fit.k,
@@ -340,7 +400,42 @@ pub fn characterize_quasi_static(
         samples,
         history: Vec::new(),
         settling_steps: 0,
+        film,
         law,
+    })
+}
+
+/// The [`FilmEstimate`] of a family: the contact at w0 solved on grid 2n − 1 over the centre's
+/// domain, warm-started from the centre solution.
+fn film_estimate(
+    c: &EhlContact,
+    ehl: &EhlSettings,
+    centre: &EhlSolution,
+) -> Result<FilmEstimate, Error> {
+    let t0 = Instant::now();
+    let grid_fine = 2 * ehl.grid - 1;
+    let fine = solve_steady_from(
+        c,
+        &EhlSettings {
+            grid: grid_fine,
+            ..*ehl
+        },
+        centre,
+    )?;
+    let rich = |f: f64, c: f64| (f + (f - c) / 3.0, ((f - c) / 3.0).abs());
+    let (h_central, h_central_correction) = rich(fine.h_central, centre.h_central);
+    let (approach, approach_correction) = rich(fine.approach, centre.approach);
+    Ok(FilmEstimate {
+        grid_fine,
+        h_central,
+        approach,
+        h_central_fine: fine.h_central,
+        approach_fine: fine.approach,
+        h_min_fine: fine.h_min,
+        h_central_correction,
+        approach_correction,
+        converged: fine.converged,
+        seconds: t0.elapsed().as_secs_f64(),
     })
 }
 
@@ -760,6 +855,7 @@ pub fn characterize_harmonic(
         samples,
         history,
         settling_steps: settling,
+        film: None,
         law,
     })
 }
