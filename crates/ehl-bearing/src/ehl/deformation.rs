@@ -70,8 +70,11 @@ struct KernelPlan {
 
 impl KernelPlan {
     fn build(planner: &mut FftPlanner<f64>, nx: usize, ny: usize, hx: f64, hy: f64) -> Self {
-        let lx = smooth_length(2 * nx - 1);
-        let ly = smooth_length(2 * ny - 1);
+        // Offsets −(n−1)…n−1 need 2n − 1 slots of a circular buffer, but the kernel is even, so
+        // ±(n−1) may share one: 2n − 2 is exact, a power of two for the 2^k + 1 grids (512 for
+        // 257², where 2n − 1 would give 540 = 2²·3³·5).
+        let lx = smooth_length((2 * nx).saturating_sub(2).max(1));
+        let ly = smooth_length((2 * ny).saturating_sub(2).max(1));
         let fx = planner.plan_fft_forward(lx);
         let fxi = planner.plan_fft_inverse(lx);
         let fy = planner.plan_fft_forward(ly);
