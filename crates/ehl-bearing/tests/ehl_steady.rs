@@ -406,6 +406,18 @@ fn barus_spike_single_grid_polish_converges() {
     );
 }
 
+/// `s` iterated far below its stopping tolerances (film and residual 1e-8, force 1e-9, up to 200
+/// cycles): the reference a solution stopped at the fixed tolerances is compared with.
+fn tightly(s: &EhlSettings) -> EhlSettings {
+    EhlSettings {
+        tol_film: 1e-8,
+        tol_residual: 1e-8,
+        tol_force: 1e-9,
+        max_cycles: 200,
+        ..*s
+    }
+}
+
 /// The seed's most loaded inner contact converges; a warm start from it at 10 % more load gives
 /// the cold-start answer in fewer cycles. Both to the fixed tolerances (the quasi-static family's
 /// setting), against the same contact iterated to 1e-8: each within 1e-3 in H_c and 1e-5 in δ
@@ -426,17 +438,7 @@ fn seed_contact_and_warm_start() {
     let c2 = EhlContact { load: 660.0, ..c };
     let cold = solve_steady(&c2, &s).unwrap();
     let warm = solve_steady_from(&c2, &s, &a).unwrap();
-    let tight = solve_steady(
-        &c2,
-        &EhlSettings {
-            tol_film: 1e-8,
-            tol_residual: 1e-8,
-            tol_force: 1e-9,
-            max_cycles: 200,
-            ..s
-        },
-    )
-    .unwrap();
+    let tight = solve_steady(&c2, &tightly(&s)).unwrap();
     println!(
         "cold {} cycles h_c {:+.2e} δ {:+.2e}; warm {} cycles h_c {:+.2e} δ {:+.2e} (relative to \
          the tightly converged solution)",
@@ -480,17 +482,7 @@ fn extrapolated_family_start() {
     let b = solve_steady_from(&at(640.0), &s, &a).unwrap();
     let single = solve_steady_from(&at(680.0), &s, &b).unwrap();
     let extra = solve_steady_extrapolated(&at(680.0), &s, (&b, 640.0), (&a, 600.0)).unwrap();
-    let tight = solve_steady(
-        &at(680.0),
-        &EhlSettings {
-            tol_film: 1e-8,
-            tol_residual: 1e-8,
-            tol_force: 1e-9,
-            max_cycles: 200,
-            ..s
-        },
-    )
-    .unwrap();
+    let tight = solve_steady(&at(680.0), &tightly(&s)).unwrap();
     println!(
         "cycles: 600 N cold {}, 640 N warm {}, 680 N single {} extrapolated {}",
         a.cycles, b.cycles, single.cycles, extra.cycles
