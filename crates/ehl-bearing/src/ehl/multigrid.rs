@@ -80,6 +80,10 @@ pub(crate) struct Level {
     pub ny: usize,
     pub hx: f64,
     pub hy: f64,
+    /// 1/hx and 1/hx², 1/hy² (the relaxation and the operator multiply instead of dividing).
+    ihx: f64,
+    ihx2: f64,
+    ihy2: f64,
     pub x: Vec<f64>,
     pub y: Vec<f64>,
     pub p: Vec<f64>,
@@ -121,6 +125,9 @@ impl Level {
             ny,
             hx,
             hy,
+            ihx: 1.0 / hx,
+            ihx2: 1.0 / (hx * hx),
+            ihy2: 1.0 / (hy * hy),
             x,
             y,
             p: vec![0.0; nn],
@@ -208,8 +215,8 @@ impl Level {
         let es = 0.5 * (e[idx] + e[idx - nx]);
         let en = 0.5 * (e[idx] + e[idx + nx]);
         let pc = p[idx];
-        let poi = (ew * (p[idx - 1] - pc) + ee * (p[idx + 1] - pc)) / (self.hx * self.hx)
-            + pr.kappa2 * (es * (p[idx - nx] - pc) + en * (p[idx + nx] - pc)) / (self.hy * self.hy);
+        let poi = (ew * (p[idx - 1] - pc) + ee * (p[idx + 1] - pc)) * self.ihx2
+            + pr.kappa2 * (es * (p[idx - nx] - pc) + en * (p[idx + nx] - pc)) * self.ihy2;
         let w = Self::wedge_w(i);
         let mut wedge = 0.0;
         for (t, wt) in w.iter().enumerate() {
@@ -218,7 +225,7 @@ impl Level {
                 wedge += wt * self.rho[k] * self.h[k];
             }
         }
-        wedge /= self.hx;
+        wedge *= self.ihx;
         let squeeze = pr.squeeze * self.rho[idx] * self.h[idx];
         (poi - wedge - squeeze, wedge.abs())
     }
@@ -270,8 +277,8 @@ impl Level {
     /// One relaxation sweep (line relaxation along X, lines ordered in Y), then film update.
     pub fn relax(&mut self, pr: &Problem, prm: &MgParams, h0: f64) {
         let (nx, ny) = (self.nx, self.ny);
-        let hx2 = self.hx * self.hx;
-        let ky = pr.kappa2 / (self.hy * self.hy);
+        let (ihx, ihx2) = (self.ihx, self.ihx2);
+        let ky = pr.kappa2 * self.ihy2;
         let nb = 2 * BAND + 1;
         let mut delta = std::mem::take(&mut self.delta);
         delta.iter_mut().for_each(|v| *v = 0.0);
@@ -291,6 +298,9 @@ impl Level {
         let mut borig = band.clone();
         let mut rorig = rhs.clone();
         let mut held = vec![false; nx];
+        // The Poiseuille coefficients of each row of the line (centre, west, east, south, north),
+        // computed once for the classification, the residual and the band.
+        let mut cws = vec![[0.0; 5]; nx];
         for j in 1..ny - 1 {
             // classify and residuals
             for i in 1..nx - 1 {
@@ -300,39 +310,51 @@ impl Level {
                 let ee = 0.5 * (e[idx] + e[idx + 1]);
                 let es = 0.5 * (e[idx] + e[idx - nx]);
                 let en = 0.5 * (e[idx] + e[idx + nx]);
-                let ap = (ew + ee) / hx2 + ky * (es + en);
-                let aw = self.rho[idx] * k0 * (1.0 / self.hx + pr.squeeze);
+                let cw = [
+                    -(ew + ee) * ihx2 - ky * (es + en),
+                    ew * ihx2,
+                    ee * ihx2,
+                    ky * es,
+                    ky * en,
+                ];
+                cws[i] = cw;
+                let ap = -cw[0];
+                let aw = self.rho[idx] * k0 * (ihx + pr.squeeze);
                 jd[i] = ap < prm.jd_threshold * aw;
                 // Deep in the Poiseuille-dominated inlet the line solve is stable undamped (ω = 1);
                 // damping there leaves interpolation errors of the coarse-grid correction alive.
                 om[i] = if ap > 1000.0 * aw { 1.0 } else { prm.omega_gs };
-                let (l, _) = self.op(pr, i, j);
-                rhs[i] = self.f[idx] - l;
+                // The residual f − L(P) at the node (the operator of `op`, from the same faces).
+                let p = &self.p;
+                let poi = cw[0] * p[idx]
+                    + cw[1] * p[idx - 1]
+                    + cw[2] * p[idx + 1]
+                    + cw[3] * p[idx - nx]
+                    + cw[4] * p[idx + nx];
+                let (r, h) = (&self.rho, &self.h);
+                let wedge = if i >= 2 {
+                    (1.5 * r[idx] * h[idx] - 2.0 * r[idx - 1] * h[idx - 1]
+                        + 0.5 * r[idx - 2] * h[idx - 2])
+                        * ihx
+                } else {
+                    (r[idx] * h[idx] - r[idx - 1] * h[idx - 1]) * ihx
+                };
+                let squeeze = pr.squeeze * r[idx] * h[idx];
+                rhs[i] = self.f[idx] - (poi - wedge - squeeze);
             }
             // build band matrix: row r = i-1, column offset c = k - i + BAND
             band.iter_mut().for_each(|v| *v = 0.0);
             for i in 1..nx - 1 {
                 let idx = j * nx + i;
-                let e = &self.eps;
-                let ew = 0.5 * (e[idx] + e[idx - 1]);
-                let ee = 0.5 * (e[idx] + e[idx + 1]);
-                let es = 0.5 * (e[idx] + e[idx - nx]);
-                let en = 0.5 * (e[idx] + e[idx + nx]);
-                let cw = [
-                    -(ew + ee) / hx2 - ky * (es + en),
-                    ew / hx2,
-                    ee / hx2,
-                    ky * es,
-                    ky * en,
-                ];
+                let cw = cws[i];
                 let kmin = i.saturating_sub(BAND).max(1);
                 let kmax = (i + BAND).min(nx - 2);
                 let ww = Self::wedge_w(i);
                 let rr = [
-                    (ww[0] / self.hx + pr.squeeze) * self.rho[idx],
-                    ww[1] * self.rho[idx - 1] / self.hx,
+                    (ww[0] * ihx + pr.squeeze) * self.rho[idx],
+                    ww[1] * self.rho[idx - 1] * ihx,
                     if i >= 2 {
-                        ww[2] * self.rho[idx - 2] / self.hx
+                        ww[2] * self.rho[idx - 2] * ihx
                     } else {
                         0.0
                     },
