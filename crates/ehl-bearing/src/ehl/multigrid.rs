@@ -343,12 +343,9 @@ impl Level {
                 rhs[i] = self.f[idx] - (poi - wedge - squeeze);
             }
             // build band matrix: row r = i-1, column offset c = k - i + BAND
-            band.iter_mut().for_each(|v| *v = 0.0);
             for i in 1..nx - 1 {
                 let idx = j * nx + i;
                 let cw = cws[i];
-                let kmin = i.saturating_sub(BAND).max(1);
-                let kmax = (i + BAND).min(nx - 2);
                 let ww = Self::wedge_w(i);
                 let rr = [
                     (ww[0] * ihx + pr.squeeze) * self.rho[idx],
@@ -359,33 +356,31 @@ impl Level {
                         0.0
                     },
                 ];
-                let poi = |m: usize| {
-                    if m == i {
-                        cw[0]
-                    } else if m + 1 == i {
-                        cw[1]
-                    } else if m == i + 1 {
-                        cw[2]
-                    } else {
-                        0.0
+                // Poiseuille coefficient of row i for the node at offset o = −3…3 (index o + 3).
+                let pz = [0.0, 0.0, cw[1], cw[0], cw[2], 0.0, 0.0];
+                let row = &mut band[(i - 1) * nb..i * nb];
+                for (c, out) in row.iter_mut().enumerate() {
+                    // Column k = i + c − BAND, inside the line's interior 1…nx − 2.
+                    let kb = i + c;
+                    if kb < BAND + 1 || kb > nx - 2 + BAND {
+                        *out = 0.0;
+                        continue;
                     }
-                };
-                for k in kmin..=kmax {
-                    // wedge: Σ_t rr_t · K(i − t − k)
+                    let k = kb - BAND;
+                    let d = c as isize - BAND as isize;
+                    // wedge: Σ_t rr_t · K(i − t − k) = Σ_t rr_t · K(d + t)
                     let tab = if jd[k] { &kd } else { &self.kloc[0] };
-                    let mut wsum = 0.0;
-                    for (t, r) in rr.iter().enumerate() {
-                        let d = (i as isize - t as isize - k as isize).unsigned_abs();
-                        wsum += r * tab[d];
-                    }
-                    let mut a = poi(k) - wsum;
+                    let wsum = rr[0] * tab[d.unsigned_abs()]
+                        + rr[1] * tab[(d + 1).unsigned_abs()]
+                        + rr[2] * tab[(d + 2).unsigned_abs()];
+                    let mut a = pz[c + 1] - wsum;
                     if jd[k] {
-                        a -= 0.25 * (poi(k - 1) + poi(k + 1));
-                        if k == i {
+                        a -= 0.25 * (pz[c] + pz[c + 2]);
+                        if c == BAND {
                             a -= 0.25 * (cw[3] + cw[4]);
                         }
                     }
-                    band[(i - 1) * nb + (k + BAND - i)] = a;
+                    *out = a;
                 }
             }
             let n = nx - 2;
