@@ -276,6 +276,13 @@ impl Level {
 
     /// One relaxation sweep (line relaxation along X, lines ordered in Y), then film update.
     pub fn relax(&mut self, pr: &Problem, prm: &MgParams, h0: f64) {
+        self.relax_lines(pr, prm);
+        self.update_film(pr, h0);
+    }
+
+    /// The sweep of [`Level::relax`] without the film update: P changes, H, ρ̄ and ε are those of
+    /// before the sweep (for the coarsest grid, which updates H0 from ∬P and then the film).
+    pub fn relax_lines(&mut self, pr: &Problem, prm: &MgParams) {
         let (nx, ny) = (self.nx, self.ny);
         let (ihx, ihx2) = (self.ihx, self.ihx2);
         let ky = pr.kappa2 * self.ihy2;
@@ -489,7 +496,6 @@ impl Level {
         self.band = band;
         self.rhs = rhs;
         self.jd = jd;
-        self.update_film(pr, h0);
     }
 }
 
@@ -608,9 +614,10 @@ impl Hierarchy {
     pub fn cycle(&mut self, pr: &Problem, prm: &MgParams, k: usize) {
         if k == 0 {
             for _ in 0..prm.coarse_sweeps {
-                let h0 = self.h0;
+                // The film is updated once per sweep, after H0: H0's update needs only ∬P, and
+                // the film of the old H0 (the update inside `relax`) would be overwritten unread.
                 let lv = &mut self.levels[0];
-                lv.relax(pr, prm, h0);
+                lv.relax_lines(pr, prm);
                 // Force target g + γ·H0 (γ = 0 when steady); Newton-like step with the
                 // contact's stiffness estimated as 1/h0_relax.
                 let err = lv.g + pr.load_slope * self.h0 - lv.integral();
