@@ -35,8 +35,8 @@ pub struct ContactArgs {
     #[arg(long)]
     pub grid: Option<usize>,
     /// Quasi-static method: skip the Richardson estimate of the central film and the approach at
-    /// w0 (by default one more steady solution at w0 on the twice finer grid; the law is the
-    /// family's either way).
+    /// w0 (by default one more steady solution at w0 on the twice finer grid, for grids up to 513;
+    /// the law is the family's either way).
     #[arg(long)]
     pub no_film_extrapolation: bool,
     /// Harmonic method: excitation frequency Ω as a fraction of the contact's linearized natural
@@ -375,8 +375,9 @@ pub fn run(args: &ContactArgs) -> Result<()> {
             characterize_harmonic(&c, mass, &s)?
         }
         ehl_bearing::method::Method::QuasiStatic(s) => {
+            // The estimate needs the twice finer grid: none beyond 513² (1025 is the finest).
             let s = ehl_bearing::contact::QuasiStaticSettings {
-                film_extrapolation: !args.no_film_extrapolation,
+                film_extrapolation: !args.no_film_extrapolation && s.ehl.grid <= 513,
                 ..s
             };
             characterize_quasi_static(&c, &s)?
