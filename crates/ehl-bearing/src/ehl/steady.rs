@@ -950,15 +950,6 @@ fn with_alpha(pr: &Problem, sc: &Scales, f: f64) -> (Problem, Scales) {
     (prk, Scales { l: sc.l * f, ..*sc })
 }
 
-/// Continuation in the pressure–viscosity coefficient α, i.e. in L at fixed M (tried last, after
-/// the starts of [`fallback_ladder`] and load continuation have failed; meant for Barus at large
-/// αp_h, docs/ehl.md §5.8). The case is solved at α·`ALPHA_FROM` from a Hertzian start (the
-/// starts of the ladder in turn), then α is raised geometrically to its value, each step
-/// warm-started from the previous pressure and H0 on the same grid and domain, with ω_GS ≤
-/// `ALPHA_OMEGA_GS` and a coarsest grid of at least `ALPHA_COARSEST` points (with larger ω_GS,
-/// or the 33² coarsest grid, the warm starts diverge within 2–5 cycles at αp_max ≳ 60–90).
-/// Intermediate steps get `ALPHA_STEP_CYCLES` cycles and need not converge; the last one must.
-/// [`AlphaFailure`] if it cannot be completed.
 /// Settings of an intermediate stage of a continuation (a solution that only starts the next
 /// stage): `s` with the fixed tolerances alone (`discretization_fraction` 0).
 fn intermediate(s: &EhlSettings) -> EhlSettings {
@@ -968,6 +959,15 @@ fn intermediate(s: &EhlSettings) -> EhlSettings {
     }
 }
 
+/// Continuation in the pressure–viscosity coefficient α, i.e. in L at fixed M (tried last, after
+/// the starts of [`fallback_ladder`] and load continuation have failed; meant for Barus at large
+/// αp_h, docs/ehl.md §5.8). The case is solved at α·`ALPHA_FROM` from a Hertzian start (the
+/// starts of the ladder in turn), then α is raised geometrically to its value, each step
+/// warm-started from the previous pressure and H0 on the same grid and domain, with ω_GS ≤
+/// `ALPHA_OMEGA_GS` and a coarsest grid of at least `ALPHA_COARSEST` points (with larger ω_GS,
+/// or the 33² coarsest grid, the warm starts diverge within 2–5 cycles at αp_max ≳ 60–90).
+/// Intermediate steps get `ALPHA_STEP_CYCLES` cycles and need not converge; the last one must.
+/// [`AlphaFailure`] if it cannot be completed.
 fn alpha_continuation(
     c: &EhlContact,
     pr: &Problem,
