@@ -204,6 +204,21 @@ impl Level {
         }
     }
 
+    /// Σ_t w_t·ρ̄H over the upwind nodes of row i at `idx` (weights [`Level::wedge_w`]): the
+    /// wedge term before its 1/ΔX.
+    #[inline]
+    fn wedge_flux(&self, i: usize, idx: usize) -> f64 {
+        let w = Self::wedge_w(i);
+        let mut wedge = 0.0;
+        for (t, wt) in w.iter().enumerate() {
+            if *wt != 0.0 {
+                let k = idx - t;
+                wedge += wt * self.rho[k] * self.h[k];
+            }
+        }
+        wedge
+    }
+
     /// Discrete operator L(P) at interior (i, j), and the wedge-term magnitude.
     fn op(&self, pr: &Problem, i: usize, j: usize) -> (f64, f64) {
         let nx = self.nx;
@@ -217,15 +232,7 @@ impl Level {
         let pc = p[idx];
         let poi = (ew * (p[idx - 1] - pc) + ee * (p[idx + 1] - pc)) * self.ihx2
             + pr.kappa2 * (es * (p[idx - nx] - pc) + en * (p[idx + nx] - pc)) * self.ihy2;
-        let w = Self::wedge_w(i);
-        let mut wedge = 0.0;
-        for (t, wt) in w.iter().enumerate() {
-            if *wt != 0.0 {
-                let k = idx - t;
-                wedge += wt * self.rho[k] * self.h[k];
-            }
-        }
-        wedge *= self.ihx;
+        let wedge = self.wedge_flux(i, idx) * self.ihx;
         let squeeze = pr.squeeze * self.rho[idx] * self.h[idx];
         (poi - wedge - squeeze, wedge.abs())
     }
@@ -338,15 +345,8 @@ impl Level {
                     + cw[2] * p[idx + 1]
                     + cw[3] * p[idx - nx]
                     + cw[4] * p[idx + nx];
-                let (r, h) = (&self.rho, &self.h);
-                let wedge = if i >= 2 {
-                    (1.5 * r[idx] * h[idx] - 2.0 * r[idx - 1] * h[idx - 1]
-                        + 0.5 * r[idx - 2] * h[idx - 2])
-                        * ihx
-                } else {
-                    (r[idx] * h[idx] - r[idx - 1] * h[idx - 1]) * ihx
-                };
-                let squeeze = pr.squeeze * r[idx] * h[idx];
+                let wedge = self.wedge_flux(i, idx) * ihx;
+                let squeeze = pr.squeeze * self.rho[idx] * self.h[idx];
                 rhs[i] = self.f[idx] - (poi - wedge - squeeze);
             }
             // build band matrix: row r = i-1, column offset c = k - i + BAND
