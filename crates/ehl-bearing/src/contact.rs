@@ -315,13 +315,11 @@ pub fn characterize_quasi_static(
     // (cheaper, and the discretization error varies smoothly along the family).
     let mid = n / 2;
     let mut sols: Vec<Option<EhlSolution>> = vec![None; n];
-    let centre = solve_steady(
-        &EhlContact {
-            load: loads[mid],
-            ..*c
-        },
-        &s.ehl,
-    )?;
+    let c_mid = EhlContact {
+        load: loads[mid],
+        ..*c
+    };
+    let centre = solve_steady(&c_mid, &s.ehl)?;
     // One domain for the whole family: the automatic inlet depends on the load (through Moes M,
     // with a kink at M = 1000), so a family solved on per-load domains carries a discretization
     // error that changes shape along it, which the fit absorbs into d and ΔF (measured in
@@ -364,14 +362,7 @@ pub fn characterize_quasi_static(
     let law = fit.law()?;
     let centre = &sols[mid];
     let film = if s.film_extrapolation {
-        Some(film_estimate(
-            &EhlContact {
-                load: loads[mid],
-                ..*c
-            },
-            &ehl,
-            centre,
-        )?)
+        Some(film_estimate(&c_mid, &ehl, centre)?)
     } else {
         None
     };
@@ -422,7 +413,9 @@ fn film_estimate(
         },
         centre,
     )?;
-    let rich = |f: f64, c: f64| (f + (f - c) / 3.0, ((f - c) / 3.0).abs());
+    // (extrapolated value, size of the correction) from the fine and the coarse value.
+    let rich =
+        |fine: f64, coarse: f64| (fine + (fine - coarse) / 3.0, ((fine - coarse) / 3.0).abs());
     let (h_central, h_central_correction) = rich(fine.h_central, centre.h_central);
     let (approach, approach_correction) = rich(fine.approach, centre.approach);
     Ok(FilmEstimate {
