@@ -294,6 +294,22 @@ fn method_of(args: &ContactArgs) -> Result<ehl_bearing::method::Method> {
     })
 }
 
+/// An error naming every option given (`(given, name)`) that applies to `scope` only.
+fn refuse_options(options: &[(bool, &str)], scope: &str) -> Result<()> {
+    let given: Vec<&str> = options
+        .iter()
+        .filter_map(|&(set, name)| set.then_some(name))
+        .collect();
+    if !given.is_empty() {
+        bail!(
+            "{} {} to {scope}",
+            given.join(", "),
+            if given.len() == 1 { "applies" } else { "apply" }
+        );
+    }
+    Ok(())
+}
+
 /// Run `contact`.
 pub fn run(args: &ContactArgs) -> Result<()> {
     let text = ehl_bearing::io::read_text(&args.contact)?;
@@ -314,39 +330,29 @@ pub fn run(args: &ContactArgs) -> Result<()> {
     }
     let method = match args.method {
         Method::Harmonic => {
-            if args.points.is_some() || args.no_film_extrapolation {
-                bail!(
-                    "{} applies to the quasi-static method only",
-                    if args.points.is_some() {
-                        "--points"
-                    } else {
-                        "--no-film-extrapolation"
-                    }
-                );
-            }
+            refuse_options(
+                &[
+                    (args.points.is_some(), "--points"),
+                    (args.no_film_extrapolation, "--no-film-extrapolation"),
+                ],
+                "the quasi-static method only",
+            )?;
             method_of(args)?
         }
         Method::QuasiStatic => {
-            let given: Vec<&str> = [
-                (args.frequency_fraction.is_some(), "--frequency-fraction"),
-                (args.frequency_rad_s.is_some(), "--frequency-rad-s"),
-                (args.settling_periods.is_some(), "--settling-periods"),
-                (args.periodicity_tol.is_some(), "--periodicity-tol"),
-                (args.recorded_periods.is_some(), "--recorded-periods"),
-                (args.steps_per_period.is_some(), "--steps-per-period"),
-                (args.mass_kg.is_some(), "--mass-kg"),
-                (args.no_damping_term, "--no-damping-term"),
-            ]
-            .into_iter()
-            .filter_map(|(set, name)| set.then_some(name))
-            .collect();
-            if !given.is_empty() {
-                bail!(
-                    "{} {} to --method harmonic only (the method is quasi-static)",
-                    given.join(", "),
-                    if given.len() == 1 { "applies" } else { "apply" }
-                );
-            }
+            refuse_options(
+                &[
+                    (args.frequency_fraction.is_some(), "--frequency-fraction"),
+                    (args.frequency_rad_s.is_some(), "--frequency-rad-s"),
+                    (args.settling_periods.is_some(), "--settling-periods"),
+                    (args.periodicity_tol.is_some(), "--periodicity-tol"),
+                    (args.recorded_periods.is_some(), "--recorded-periods"),
+                    (args.steps_per_period.is_some(), "--steps-per-period"),
+                    (args.mass_kg.is_some(), "--mass-kg"),
+                    (args.no_damping_term, "--no-damping-term"),
+                ],
+                "--method harmonic only (the method is quasi-static)",
+            )?;
             method_of(args)?
         }
     };

@@ -23,6 +23,21 @@ fn fast_harmonic() -> Vec<&'static str> {
     ]
 }
 
+/// Runs `ehl-bearing` with `args`, asserts that it fails, and returns its stderr.
+fn failure<I, S>(args: I) -> String
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<std::ffi::OsStr>,
+{
+    let out = Command::cargo_bin("ehl-bearing")
+        .unwrap()
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
 #[test]
 fn harmonic_json_history_and_plots() {
     let dir = std::env::temp_dir().join(format!("ehlb-contact-h-{}", std::process::id()));
@@ -112,14 +127,12 @@ fn harmonic_without_a_ball_mass_is_an_error_naming_the_keys() {
         .collect();
     let f = std::env::temp_dir().join(format!("ehlb-nomass-{}.toml", std::process::id()));
     std::fs::write(&f, text).unwrap();
-    let out = Command::cargo_bin("ehl-bearing")
-        .unwrap()
-        .args(["contact", "--method", "harmonic"])
-        .arg(&f)
-        .output()
-        .unwrap();
-    assert!(!out.status.success());
-    let err = String::from_utf8_lossy(&out.stderr);
+    let err = failure([
+        std::ffi::OsStr::new("contact"),
+        "--method".as_ref(),
+        "harmonic".as_ref(),
+        f.as_os_str(),
+    ]);
     assert!(
         err.contains("ball_mass_kg") && err.contains("--mass-kg"),
         "{err}"
@@ -129,32 +142,20 @@ fn harmonic_without_a_ball_mass_is_an_error_naming_the_keys() {
 
 #[test]
 fn harmonic_options_are_refused_for_the_quasi_static_method() {
-    let out = Command::cargo_bin("ehl-bearing")
-        .unwrap()
-        .args(["contact", SEED, "--steps-per-period", "16"])
-        .output()
-        .unwrap();
-    assert!(!out.status.success());
-    let err = String::from_utf8_lossy(&out.stderr);
+    let err = failure(["contact", SEED, "--steps-per-period", "16"]);
     assert!(
         err.contains("--steps-per-period applies to --method harmonic only"),
         "{err}"
     );
     // Every harmonic-only option given is named.
-    let out = Command::cargo_bin("ehl-bearing")
-        .unwrap()
-        .args([
-            "contact",
-            SEED,
-            "--periodicity-tol",
-            "0",
-            "--mass-kg",
-            "0.01",
-        ])
-        .output()
-        .unwrap();
-    assert!(!out.status.success());
-    let err = String::from_utf8_lossy(&out.stderr);
+    let err = failure([
+        "contact",
+        SEED,
+        "--periodicity-tol",
+        "0",
+        "--mass-kg",
+        "0.01",
+    ]);
     assert!(
         err.contains("--periodicity-tol, --mass-kg apply to --method harmonic only"),
         "{err}"
@@ -167,13 +168,7 @@ fn invalid_periodicity_tol_names_the_option_and_value() {
         let mut args = fast_harmonic();
         let flag = format!("--periodicity-tol={value}");
         args.push(&flag);
-        let out = Command::cargo_bin("ehl-bearing")
-            .unwrap()
-            .args(args)
-            .output()
-            .unwrap();
-        assert!(!out.status.success());
-        let err = String::from_utf8_lossy(&out.stderr);
+        let err = failure(args);
         assert!(
             err.contains(&format!(
                 "--periodicity-tol = {shown}: expected a finite number ≥ 0"
@@ -187,13 +182,7 @@ fn invalid_periodicity_tol_names_the_option_and_value() {
 fn invalid_harmonic_setting_names_the_setting() {
     let mut args = fast_harmonic();
     args.push("--frequency-fraction=-0.5");
-    let out = Command::cargo_bin("ehl-bearing")
-        .unwrap()
-        .args(args)
-        .output()
-        .unwrap();
-    assert!(!out.status.success());
-    let err = String::from_utf8_lossy(&out.stderr);
+    let err = failure(args);
     assert!(
         err.contains("--frequency-fraction") && err.contains("-0.5"),
         "{err}"
@@ -235,14 +224,9 @@ fn quasi_static_film_estimate_in_json_and_its_flag() {
     assert!(out.status.success());
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert!(v["film"].is_null());
-    let out = Command::cargo_bin("ehl-bearing")
-        .unwrap()
-        .args(fast_harmonic())
-        .arg("--no-film-extrapolation")
-        .output()
-        .unwrap();
-    assert!(!out.status.success());
-    let err = String::from_utf8_lossy(&out.stderr);
+    let mut args = fast_harmonic();
+    args.push("--no-film-extrapolation");
+    let err = failure(args);
     assert!(
         err.contains("--no-film-extrapolation applies to the quasi-static method only"),
         "{err}"
