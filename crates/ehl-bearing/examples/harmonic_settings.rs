@@ -3,8 +3,9 @@
 //! cycles per step and time. Used for the time-step and settling study of docs/contact.md.
 //!
 //! `cargo run --release -p ehl-bearing --example harmonic_settings -- GRID STEPS SETTLING_PERIODS
-//! PERIODICITY_TOL STEP_TOL_FILM [LOAD_N [v|w]]` (the last: the cycle type of the steps and
-//! of the steady solutions)
+//! PERIODICITY_TOL STEP_TOL_FILM [LOAD_N [v|w [STEP_COARSEST STEP_COARSE_SWEEPS]]]` (v|w: the
+//! cycle type of the steps and of the steady solutions; then the steps' coarsest level and its
+//! sweeps per visit, defaults 17 and 6)
 use ehl_bearing::contact::{ball_mass, characterize_harmonic, HarmonicSettings};
 use ehl_bearing::ehl::EhlContact;
 use ehl_bearing::material::{reduced_modulus, Lubricant, Solid};
@@ -19,6 +20,8 @@ fn main() {
     s.settling_periods = num(2, 2.0) as usize;
     s.periodicity_tol = num(3, s.periodicity_tol);
     s.step_tol_film = num(4, s.step_tol_film);
+    s.step_coarsest = num(7, s.step_coarsest as f64) as usize;
+    s.step_coarse_sweeps = num(8, s.step_coarse_sweeps as f64) as usize;
     if a.get(6).map(String::as_str) == Some("v") {
         s.ehl.cycle = ehl_bearing::ehl::CycleType::V;
     }
@@ -37,7 +40,7 @@ fn main() {
     };
     let stiff = f.k * f.d * f.approach.powf(f.d - 1.0);
     println!(
-        "grid {} steps {} settle_max {} tol {:e} step_tol {:e}: K {:.5e} d {:.5} ± {:.5} dF {:.3} ± {:.3} \
+        "grid {} steps {} settle_max {} tol {:e} step_tol {:e} step mg {}/{}: K {:.5e} d {:.5} ± {:.5} dF {:.3} ± {:.3} \
          c {:.3} dQ/dδ(δ0) {:.5e} F(δ0) {:.3} | settled {} steps, periodicity {:.2e}, cycles/step {:.2}, \
          {} steps not converged, {:.2} s",
         s.ehl.grid,
@@ -45,6 +48,8 @@ fn main() {
         s.settling_periods,
         s.periodicity_tol,
         s.step_tol_film,
+        s.step_coarsest,
+        s.step_coarse_sweeps,
         f.k,
         f.d,
         f.std_errors.d,
