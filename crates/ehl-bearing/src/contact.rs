@@ -747,19 +747,14 @@ pub fn characterize_harmonic(
     ];
     // The steps' own coarsest level only with at least two levels above it (on 33² the 33/17
     // pair stalls in some steps of the seed contact; there the steady solutions' levels serve).
-    let step_settings = if s.ehl.grid > 4 * (s.step_coarsest - 1) {
-        EhlSettings {
-            tol_film: s.step_tol_film,
-            coarsest: s.step_coarsest,
-            coarse_sweeps: s.step_coarse_sweeps,
-            ..s.ehl
-        }
-    } else {
-        EhlSettings {
-            tol_film: s.step_tol_film,
-            ..s.ehl
-        }
+    let mut step_settings = EhlSettings {
+        tol_film: s.step_tol_film,
+        ..s.ehl
     };
+    if s.ehl.grid > 4 * (s.step_coarsest - 1) {
+        step_settings.coarsest = s.step_coarsest;
+        step_settings.coarse_sweeps = s.step_coarse_sweeps;
+    }
     // The start. Below 0.7·ω_n: at the load maximum (phase 0 of w(t) = w0·(1 + ε·cos Ωt)),
     // where the periodic response is nearly at rest — δ̇ = 0 up to the squeeze film's phase lag
     // (≈ c·Ω/k, 2 % of the rate's amplitude on the seed contact) and δ̈ = −Ω²·δa with

@@ -14,8 +14,9 @@
 //! ∬P dX dY = (2π/3)·(w/w0 + μ·d²H0/dT²) with μ = m·u_s²/(4·Rx·w0): linear in H0ⁿ
 //! (∬P = g + γ·H0ⁿ), which the multigrid H0 update solves with the same FAS machinery as the
 //! steady force balance. The history part of the squeeze term enters as the right-hand side on
-//! the finest grid. Each step starts from the previous step's pressure (warm start) with H0
-//! extrapolated linearly, and runs FAS cycles until the steady solver's tolerances are met.
+//! the finest grid. Each step starts from P and H0 extrapolated quadratically from the last three
+//! time levels (linearly on the first two steps), and runs FAS cycles until the steady solver's
+//! tolerances are met.
 //!
 //! BDF2 is A-stable (no step-size limit) but damps free oscillations numerically, by a relative
 //! amount per step of order (ωΔt)⁴ and with a period error of order (ωΔt)²; the measured effect
@@ -271,6 +272,20 @@ impl TransientSolver {
         (x, h)
     }
 
+    /// The relative Reynolds residual on the finest grid and the error of the discrete equation
+    /// of motion ∬P = g + γ·H0 (relative to the target 2π/3) of the current state.
+    fn residuals(&mut self, g: f64) -> (f64, f64) {
+        let target = 2.0 * PI / 3.0;
+        let h0 = self.hier.h0;
+        let lv = self.hier.levels.last_mut().expect("at least one level");
+        let (sr, sw) = lv.residual(&self.pr);
+        let residual = if sw > 0.0 { sr / sw } else { f64::INFINITY };
+        (
+            residual,
+            (g + self.pr.load_slope * h0 - lv.integral()).abs() / target,
+        )
+    }
+
     /// Advances one time step to t + Δt under the external load `load` (N, finite) at the new
     /// time. A step that stops at the cycle limit is returned with `converged: false`; a step
     /// whose iteration produces non-finite numbers is an error.
@@ -386,10 +401,7 @@ impl TransientSolver {
             if dh >= self.s.tol_film && cycle + 1 < self.max_cycles {
                 continue;
             }
-            let lv = &mut self.hier.levels[top];
-            let (sr, sw) = lv.residual(&self.pr);
-            residual = if sw > 0.0 { sr / sw } else { f64::INFINITY };
-            force_residual = (g + self.pr.load_slope * h0 - lv.integral()).abs() / target;
+            (residual, force_residual) = self.residuals(g);
             evaluated = true;
             if !residual.is_finite() {
                 return Err(EhlError::Diverged {
@@ -410,10 +422,7 @@ impl TransientSolver {
         }
         if !evaluated && cycles > 0 {
             // Stopped by the deadline after a cycle whose residual was not evaluated.
-            let lv = &mut self.hier.levels[top];
-            let (sr, sw) = lv.residual(&self.pr);
-            residual = if sw > 0.0 { sr / sw } else { f64::INFINITY };
-            force_residual = (g + self.pr.load_slope * self.hier.h0 - lv.integral()).abs() / target;
+            (residual, force_residual) = self.residuals(g);
         }
         let h0 = self.hier.h0;
         let v = (1.5 * h0 - 2.0 * h0_1 + 0.5 * h0_2) / dtt;
