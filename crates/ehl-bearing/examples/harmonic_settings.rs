@@ -3,9 +3,10 @@
 //! cycles per step and time. Used for the time-step and settling study of docs/contact.md.
 //!
 //! `cargo run --release -p ehl-bearing --example harmonic_settings -- GRID STEPS SETTLING_PERIODS
-//! PERIODICITY_TOL STEP_TOL_FILM [LOAD_N [v|w [STEP_COARSEST STEP_COARSE_SWEEPS]]]` (v|w: the
-//! cycle type of the steps and of the steady solutions; then the steps' coarsest level and its
-//! sweeps per visit, defaults 17 and 6)
+//! PERIODICITY_TOL STEP_TOL_FILM [LOAD_N [v|w [STEP_COARSEST STEP_COARSE_SWEEPS
+//! [SETTLING_TOL_FILM]]]]` (v|w: the cycle type of the steps and of the steady solutions; then
+//! the steps' coarsest level and its sweeps per visit, defaults 17 and 6, and the film tolerance
+//! of the first quarter period's steps, default 1e-3)
 use ehl_bearing::contact::{ball_mass, characterize_harmonic, HarmonicSettings};
 use ehl_bearing::ehl::EhlContact;
 use ehl_bearing::material::{reduced_modulus, Lubricant, Solid};
@@ -22,6 +23,7 @@ fn main() {
     s.step_tol_film = num(4, s.step_tol_film);
     s.step_coarsest = num(7, s.step_coarsest as f64) as usize;
     s.step_coarse_sweeps = num(8, s.step_coarse_sweeps as f64) as usize;
+    s.settling_tol_film = num(9, s.settling_tol_film);
     if a.get(6).map(String::as_str) == Some("v") {
         s.ehl.cycle = ehl_bearing::ehl::CycleType::V;
     }

@@ -959,6 +959,7 @@ impl Method {
                 }
                 count("max_cycles_per_step", s.max_cycles_per_step, 1, 1000)?;
                 positive("step_tol_film", s.step_tol_film)?;
+                positive("settling_tol_film", s.settling_tol_film)?;
                 grid(&s.ehl)
             }
         }

@@ -85,7 +85,7 @@ fn free_vibration(load: f64, grid: usize) -> (f64, f64, f64, f64) {
     let film_share = steady.h_central / steady.approach;
     let n = 64.0;
     let dt = 2.0 * PI / w_lin / n;
-    // Per-step film tolerance of the harmonic method's default (HarmonicSettings::step_tol_film).
+    // Per-step film tolerance (of the order of HarmonicSettings::step_tol_film's default).
     let step = EhlSettings {
         tol_film: 1e-4,
         ..s
@@ -325,6 +325,10 @@ fn harmonic_settings_are_validated() {
             step_coarse_sweeps: 0,
             ..HarmonicSettings::default()
         },
+        HarmonicSettings {
+            settling_tol_film: f64::NAN,
+            ..HarmonicSettings::default()
+        },
     ];
     let names = [
         "amplitude",
@@ -337,6 +341,7 @@ fn harmonic_settings_are_validated() {
         "periodicity_tol",
         "step_coarsest = 16",
         "step_coarse_sweeps = 0",
+        "settling_tol_film = NaN",
     ];
     for (s, name) in bad.iter().zip(names) {
         let e = characterize_harmonic(&c, mass(), s)
