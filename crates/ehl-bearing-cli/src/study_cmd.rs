@@ -62,6 +62,12 @@ pub struct StudyArgs {
     /// error carrying its residual history and is not saved (a rerun computes it).
     #[arg(long, value_name = "SECONDS")]
     pub time_limit: Option<f64>,
+    /// Points computed at once, at least 1: a second point fills the threads that one point
+    /// leaves idle (its equilibrium solves, the last contacts of an iteration); 1 runs them one
+    /// after the other. With --time-limit the points run one at a time. Results do not depend
+    /// on it.
+    #[arg(long, value_name = "N", default_value_t = RunOptions::default().points_in_flight)]
+    pub points_in_flight: usize,
     /// Testing aid: sleep this many milliseconds before each computed point (to interrupt a
     /// study reliably in the resume test).
     #[arg(long, hide = true, default_value_t = 0)]
@@ -148,6 +154,9 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     if args.threads == Some(0) {
         anyhow::bail!("--threads 0: expected at least 1 thread");
     }
+    if args.points_in_flight == 0 {
+        anyhow::bail!("--points-in-flight 0: expected at least 1 point");
+    }
     crate::characterize_cmd::deadline(args.time_limit)?;
     // Every point's case is checked for physical plausibility before any work.
     for p in study.shard_points(args.shard.unwrap_or(Shard::ALL)) {
@@ -168,6 +177,7 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
         shard: args.shard.unwrap_or(Shard::ALL),
         overwrite: args.overwrite,
         point_time_limit_s: args.time_limit,
+        points_in_flight: args.points_in_flight,
     };
     // Progress markers (DIR/.progress) are started once the run has checked the folder (a
     // refused run leaves it untouched).
@@ -188,6 +198,15 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     let bar = point_bar(study.shard_points(options.shard).len() as u64);
     let multi = progress_container();
     let (contacts_bar, callback) = contact_progress(&multi);
+    // Several points at once: the contacts bar counts the contacts of all running points.
+    let concurrent = options.points_in_flight > 1 && options.point_time_limit_s.is_none();
+    let callback = |l: ehl_bearing::characterize::Progress| match l {
+        ehl_bearing::characterize::Progress::IterationStarted { contacts, .. } if concurrent => {
+            contacts_bar.set_prefix("running points");
+            contacts_bar.inc_length(contacts as u64);
+        }
+        _ => callback(l),
+    };
     let done = Mutex::new(0usize);
     let delay = args.delay_ms;
     let events = |e: StudyEvent| match e {
@@ -211,7 +230,7 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
                 std::thread::sleep(std::time::Duration::from_millis(delay));
             }
         }
-        StudyEvent::Loop(l) => callback(l),
+        StudyEvent::Loop(_, l) => callback(l),
         StudyEvent::PointDone {
             point,
             converged,

@@ -1,5 +1,5 @@
 //! Study output does not depend on the number of threads (bitwise), with --threads and with
-//! RAYON_NUM_THREADS.
+//! RAYON_NUM_THREADS, nor on the number of points computed at once (--points-in-flight).
 
 mod study_common;
 
@@ -18,7 +18,7 @@ fn one_and_two_threads_give_identical_files() {
         "[0.5, 1.5]",
         "[characterize]\ncache_tolerance = 0.02\ntolerance = 1e-5\n",
     );
-    let run = |name: &str, threads: Option<&str>, env: Option<&str>| {
+    let run = |name: &str, threads: Option<&str>, env: Option<&str>, in_flight: &str| {
         let out = tmp.path().join(name);
         let mut c = Command::cargo_bin("ehl-bearing").unwrap();
         c.args([
@@ -30,6 +30,7 @@ fn one_and_two_threads_give_identical_files() {
         if let Some(t) = threads {
             c.args(["--threads", t]);
         }
+        c.args(["--points-in-flight", in_flight]);
         if let Some(e) = env {
             c.env("RAYON_NUM_THREADS", e);
         }
@@ -37,11 +38,14 @@ fn one_and_two_threads_give_identical_files() {
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         out
     };
-    let one = run("t1", Some("1"), None);
-    let two = run("t2", Some("2"), None);
-    let env2 = run("e2", None, Some("2"));
+    // One thread, one point at a time: the reference.
+    let one = run("t1", Some("1"), None, "1");
+    let two = run("t2", Some("2"), None, "2");
+    let env2 = run("e2", None, Some("2"), "1");
+    let four_points = run("p4", Some("2"), None, "4");
     assert_same_tree(&one, &two);
     assert_same_tree(&one, &env2);
+    assert_same_tree(&one, &four_points);
     let csv = std::fs::read_to_string(one.join("results.csv")).unwrap();
     assert!(
         csv.contains("deduplicated") || csv.contains("cached"),
@@ -68,4 +72,18 @@ fn invalid_thread_count_is_an_error() {
         .unwrap();
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("--threads 0"));
+    let o = Command::cargo_bin("ehl-bearing")
+        .unwrap()
+        .args([
+            "study",
+            study.to_str().unwrap(),
+            "-o",
+            tmp.path().join("o").to_str().unwrap(),
+            "--points-in-flight",
+            "0",
+        ])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--points-in-flight 0"));
 }

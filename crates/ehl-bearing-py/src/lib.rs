@@ -393,7 +393,7 @@ fn study(
                     redone,
                 } => serde_json::json!({"event": "planned", "points": points, "to_compute": to_compute, "redone": redone}),
                 StudyEvent::PointStarted(p) => serde_json::json!({"event": "point_started", "index": p.index, "inner_speed_rpm": p.inner_speed_rpm, "load_scale": p.load_scale}),
-                StudyEvent::Loop(l) => serde_json::json!({"event": "loop", "progress": progress_json(&l)}),
+                StudyEvent::Loop(p, l) => serde_json::json!({"event": "loop", "index": p.index, "progress": progress_json(&l)}),
                 StudyEvent::PointDone { point, converged, error, seconds } => serde_json::json!({"event": "point_done", "index": point.index, "converged": converged, "error": error, "seconds": seconds}),
             };
             report(&progress, v)

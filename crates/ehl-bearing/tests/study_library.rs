@@ -25,6 +25,7 @@ fn run(s: &Study, store: &MemoryStore, shard: Shard) -> ehl_bearing::study::Stud
             shard,
             overwrite: false,
             point_time_limit_s: None,
+            ..RunOptions::default()
         },
         &|_| {},
     )
@@ -116,6 +117,7 @@ fn another_studys_points_are_refused_before_any_work() {
             shard: Shard::ALL,
             overwrite: true,
             point_time_limit_s: None,
+            ..RunOptions::default()
         },
         &|_| {},
     )
@@ -148,4 +150,44 @@ fn outputs_need_every_point_and_unreadable_points_are_redone() {
     assert_eq!((r.redone, r.computed, r.loaded), (1, 7, 2));
     assert_eq!(store.load_point(&stem).unwrap().unwrap(), text);
     finish_study(&s, &store).unwrap();
+}
+
+/// Points computed concurrently (`points_in_flight`) give the files of points computed one after
+/// the other, every point reports its start, loop events and end once, and the run's counts are
+/// the same.
+#[test]
+fn concurrent_points_give_the_files_of_sequential_ones() {
+    let s = study("synthetic", "");
+    let go = |in_flight: usize| {
+        let store = MemoryStore::default();
+        let events = Mutex::new(Vec::new());
+        let r = run_study(
+            &s,
+            &store,
+            &RunOptions {
+                points_in_flight: in_flight,
+                ..RunOptions::default()
+            },
+            &|ev| {
+                let tag = match ev {
+                    StudyEvent::PointStarted(p) => Some((p.index, "started")),
+                    StudyEvent::PointDone { point, .. } => Some((point.index, "done")),
+                    StudyEvent::Loop(p, _) => Some((p.index, "loop")),
+                    StudyEvent::Planned { .. } => None,
+                };
+                events.lock().unwrap().extend(tag);
+            },
+        )
+        .unwrap();
+        let mut ev = events.into_inner().unwrap();
+        ev.sort();
+        ev.dedup();
+        let points = store.points.lock().unwrap().clone();
+        (r.points, r.computed, r.failed.len(), points, ev)
+    };
+    let sequential = go(1);
+    assert_eq!(sequential.0, 9);
+    assert_eq!(sequential.4.len(), 9 * 3, "{:?}", sequential.4);
+    assert_eq!(go(3), sequential);
+    assert_eq!(go(100), sequential);
 }

@@ -13,6 +13,8 @@ use super::store::{PointStore, StoreError};
 use super::trends::{fit_trends, TrendModel};
 use crate::characterize::{characterize_bearing_with_progress, CharacterizeError, Progress};
 use crate::force_element::TrendForceElement;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
 use std::time::Instant;
 use thiserror::Error;
 
@@ -54,7 +56,14 @@ pub struct RunOptions {
     pub overwrite: bool,
     /// Wall-time budget of each point, s (default none): a point that runs out of it fails with
     /// the time-limit error and is not saved (a later run with a larger budget computes it).
+    /// With a budget the points run one at a time, so that each budget covers a point that has
+    /// the whole thread pool.
     pub point_time_limit_s: Option<f64>,
+    /// Largest number of points computed at once (≥ 1; default 2). Their contacts share the
+    /// current rayon pool, so a second point fills the threads that one point leaves idle (its
+    /// serial equilibrium solves, the last contacts of an iteration); 1 runs the points one
+    /// after the other. Results do not depend on it.
+    pub points_in_flight: usize,
 }
 
 impl Default for RunOptions {
@@ -63,6 +72,7 @@ impl Default for RunOptions {
             shard: Shard::ALL,
             overwrite: false,
             point_time_limit_s: None,
+            points_in_flight: 2,
         }
     }
 }
@@ -82,8 +92,9 @@ pub enum StudyEvent {
     },
     /// A point starts.
     PointStarted(StudyPoint),
-    /// The characterization loop of the current point progressed.
-    Loop(Progress),
+    /// The characterization loop of a point progressed (points may run concurrently, see
+    /// [`RunOptions::points_in_flight`]).
+    Loop(StudyPoint, Progress),
     /// A point finished and its file was written.
     PointDone {
         /// The point.
@@ -237,52 +248,124 @@ pub fn run_study(
         failed: Vec::new(),
         seconds: 0.0,
     };
-    for p in todo {
-        events(StudyEvent::PointStarted(p));
-        let tp = Instant::now();
-        let deadline = options
-            .point_time_limit_s
-            .and_then(crate::budget::Deadline::after_seconds);
-        let record = match deadline {
-            None => run_point(study, &p, &|e| events(StudyEvent::Loop(e))),
-            Some(d) => {
-                let mut bounded = study.clone();
-                bounded.method = bounded.method.with_deadline(Some(d));
-                bounded.settings.deadline = Some(d);
-                run_point(&bounded, &p, &|e| events(StudyEvent::Loop(e)))
+    let in_flight = if options.point_time_limit_s.is_some() {
+        1
+    } else {
+        options.points_in_flight.clamp(1, todo.len().max(1))
+    };
+    let outcomes: Vec<Result<Outcome, StudyError>> = if in_flight == 1 {
+        todo.iter()
+            .map(|p| compute_point(study, store, options, p, events))
+            .collect()
+    } else {
+        // `in_flight` workers take the next point from the plan until none is left; each point's
+        // contacts run on the same pool. The outcomes are collected in plan order.
+        let next = AtomicUsize::new(0);
+        let slots: Vec<Mutex<Option<Result<Outcome, StudyError>>>> =
+            todo.iter().map(|_| Mutex::new(None)).collect();
+        rayon::scope(|sc| {
+            for _ in 0..in_flight {
+                sc.spawn(|_| loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    let Some(p) = todo.get(i) else { break };
+                    let out = compute_point(study, store, options, p, events);
+                    *slots[i].lock().unwrap_or_else(|e| e.into_inner()) = Some(out);
+                });
             }
-        };
-        if record.error.is_some() && deadline.is_some_and(|d| d.expired()) {
-            // Out of its time budget: not a result of the point, so no point file.
-            let e = format!(
-                "{} (not saved: a run with a larger time limit computes it)",
-                record.error.clone().unwrap_or_default()
-            );
-            run.failed.push((p, e.clone()));
-            events(StudyEvent::PointDone {
-                point: p,
-                converged: false,
-                error: Some(e),
-                seconds: tp.elapsed().as_secs_f64(),
-            });
-            continue;
-        }
-        store.save_point(&p.file_stem(), &record.to_json())?;
-        run.computed += 1;
-        if let Some(e) = &record.error {
-            run.failed.push((p, e.clone()));
-        } else if !record.converged() {
-            run.not_converged += 1;
-        }
-        events(StudyEvent::PointDone {
-            point: p,
-            converged: record.converged(),
-            error: record.error.clone(),
-            seconds: tp.elapsed().as_secs_f64(),
         });
+        // (Every slot is filled: a worker that panics takes the scope down with it.)
+        slots
+            .into_iter()
+            .zip(&todo)
+            .map(|(m, p)| {
+                m.into_inner()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .unwrap_or_else(|| {
+                        Err(StudyError::Store(StoreError {
+                            action: "computing".into(),
+                            location: p.file_stem(),
+                            message: "the point was planned but not computed".into(),
+                        }))
+                    })
+            })
+            .collect()
+    };
+    for (p, out) in todo.iter().zip(outcomes) {
+        match out? {
+            Outcome::OutOfTime(e) => run.failed.push((*p, e)),
+            Outcome::Saved { error, converged } => {
+                run.computed += 1;
+                if let Some(e) = error {
+                    run.failed.push((*p, e));
+                } else if !converged {
+                    run.not_converged += 1;
+                }
+            }
+        }
     }
     run.seconds = t0.elapsed().as_secs_f64();
     Ok(run)
+}
+
+/// What became of one computed point.
+enum Outcome {
+    /// Its file was written; the error if it failed, and whether its loop converged.
+    Saved {
+        error: Option<String>,
+        converged: bool,
+    },
+    /// It ran out of its time budget (not saved); the message.
+    OutOfTime(String),
+}
+
+/// Compute point `p`, write its file (unless it ran out of its time budget) and send its events.
+fn compute_point(
+    study: &Study,
+    store: &dyn PointStore,
+    options: &RunOptions,
+    p: &StudyPoint,
+    events: &(dyn Fn(StudyEvent) + Sync),
+) -> Result<Outcome, StudyError> {
+    let p = *p;
+    events(StudyEvent::PointStarted(p));
+    let tp = Instant::now();
+    let deadline = options
+        .point_time_limit_s
+        .and_then(crate::budget::Deadline::after_seconds);
+    let record = match deadline {
+        None => run_point(study, &p, &|e| events(StudyEvent::Loop(p, e))),
+        Some(d) => {
+            let mut bounded = study.clone();
+            bounded.method = bounded.method.with_deadline(Some(d));
+            bounded.settings.deadline = Some(d);
+            run_point(&bounded, &p, &|e| events(StudyEvent::Loop(p, e)))
+        }
+    };
+    if record.error.is_some() && deadline.is_some_and(|d| d.expired()) {
+        // Out of its time budget: not a result of the point, so no point file.
+        let e = format!(
+            "{} (not saved: a run with a larger time limit computes it)",
+            record.error.clone().unwrap_or_default()
+        );
+        events(StudyEvent::PointDone {
+            point: p,
+            converged: false,
+            error: Some(e.clone()),
+            seconds: tp.elapsed().as_secs_f64(),
+        });
+        return Ok(Outcome::OutOfTime(e));
+    }
+    store.save_point(&p.file_stem(), &record.to_json())?;
+    events(StudyEvent::PointDone {
+        point: p,
+        converged: record.converged(),
+        error: record.error.clone(),
+        seconds: tp.elapsed().as_secs_f64(),
+    });
+    Ok(Outcome::Saved {
+        error: record.error.clone(),
+        converged: record.converged(),
+    })
 }
 
 /// Characterize one point: its [`PointRecord`], reproducible bit for bit (no timings). A point
