@@ -138,3 +138,17 @@ def test_study_runs_and_reports_progress(tmp_path, examples):
     assert (tmp_path / "out" / "results.csv").exists()
     again = eb.study(str(study_file), str(tmp_path / "out"))
     assert again["computed"] == 0 and again["loaded"] == 6
+
+
+def test_print_progress_names_the_point_of_a_loop_event(capsys):
+    """A study's points may run concurrently: loop lines carry their point."""
+    eb.print_progress(
+        {
+            "event": "loop",
+            "index": 1,
+            "progress": {"event": "iteration_started", "iteration": 3, "contacts": 22},
+        }
+    )
+    eb.print_progress({"event": "iteration_started", "iteration": 1, "contacts": 5})
+    err = capsys.readouterr().err.splitlines()
+    assert err == ["point 2, iteration 3: 22 contacts", "iteration 1: 5 contacts"]

@@ -70,12 +70,16 @@ def print_progress(event: dict[str, Any]) -> None:
     """A progress callback for :func:`characterize`, :func:`coefficients` and :func:`study` that
     prints one line per iteration or point to stderr (contact events are skipped)."""
     kind = event.get("event")
+    point = ""
     if kind == "loop":
+        # A study's points may run concurrently: name the point of the loop event.
+        if "index" in event:
+            point = f"point {event['index'] + 1}, "
         event = event.get("progress", {})
         kind = event.get("event")
     if kind == "iteration_started":
         print(
-            f"iteration {event['iteration']}: {event['contacts']} contacts",
+            f"{point}iteration {event['iteration']}: {event['contacts']} contacts",
             file=sys.stderr,
             flush=True,
         )
