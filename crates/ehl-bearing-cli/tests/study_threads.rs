@@ -55,35 +55,24 @@ fn one_and_two_threads_give_identical_files() {
 }
 
 #[test]
-fn invalid_thread_count_is_an_error() {
+fn invalid_thread_and_point_counts_are_errors() {
     let tmp = tempfile::tempdir().unwrap();
     let study = study_file(tmp.path(), "hertz", "[3000]", "[1.0]", "");
-    let o = Command::cargo_bin("ehl-bearing")
-        .unwrap()
-        .args([
-            "study",
-            study.to_str().unwrap(),
-            "-o",
-            tmp.path().join("o").to_str().unwrap(),
-            "--threads",
-            "0",
-        ])
-        .output()
-        .unwrap();
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--threads 0"));
-    let o = Command::cargo_bin("ehl-bearing")
-        .unwrap()
-        .args([
-            "study",
-            study.to_str().unwrap(),
-            "-o",
-            tmp.path().join("o").to_str().unwrap(),
-            "--points-in-flight",
-            "0",
-        ])
-        .output()
-        .unwrap();
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--points-in-flight 0"));
+    for option in ["--threads", "--points-in-flight"] {
+        let o = Command::cargo_bin("ehl-bearing")
+            .unwrap()
+            .args([
+                "study",
+                study.to_str().unwrap(),
+                "-o",
+                tmp.path().join("o").to_str().unwrap(),
+                option,
+                "0",
+            ])
+            .output()
+            .unwrap();
+        assert!(!o.status.success());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(&format!("{option} 0")), "{err}");
+    }
 }
