@@ -91,6 +91,12 @@ fn free_vibration(load: f64, grid: usize) -> (f64, f64, f64, f64) {
         ..s
     };
     let mut tr = TransientSolver::from_steady(&c, &step, steady, m, dt, 0.0, 30).unwrap();
+    // The per-step film tolerance can change between steps; invalid values are refused.
+    for bad in [0.0, -1e-4, f64::NAN] {
+        let e = tr.set_tol_film(bad).unwrap_err().to_string();
+        assert!(e.contains("tol_film"), "{e}");
+    }
+    tr.set_tol_film(1e-4).unwrap();
     let mut prev = tr.step(1.02 * load).unwrap();
     let mut crossings = Vec::new();
     let mut stalled = 0;
@@ -470,4 +476,62 @@ fn an_unsettled_run_is_reported_as_such() {
     };
     assert!(!x.settled && x.periodicity.is_nan(), "{x:?}");
     assert_eq!((f.settling_steps, f.history.len()), (0, 32));
+}
+
+/// The first quarter period's steps run at `settling_tol_film` (never recorded): fewer cycles
+/// there, and the law of a run whose settling steps are iterated like the recorded ones. Bounds:
+/// d within 5e-4 and ΔF within 1 % (a quarter of the fit's standard errors on 65², 0.0018 and
+/// 0.7 N at 600 N; on 129² the seed contact moves by 5e-5 and 0.05 %, docs/contact.md); every
+/// recorded step at the step tolerance (converged), the setting recorded in the result.
+#[test]
+fn loose_settling_steps_keep_the_law() {
+    let c = inner(600.0);
+    let base = HarmonicSettings {
+        ehl: ehl(65),
+        ..HarmonicSettings::default()
+    };
+    let loose = characterize_harmonic(&c, mass(), &base).unwrap();
+    let tight = characterize_harmonic(
+        &c,
+        mass(),
+        &HarmonicSettings {
+            settling_tol_film: base.step_tol_film,
+            ..base
+        },
+    )
+    .unwrap();
+    let ehl_bearing::contact::Excitation::Harmonic(x) = loose.excitation else {
+        panic!()
+    };
+    assert_eq!(x.settling_tol_film, 1e-3);
+    let quarter = base.steps_per_period / 4;
+    let cycles = |f: &ehl_bearing::contact::ContactFit| -> usize {
+        f.history[..quarter].iter().map(|s| s.cycles).sum()
+    };
+    eprintln!(
+        "loose: d {:.5} ΔF {:.3} first-quarter cycles {}; tight: d {:.5} ΔF {:.3} cycles {}",
+        loose.d,
+        loose.delta_f,
+        cycles(&loose),
+        tight.d,
+        tight.delta_f,
+        cycles(&tight)
+    );
+    assert!(cycles(&loose) < cycles(&tight));
+    assert!(loose.history[x.settling_steps..]
+        .iter()
+        .all(|s| s.converged));
+    assert!(loose.converged && tight.converged);
+    assert!(
+        (loose.d - tight.d).abs() <= 5e-4,
+        "d {} vs {}",
+        loose.d,
+        tight.d
+    );
+    assert!(
+        (loose.delta_f - tight.delta_f).abs() <= 0.01 * tight.delta_f.abs(),
+        "ΔF {} vs {}",
+        loose.delta_f,
+        tight.delta_f
+    );
 }
