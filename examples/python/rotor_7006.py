@@ -6,8 +6,8 @@ bearing (harmonic method: stiffness and damping from the lubricated contacts).
 
 Needs `pip install ./crates/ehl-bearing-py[ross]`. Writes figures (PNG + SVG), CSV time
 histories and `rotor_7006.md` (the summary) into the output folder. The EHL characterizations
-(harmonic method, minutes per speed) are cached there (`cache/harmonic_<rpm>.json`): delete the
-folder to recompute.
+(harmonic method, 20–25 s per speed on 2 cores) are cached there (`cache/harmonic_<rpm>.json`):
+delete the folder to recompute.
 
 Setup. Shaft: steel, Ø 30 mm (the 7006's bore), 0.5 m, 6 Timoshenko elements; disks Ø 150 × 30 mm
 at nodes 2 and 4; bearings at nodes 0 and 6, a back-to-back pair (the second mirrored), each
