@@ -4,8 +4,8 @@
 //! figures.
 
 use ehl_bearing::contact::{
-    ball_mass, characterize_harmonic, characterize_quasi_static, ExcitationFrequency,
-    HarmonicSettings, QuasiStaticSettings,
+    ball_mass, characterize_harmonic, characterize_quasi_static, ContactFit, Excitation,
+    ExcitationFrequency, HarmonicExcitation, HarmonicSettings, QuasiStaticSettings,
 };
 use ehl_bearing::ehl::{solve_steady, solve_steady_from, EhlContact, EhlSettings, TransientSolver};
 use ehl_bearing::material::{reduced_modulus, Lubricant, Solid};
@@ -25,6 +25,22 @@ fn inner(load: f64) -> EhlContact {
 
 fn mass() -> f64 {
     ball_mass(7e-3, Solid::AISI_52100.density)
+}
+
+/// The excitation record of a harmonic result.
+fn excitation(f: &ContactFit) -> HarmonicExcitation {
+    match f.excitation {
+        Excitation::Harmonic(x) => x,
+        ref other => panic!("not a harmonic result: {other:?}"),
+    }
+}
+
+/// The harmonic method's defaults on a `grid` × `grid` mesh.
+fn defaults_on(grid: usize) -> HarmonicSettings {
+    HarmonicSettings {
+        ehl: ehl(grid),
+        ..HarmonicSettings::default()
+    }
 }
 
 fn ehl(grid: usize) -> EhlSettings {
@@ -198,9 +214,7 @@ fn harmonic_agrees_with_quasi_static_at_low_frequency() {
     assert!((fh / fq - 1.0).abs() < 0.01, "{fh} vs {fq}");
     assert!((h.d - q.d).abs() < 0.02, "{} vs {}", h.d, q.d);
     // The run is periodic after the settling periods and every step converged.
-    let ehl_bearing::contact::Excitation::Harmonic(x) = h.excitation else {
-        panic!("{:?}", h.excitation)
-    };
+    let x = excitation(&h);
     assert!(x.periodicity <= x.periodicity_tol && x.settled, "{x:?}");
     assert_eq!(x.steps_not_converged, 0);
     assert_eq!(x.settling_steps, h.settling_steps);
@@ -370,10 +384,7 @@ fn harmonic_settings_are_validated() {
 #[test]
 fn short_settling_gives_the_law_of_a_settled_run() {
     let c = inner(600.0);
-    let base = HarmonicSettings {
-        ehl: ehl(65),
-        ..HarmonicSettings::default()
-    };
+    let base = defaults_on(65);
     let fast = characterize_harmonic(&c, mass(), &base).unwrap();
     let slow = characterize_harmonic(
         &c,
@@ -385,13 +396,7 @@ fn short_settling_gives_the_law_of_a_settled_run() {
         },
     )
     .unwrap();
-    let (
-        ehl_bearing::contact::Excitation::Harmonic(xf),
-        ehl_bearing::contact::Excitation::Harmonic(xs),
-    ) = (fast.excitation, slow.excitation)
-    else {
-        panic!()
-    };
+    let (xf, xs) = (excitation(&fast), excitation(&slow));
     eprintln!(
         "fast: d {:.5} K {:.4e} ΔF {:.3} c {:?} settling {} periodicity {:.1e} cycles/step {:.2}; \
          slow: d {:.5} K {:.4e} ΔF {:.3} c {:?} settling {} periodicity {:.1e} cycles/step {:.2}",
@@ -457,9 +462,7 @@ fn an_unsettled_run_is_reported_as_such() {
         },
     )
     .unwrap();
-    let ehl_bearing::contact::Excitation::Harmonic(x) = f.excitation else {
-        panic!()
-    };
+    let x = excitation(&f);
     assert!(!x.settled && x.periodicity > 1e-12, "{x:?}");
     assert_eq!(f.settling_steps, 32);
     let f = characterize_harmonic(
@@ -471,9 +474,7 @@ fn an_unsettled_run_is_reported_as_such() {
         },
     )
     .unwrap();
-    let ehl_bearing::contact::Excitation::Harmonic(x) = f.excitation else {
-        panic!()
-    };
+    let x = excitation(&f);
     assert!(!x.settled && x.periodicity.is_nan(), "{x:?}");
     assert_eq!((f.settling_steps, f.history.len()), (0, 32));
 }
@@ -486,10 +487,7 @@ fn an_unsettled_run_is_reported_as_such() {
 #[test]
 fn loose_settling_steps_keep_the_law() {
     let c = inner(600.0);
-    let base = HarmonicSettings {
-        ehl: ehl(65),
-        ..HarmonicSettings::default()
-    };
+    let base = defaults_on(65);
     let loose = characterize_harmonic(&c, mass(), &base).unwrap();
     let tight = characterize_harmonic(
         &c,
@@ -500,14 +498,10 @@ fn loose_settling_steps_keep_the_law() {
         },
     )
     .unwrap();
-    let ehl_bearing::contact::Excitation::Harmonic(x) = loose.excitation else {
-        panic!()
-    };
+    let x = excitation(&loose);
     assert_eq!(x.settling_tol_film, 1e-3);
     let quarter = base.steps_per_period / 4;
-    let cycles = |f: &ehl_bearing::contact::ContactFit| -> usize {
-        f.history[..quarter].iter().map(|s| s.cycles).sum()
-    };
+    let cycles = |f: &ContactFit| -> usize { f.history[..quarter].iter().map(|s| s.cycles).sum() };
     eprintln!(
         "loose: d {:.5} ΔF {:.3} first-quarter cycles {}; tight: d {:.5} ΔF {:.3} cycles {}",
         loose.d,
