@@ -199,7 +199,7 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     let multi = progress_container();
     let (contacts_bar, callback) = contact_progress(&multi);
     // Several points at once: the contacts bar counts the contacts of all running points.
-    let concurrent = options.points_in_flight > 1 && options.point_time_limit_s.is_none();
+    let concurrent = options.points_at_once() > 1;
     let callback = |l: ehl_bearing::characterize::Progress| match l {
         ehl_bearing::characterize::Progress::IterationStarted { contacts, .. } if concurrent => {
             contacts_bar.set_prefix("running points");

@@ -4,7 +4,7 @@
 
 use ehl_bearing::study::{
     finish_study, merge_points, parse_study, run_study, MemoryStore, PointRecord, PointStore,
-    RunOptions, Shard, Study, StudyError, StudyEvent,
+    RunOptions, Shard, StoreError, Study, StudyError, StudyEvent,
 };
 use std::path::Path;
 use std::sync::Mutex;
@@ -190,4 +190,60 @@ fn concurrent_points_give_the_files_of_sequential_ones() {
     assert_eq!(sequential.4.len(), 9 * 3, "{:?}", sequential.4);
     assert_eq!(go(3), sequential);
     assert_eq!(go(100), sequential);
+}
+
+/// A store that cannot write point files (a full disk): every write fails.
+struct FullStore;
+
+impl PointStore for FullStore {
+    fn load_point(&self, _: &str) -> Result<Option<String>, StoreError> {
+        Ok(None)
+    }
+    fn save_point(&self, stem: &str, _: &str) -> Result<(), StoreError> {
+        Err(StoreError {
+            action: "writing".into(),
+            location: stem.into(),
+            message: "no space left on device".into(),
+        })
+    }
+    fn write_output(&self, name: &str, _: &[u8]) -> Result<(), StoreError> {
+        self.save_point(name, "")
+    }
+    fn point_location(&self, stem: &str) -> String {
+        stem.into()
+    }
+}
+
+/// A store error ends the run with that error, and no point is started after it: one after the
+/// other, only the first point runs; with `in_flight` at once, at most the points already taken.
+#[test]
+fn a_store_error_stops_the_run() {
+    let s = study("synthetic", "");
+    for in_flight in [1, 3] {
+        let started = Mutex::new(0);
+        let e = run_study(
+            &s,
+            &FullStore,
+            &RunOptions {
+                points_in_flight: in_flight,
+                ..RunOptions::default()
+            },
+            &|ev| {
+                if let StudyEvent::PointStarted(_) = ev {
+                    *started.lock().unwrap() += 1;
+                }
+            },
+        )
+        .unwrap_err();
+        assert!(matches!(e, StudyError::Store(_)), "{e}");
+        assert!(e.to_string().contains("no space left"), "{e}");
+        let n = *started.lock().unwrap();
+        assert!(
+            n >= 1 && n <= 2 * in_flight - 1 && n < 9,
+            "{n} points started"
+        );
+        if in_flight == 1 {
+            assert_eq!(n, 1);
+        }
+    }
 }

@@ -13,7 +13,7 @@ use super::store::{PointStore, StoreError};
 use super::trends::{fit_trends, TrendModel};
 use crate::characterize::{characterize_bearing_with_progress, CharacterizeError, Progress};
 use crate::force_element::TrendForceElement;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::Instant;
 use thiserror::Error;
@@ -64,6 +64,18 @@ pub struct RunOptions {
     /// serial equilibrium solves, the last contacts of an iteration); 1 runs the points one
     /// after the other. Results do not depend on it.
     pub points_in_flight: usize,
+}
+
+impl RunOptions {
+    /// How many points run at once: `points_in_flight` (at least 1), or 1 with a per-point time
+    /// limit.
+    pub fn points_at_once(&self) -> usize {
+        if self.point_time_limit_s.is_some() {
+            1
+        } else {
+            self.points_in_flight.max(1)
+        }
+    }
 }
 
 impl Default for RunOptions {
@@ -248,52 +260,44 @@ pub fn run_study(
         failed: Vec::new(),
         seconds: 0.0,
     };
-    let in_flight = if options.point_time_limit_s.is_some() {
-        1
-    } else {
-        options.points_in_flight.clamp(1, todo.len().max(1))
+    let in_flight = options.points_at_once().min(todo.len().max(1));
+    // `in_flight` workers take the next point of the plan until none is left (one worker: in
+    // this thread, in plan order); each point's contacts run on the current pool. A store error
+    // stops the workers from taking further points, as it stopped the one-by-one loop before.
+    let next = AtomicUsize::new(0);
+    let stop = AtomicBool::new(false);
+    let slots: Vec<Mutex<Option<Result<Outcome, StudyError>>>> =
+        todo.iter().map(|_| Mutex::new(None)).collect();
+    let worker = || {
+        while !stop.load(Ordering::Relaxed) {
+            let i = next.fetch_add(1, Ordering::Relaxed);
+            let Some(p) = todo.get(i) else { break };
+            let out = compute_point(study, store, options, p, events);
+            if out.is_err() {
+                stop.store(true, Ordering::Relaxed);
+            }
+            *slots[i].lock().unwrap_or_else(|e| e.into_inner()) = Some(out);
+        }
     };
-    let outcomes: Vec<Result<Outcome, StudyError>> = if in_flight == 1 {
-        todo.iter()
-            .map(|p| compute_point(study, store, options, p, events))
-            .collect()
+    if in_flight == 1 {
+        worker();
     } else {
-        // `in_flight` workers take the next point from the plan until none is left; each point's
-        // contacts run on the same pool. The outcomes are collected in plan order.
-        let next = AtomicUsize::new(0);
-        let slots: Vec<Mutex<Option<Result<Outcome, StudyError>>>> =
-            todo.iter().map(|_| Mutex::new(None)).collect();
         rayon::scope(|sc| {
             for _ in 0..in_flight {
-                sc.spawn(|_| loop {
-                    let i = next.fetch_add(1, Ordering::Relaxed);
-                    let Some(p) = todo.get(i) else { break };
-                    let out = compute_point(study, store, options, p, events);
-                    *slots[i].lock().unwrap_or_else(|e| e.into_inner()) = Some(out);
-                });
+                sc.spawn(|_| worker());
             }
         });
-        // (Every slot is filled: a worker that panics takes the scope down with it.)
-        slots
-            .into_iter()
-            .zip(&todo)
-            .map(|(m, p)| {
-                m.into_inner()
-                    .unwrap_or_else(|e| e.into_inner())
-                    .unwrap_or_else(|| {
-                        Err(StudyError::Store(StoreError {
-                            action: "computing".into(),
-                            location: p.file_stem(),
-                            message: "the point was planned but not computed".into(),
-                        }))
-                    })
-            })
-            .collect()
-    };
+    }
+    // Outcomes in plan order; points not taken after a store error are empty.
+    let outcomes: Vec<Option<Result<Outcome, StudyError>>> = slots
+        .into_iter()
+        .map(|m| m.into_inner().unwrap_or_else(|e| e.into_inner()))
+        .collect();
     for (p, out) in todo.iter().zip(outcomes) {
-        match out? {
-            Outcome::OutOfTime(e) => run.failed.push((*p, e)),
-            Outcome::Saved { error, converged } => {
+        match out {
+            Some(Err(e)) => return Err(e),
+            Some(Ok(Outcome::OutOfTime(e))) => run.failed.push((*p, e)),
+            Some(Ok(Outcome::Saved { error, converged })) => {
                 run.computed += 1;
                 if let Some(e) = error {
                     run.failed.push((*p, e));
@@ -301,6 +305,7 @@ pub fn run_study(
                     run.not_converged += 1;
                 }
             }
+            None => {}
         }
     }
     run.seconds = t0.elapsed().as_secs_f64();
