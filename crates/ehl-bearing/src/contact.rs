@@ -832,11 +832,11 @@ pub fn characterize_harmonic(
         for k in history.len() + 1..=upto {
             let t = k as f64 * dt;
             let w = c.load * (1.0 + s.amplitude * (omega * t + phase).sin());
-            if k == 1 && loose > 0 {
-                solver.set_tol_film(s.settling_tol_film)?;
-            } else if k == loose + 1 {
-                solver.set_tol_film(s.step_tol_film)?;
-            }
+            solver.set_tol_film(if k <= loose {
+                s.settling_tol_film
+            } else {
+                s.step_tol_film
+            })?;
             history.push(solver.step(w)?);
         }
         Ok(())
