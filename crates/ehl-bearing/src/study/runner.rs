@@ -59,7 +59,7 @@ pub struct RunOptions {
     /// With a budget the points run one at a time, so that each budget covers a point that has
     /// the whole thread pool.
     pub point_time_limit_s: Option<f64>,
-    /// Largest number of points computed at once (≥ 1; default 2). Their contacts share the
+    /// Largest number of points computed at once (default 2; 0 is taken as 1). Their contacts share the
     /// current rayon pool, so a second point fills the threads that one point leaves idle (its
     /// serial equilibrium solves, the last contacts of an iteration); 1 runs the points one
     /// after the other. Results do not depend on it.
