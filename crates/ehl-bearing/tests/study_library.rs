@@ -215,7 +215,7 @@ impl PointStore for FullStore {
 }
 
 /// A store error ends the run with that error, and no point is started after it: one after the
-/// other, only the first point runs; with `in_flight` at once, at most the points already taken.
+/// other, only the first point runs; with `in_flight` at once, at most one point per worker.
 #[test]
 fn a_store_error_stops_the_run() {
     let s = study("synthetic", "");
@@ -237,13 +237,8 @@ fn a_store_error_stops_the_run() {
         .unwrap_err();
         assert!(matches!(e, StudyError::Store(_)), "{e}");
         assert!(e.to_string().contains("no space left"), "{e}");
+        // Every write fails, so each worker stops after its first point.
         let n = *started.lock().unwrap();
-        assert!(
-            n >= 1 && n <= 2 * in_flight - 1 && n < 9,
-            "{n} points started"
-        );
-        if in_flight == 1 {
-            assert_eq!(n, 1);
-        }
+        assert!((1..=in_flight).contains(&n), "{n} points started");
     }
 }
