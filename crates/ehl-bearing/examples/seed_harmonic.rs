@@ -1,0 +1,75 @@
+//! The harmonic method on the 22 contacts of the seed bearing at one speed (dry-Hertz loads of
+//! `benches/seed_contacts.csv`), one after the other on one thread, at the default settings:
+//! one line per contact (race, load, d, ΔF, c, settling steps, periodicity, cycles per step,
+//! steps not converged, seconds) and a total. Used for the step-iteration study of
+//! BENCHMARKS.md (issue 16).
+//!
+//! `cargo run --release -p ehl-bearing --example seed_harmonic -- [RPM [CONTACT…]]`: RPM 3000
+//! (default), 4000 or 5000; CONTACTs select some, as ball number and race initial (`7i 5o`).
+use ehl_bearing::contact::{ball_mass, characterize_harmonic, Excitation, HarmonicSettings};
+use ehl_bearing::ehl::EhlContact;
+use ehl_bearing::material::{reduced_modulus, Lubricant, Solid};
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let rpm = args.first().cloned().unwrap_or_else(|| "3000".into());
+    let only = &args[args.len().min(1)..];
+    let e = reduced_modulus(&Solid::AISI_52100, &Solid::AISI_52100);
+    let m = ball_mass(7e-3, Solid::AISI_52100.density);
+    let s = HarmonicSettings::default();
+    let (mut steps, mut cycles, mut seconds, mut bad) = (0usize, 0.0, 0.0, 0usize);
+    for line in include_str!("../benches/seed_contacts.csv")
+        .lines()
+        .filter(|l| l.starts_with(&format!("{rpm},")))
+    {
+        let f: Vec<&str> = line.split(',').collect();
+        if !only.is_empty() && !only.contains(&format!("{}{}", f[1], &f[2][..1])) {
+            continue;
+        }
+        let v: Vec<f64> = f[3..]
+            .iter()
+            .map(|x| x.parse().expect("a number"))
+            .collect();
+        let c = EhlContact {
+            load: v[0],
+            rx: v[1],
+            ry: v[2],
+            sum_velocity: v[3],
+            e_reduced: e,
+            lubricant: Lubricant::DEFAULT_MINERAL_OIL,
+        };
+        match characterize_harmonic(&c, m, &s) {
+            Ok(fit) => {
+                let Excitation::Harmonic(x) = fit.excitation else {
+                    unreachable!("the harmonic method records a harmonic excitation")
+                };
+                let n = fit.history.len();
+                steps += n;
+                cycles += x.cycles_per_step * n as f64;
+                seconds += fit.seconds;
+                bad += x.steps_not_converged;
+                println!(
+                    "{} ball {:>2} {:<5} {:7.1} N: d {:.5} dF {:8.3} c {:8.3} | settling {:2} periodicity {:.2e} \
+                     cycles/step {:.2} not converged {} {:.2} s",
+                    rpm,
+                    f[1],
+                    f[2],
+                    c.load,
+                    fit.d,
+                    fit.delta_f,
+                    fit.c.unwrap_or(f64::NAN),
+                    x.settling_steps,
+                    x.periodicity,
+                    x.cycles_per_step,
+                    x.steps_not_converged,
+                    fit.seconds
+                );
+            }
+            Err(err) => println!("{rpm} ball {} {} {:.1} N: error {err}", f[1], f[2], c.load),
+        }
+    }
+    println!(
+        "total: {steps} steps, {:.2} cycles/step, {bad} steps not converged, {seconds:.1} s",
+        cycles / steps.max(1) as f64
+    );
+}
