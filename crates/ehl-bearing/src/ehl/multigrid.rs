@@ -871,15 +871,26 @@ pub(super) mod tests {
         }
     }
 
+    /// The solutions of `solver` and of the generic elimination for the system (n, a, x).
+    fn both(
+        solver: fn(&mut [f64], &mut [f64], usize) -> bool,
+        n: usize,
+        a: &[f64],
+        x: &[f64],
+    ) -> (Vec<f64>, Vec<f64>) {
+        let (mut a1, mut x1) = (a.to_vec(), x.to_vec());
+        let (mut a2, mut x2) = (a.to_vec(), x.to_vec());
+        assert!(solver(&mut a1, &mut x1, n), "n = {n}");
+        assert!(solve_band_generic::<2>(&mut a2, &mut x2, n), "n = {n}");
+        (x1, x2)
+    }
+
     /// The written-out forward elimination gives the generic elimination's result bit for bit,
     /// and refuses a zero pivot.
     #[test]
     fn forward_pentadiagonal_solver_matches_the_generic_one() {
         random_systems(|n, a, x| {
-            let (mut a1, mut x1) = (a.to_vec(), x.to_vec());
-            let (mut a2, mut x2) = (a.to_vec(), x.to_vec());
-            assert!(solve_band_forward(&mut a1, &mut x1, n));
-            assert!(solve_band_generic::<2>(&mut a2, &mut x2, n));
+            let (x1, x2) = both(solve_band_forward, n, a, x);
             assert_eq!(x1, x2, "n = {n}");
         });
         let mut a = vec![1.0; 15];
@@ -896,10 +907,7 @@ pub(super) mod tests {
     #[test]
     fn two_ended_pentadiagonal_solver_matches_the_generic_one() {
         random_systems(|n, a, x| {
-            let (mut a1, mut x1) = (a.to_vec(), x.to_vec());
-            let (mut a2, mut x2) = (a.to_vec(), x.to_vec());
-            assert!(solve_band(&mut a1, &mut x1, n));
-            assert!(solve_band_generic::<2>(&mut a2, &mut x2, n));
+            let (x1, x2) = both(solve_band, n, a, x);
             let scale = x2.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
             for (r, (u, v)) in x1.iter().zip(&x2).enumerate() {
                 assert!(
