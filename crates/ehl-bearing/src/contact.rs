@@ -233,13 +233,14 @@ pub struct HarmonicExcitation {
     pub settling_tol_film: f64,
     /// Largest number of FAS cycles per step.
     pub max_cycles_per_step: usize,
-    /// Coarsest multigrid level of the steps, points per side (the setting, applied when the
-    /// grid is at least 4·(step_coarsest − 1) + 1; 0 in results written before it existed, whose
-    /// steps used the steady solutions' coarsest level).
+    /// Coarsest multigrid level the steps used, points per side: the setting `step_coarsest`
+    /// where the grid is at least 4·(step_coarsest − 1) + 1, else the steady solutions'
+    /// `ehl.coarsest` (0 in results written before it existed, whose steps used the steady
+    /// solutions' coarsest level).
     #[serde(default)]
     pub step_coarsest: usize,
-    /// Relaxation sweeps per visit of the steps' coarsest level (the setting; 0 in results
-    /// written before it existed).
+    /// Relaxation sweeps per visit of the steps' coarsest level as used (`step_coarse_sweeps`
+    /// with `step_coarsest`, else `ehl.coarse_sweeps`; 0 in results written before it existed).
     #[serde(default)]
     pub step_coarse_sweeps: usize,
     /// Steps that stopped at the cycle limit.
@@ -924,8 +925,8 @@ pub fn characterize_harmonic(
             step_tol_film: s.step_tol_film,
             settling_tol_film: s.settling_tol_film,
             max_cycles_per_step: s.max_cycles_per_step,
-            step_coarsest: s.step_coarsest,
-            step_coarse_sweeps: s.step_coarse_sweeps,
+            step_coarsest: step_settings.coarsest,
+            step_coarse_sweeps: step_settings.coarse_sweeps,
             steps_not_converged: not_converged,
             max_step_residual: max_res,
             cycles_per_step: cycles as f64 / total as f64,

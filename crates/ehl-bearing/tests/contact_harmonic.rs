@@ -500,6 +500,8 @@ fn loose_settling_steps_keep_the_law() {
     .unwrap();
     let x = excitation(&loose);
     assert_eq!(x.settling_tol_film, 1e-3);
+    // 65² ≥ 4·(17 − 1) + 1: the steps ran on their own 17² level with 6 sweeps per visit.
+    assert_eq!((x.step_coarsest, x.step_coarse_sweeps), (17, 6));
     let quarter = base.steps_per_period / 4;
     let cycles = |f: &ContactFit| -> usize { f.history[..quarter].iter().map(|s| s.cycles).sum() };
     eprintln!(
@@ -528,4 +530,23 @@ fn loose_settling_steps_keep_the_law() {
         loose.delta_f,
         tight.delta_f
     );
+}
+
+/// A steps' coarsest level that leaves fewer than two levels above it on the grid is not used:
+/// the steps run on the steady solutions' coarsest level and sweeps, and the result records what
+/// was used (65² < 4·(33 − 1) + 1: 33² with `ehl.coarse_sweeps` 10, not the setting's 4).
+#[test]
+fn the_steps_coarsest_level_recorded_is_the_one_used() {
+    let s = HarmonicSettings {
+        step_coarsest: 33,
+        step_coarse_sweeps: 4,
+        ..defaults_on(65)
+    };
+    let f = characterize_harmonic(&inner(600.0), mass(), &s).unwrap();
+    let x = excitation(&f);
+    assert_eq!(
+        (x.step_coarsest, x.step_coarse_sweeps),
+        (s.ehl.coarsest, s.ehl.coarse_sweeps)
+    );
+    assert_eq!((x.step_coarsest, x.step_coarse_sweeps), (33, 10));
 }
