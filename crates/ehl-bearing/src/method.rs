@@ -960,6 +960,15 @@ impl Method {
                 count("max_cycles_per_step", s.max_cycles_per_step, 1, 1000)?;
                 positive("step_tol_film", s.step_tol_film)?;
                 positive("settling_tol_film", s.settling_tol_film)?;
+                let n = s.step_coarsest;
+                if !((9..=1025).contains(&n) && (n - 1).is_power_of_two()) {
+                    return Err(MethodError::setting(
+                        key("step_coarsest"),
+                        n,
+                        "a grid size 2^k + 1 from 9 to 1025",
+                    ));
+                }
+                count("step_coarse_sweeps", s.step_coarse_sweeps, 1, 100)?;
                 grid(&s.ehl)
             }
         }

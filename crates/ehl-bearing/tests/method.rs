@@ -231,3 +231,40 @@ fn case_files_carry_a_method_that_the_command_line_can_override() {
         "{e}"
     );
 }
+
+/// The steps' multigrid settings of a harmonic method built in code (they are not
+/// `[method_options]` keys) are checked with the rest before any solve: a coarsest level that is
+/// not 2^k + 1 in 9–1025, or 0 sweeps, names the setting, the value and the range.
+#[test]
+fn harmonic_step_multigrid_settings_are_validated() {
+    use ehl_bearing::contact::HarmonicSettings;
+    for (s, field, value, range) in [
+        (
+            HarmonicSettings {
+                step_coarsest: 16,
+                ..HarmonicSettings::default()
+            },
+            "step_coarsest",
+            "16",
+            "2^k + 1 from 9 to 1025",
+        ),
+        (
+            HarmonicSettings {
+                step_coarse_sweeps: 0,
+                ..HarmonicSettings::default()
+            },
+            "step_coarse_sweeps",
+            "0",
+            "1 to 100",
+        ),
+    ] {
+        let msg = Method::Harmonic(s).validate().unwrap_err().to_string();
+        assert!(
+            msg.contains(field) && msg.contains(value) && msg.contains(range),
+            "{msg}"
+        );
+    }
+    assert!(Method::Harmonic(HarmonicSettings::default())
+        .validate()
+        .is_ok());
+}
