@@ -570,90 +570,136 @@ fn invalid(msg: String) -> Error {
     crate::fit::FitError::Invalid(msg).into()
 }
 
+/// A setting of [`HarmonicSettings`] outside its range: the name the library's message uses, the
+/// key a user writes in a case file's `[method_options]` (`crate::method::Method::validate`),
+/// the value (with its unit where it has one) and the valid range.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct SettingViolation {
+    pub name: &'static str,
+    pub key: &'static str,
+    pub value: String,
+    pub range: &'static str,
+}
+
 impl HarmonicSettings {
     /// Checks every setting; the error names the setting, its value and the valid range.
     pub fn validate(&self) -> Result<(), Error> {
-        if !(self.amplitude.is_finite() && self.amplitude > 0.0 && self.amplitude <= 0.9) {
-            return Err(invalid(format!(
-                "amplitude = {}: expected 0 < ε ≤ 0.9",
-                self.amplitude
-            )));
+        match self.violation() {
+            Some(v) => Err(invalid(format!(
+                "{} = {}: expected {}",
+                v.name, v.value, v.range
+            ))),
+            None => Ok(()),
+        }
+    }
+
+    /// The first setting outside its range (the EHL settings are checked by their own
+    /// validation), or None. One list for the library's [`HarmonicSettings::validate`] and the
+    /// method's validation.
+    pub(crate) fn violation(&self) -> Option<SettingViolation> {
+        let bad = |name, key, value: String, range| {
+            Some(SettingViolation {
+                name,
+                key,
+                value,
+                range,
+            })
+        };
+        let positive = |v: f64| v.is_finite() && v > 0.0;
+        if !(positive(self.amplitude) && self.amplitude <= 0.9) {
+            return bad(
+                "amplitude",
+                "amplitude",
+                self.amplitude.to_string(),
+                "a relative amplitude 0 < ε ≤ 0.9",
+            );
         }
         match self.frequency {
-            ExcitationFrequency::FractionOfNatural(f)
-                if !(f.is_finite() && f > 0.0 && f <= 10.0) =>
-            {
-                return Err(invalid(format!(
-                    "frequency fraction of ω_n = {f}: expected 0 < Ω/ω_n ≤ 10"
-                )))
+            ExcitationFrequency::FractionOfNatural(f) if !(positive(f) && f <= 10.0) => {
+                return bad(
+                    "frequency fraction of ω_n",
+                    "frequency_fraction",
+                    f.to_string(),
+                    "a fraction of the natural frequency 0 < Ω/ω_n ≤ 10",
+                )
             }
-            ExcitationFrequency::RadPerSecond(w) if !(w.is_finite() && w > 0.0) => {
-                return Err(invalid(format!(
-                    "frequency = {w} rad/s: expected finite and > 0"
-                )))
+            ExcitationFrequency::RadPerSecond(w) if !positive(w) => {
+                return bad(
+                    "frequency",
+                    "frequency_rad_s",
+                    format!("{w} rad/s"),
+                    "a finite number > 0",
+                )
             }
             _ => {}
         }
-        if self.settling_periods > 100 {
-            return Err(invalid(format!(
-                "settling_periods = {}: expected 0 to 100",
-                self.settling_periods
-            )));
+        let counts = [
+            (
+                "settling_periods",
+                self.settling_periods,
+                0,
+                100,
+                "0 to 100",
+            ),
+            (
+                "recorded_periods",
+                self.recorded_periods,
+                1,
+                100,
+                "1 to 100",
+            ),
+            (
+                "steps_per_period",
+                self.steps_per_period,
+                8,
+                4096,
+                "8 to 4096",
+            ),
+        ];
+        for (k, v, lo, hi, range) in counts {
+            if !(lo..=hi).contains(&v) {
+                return bad(k, k, v.to_string(), range);
+            }
         }
         if !(self.periodicity_tol.is_finite() && self.periodicity_tol >= 0.0) {
-            return Err(invalid(format!(
-                "periodicity_tol = {}: expected finite and ≥ 0",
-                self.periodicity_tol
-            )));
-        }
-        if !(1..=100).contains(&self.recorded_periods) {
-            return Err(invalid(format!(
-                "recorded_periods = {}: expected 1 to 100",
-                self.recorded_periods
-            )));
-        }
-        if !(8..=4096).contains(&self.steps_per_period) {
-            return Err(invalid(format!(
-                "steps_per_period = {}: expected 8 to 4096",
-                self.steps_per_period
-            )));
+            return bad(
+                "periodicity_tol",
+                "periodicity_tol",
+                self.periodicity_tol.to_string(),
+                "a finite number ≥ 0",
+            );
         }
         if let Some(m) = self.mass {
-            if !(m.is_finite() && m > 0.0) {
-                return Err(invalid(format!("mass = {m} kg: expected finite and > 0")));
+            if !positive(m) {
+                return bad("mass", "mass_kg", format!("{m} kg"), "a finite number > 0");
             }
         }
         if !(1..=1000).contains(&self.max_cycles_per_step) {
-            return Err(invalid(format!(
-                "max_cycles_per_step = {}: expected 1 to 1000",
-                self.max_cycles_per_step
-            )));
+            let v = self.max_cycles_per_step.to_string();
+            return bad("max_cycles_per_step", "max_cycles_per_step", v, "1 to 1000");
         }
-        if !(self.step_tol_film.is_finite() && self.step_tol_film > 0.0) {
-            return Err(invalid(format!(
-                "step_tol_film = {}: expected finite and > 0",
-                self.step_tol_film
-            )));
-        }
-        if !(self.settling_tol_film.is_finite() && self.settling_tol_film > 0.0) {
-            return Err(invalid(format!(
-                "settling_tol_film = {}: expected finite and > 0",
-                self.settling_tol_film
-            )));
+        for (k, v) in [
+            ("step_tol_film", self.step_tol_film),
+            ("settling_tol_film", self.settling_tol_film),
+        ] {
+            if !positive(v) {
+                return bad(k, k, v.to_string(), "a finite number > 0");
+            }
         }
         let n = self.step_coarsest;
         if !((9..=1025).contains(&n) && (n - 1).is_power_of_two()) {
-            return Err(invalid(format!(
-                "step_coarsest = {n}: expected 2^k + 1 points from 9 to 1025"
-            )));
+            return bad(
+                "step_coarsest",
+                "step_coarsest",
+                n.to_string(),
+                "a grid size 2^k + 1 from 9 to 1025",
+            );
         }
         if !(1..=100).contains(&self.step_coarse_sweeps) {
-            return Err(invalid(format!(
-                "step_coarse_sweeps = {}: expected 1 to 100",
-                self.step_coarse_sweeps
-            )));
+            let v = self.step_coarse_sweeps.to_string();
+            return bad("step_coarse_sweeps", "step_coarse_sweeps", v, "1 to 100");
         }
-        Ok(())
+        None
     }
 }
 

@@ -929,46 +929,9 @@ impl Method {
                 grid(&s.ehl)
             }
             Method::Harmonic(s) => {
-                amplitude(s.amplitude, 0.9, true)?;
-                match s.frequency {
-                    crate::contact::ExcitationFrequency::FractionOfNatural(f) => {
-                        if !(f.is_finite() && f > 0.0 && f <= 10.0) {
-                            return Err(MethodError::setting(
-                                key("frequency_fraction"),
-                                f,
-                                "a fraction of the natural frequency 0 < Ω/ω_n ≤ 10",
-                            ));
-                        }
-                    }
-                    crate::contact::ExcitationFrequency::RadPerSecond(w) => {
-                        positive("frequency_rad_s", w)?
-                    }
+                if let Some(v) = s.violation() {
+                    return Err(MethodError::setting(key(v.key), v.value, v.range));
                 }
-                count("settling_periods", s.settling_periods, 0, 100)?;
-                if !(s.periodicity_tol.is_finite() && s.periodicity_tol >= 0.0) {
-                    return Err(MethodError::setting(
-                        key("periodicity_tol"),
-                        s.periodicity_tol,
-                        "a finite number ≥ 0",
-                    ));
-                }
-                count("recorded_periods", s.recorded_periods, 1, 100)?;
-                count("steps_per_period", s.steps_per_period, 8, 4096)?;
-                if let Some(m) = s.mass {
-                    positive("mass_kg", m)?;
-                }
-                count("max_cycles_per_step", s.max_cycles_per_step, 1, 1000)?;
-                positive("step_tol_film", s.step_tol_film)?;
-                positive("settling_tol_film", s.settling_tol_film)?;
-                let n = s.step_coarsest;
-                if !((9..=1025).contains(&n) && (n - 1).is_power_of_two()) {
-                    return Err(MethodError::setting(
-                        key("step_coarsest"),
-                        n,
-                        "a grid size 2^k + 1 from 9 to 1025",
-                    ));
-                }
-                count("step_coarse_sweeps", s.step_coarse_sweeps, 1, 100)?;
                 grid(&s.ehl)
             }
         }
