@@ -499,6 +499,11 @@ impl Level {
     }
 }
 
+/// Whether a pivot cannot be divided by (vanishing or not finite): the line solvers give up.
+fn unusable_pivot(v: f64) -> bool {
+    v.abs() <= 1e-300 || !v.is_finite()
+}
+
 /// Solves the line's pentadiagonal system in place (no pivoting): `a` holds n rows of 5
 /// entries, row r's entry for column r + d (d = −2…2) at a[5r + d + 2]. The solution overwrites
 /// `x`; `a` is overwritten. False if a pivot vanishes or the solution is not finite.
@@ -520,7 +525,6 @@ fn solve_band(a: &mut [f64], x: &mut [f64], n: usize) -> bool {
     debug_assert!(a.len() >= 5 * n && x.len() >= n);
     let a = &mut a[..5 * n];
     let x = &mut x[..n];
-    let bad = |v: f64| v.abs() <= 1e-300 || !v.is_finite();
     // Middle rows k and k + 1; the top eliminates with pivots 0…k − 1, the bottom with pivots
     // n − 1 down to k + 2. Their updates of rows k and k + 1 touch disjoint multipliers
     // (columns < k from the top, > k + 1 from the bottom) and add to the same 2×2 block.
@@ -530,7 +534,7 @@ fn solve_band(a: &mut [f64], x: &mut [f64], n: usize) -> bool {
         if t < top {
             let r = t;
             let piv = a[5 * r + 2];
-            if bad(piv) {
+            if unusable_pivot(piv) {
                 return false;
             }
             let inv = 1.0 / piv;
@@ -548,7 +552,7 @@ fn solve_band(a: &mut [f64], x: &mut [f64], n: usize) -> bool {
         if t < bottom {
             let r = n - 1 - t;
             let piv = a[5 * r + 2];
-            if bad(piv) {
+            if unusable_pivot(piv) {
                 return false;
             }
             let inv = 1.0 / piv;
@@ -568,12 +572,12 @@ fn solve_band(a: &mut [f64], x: &mut [f64], n: usize) -> bool {
     // The 2×2 system of rows k and k + 1 in x_k, x_{k+1}.
     let (akk, ak1) = (a[5 * k + 2], a[5 * k + 3]);
     let (a1k, a11) = (a[5 * k + 6], a[5 * k + 7]);
-    if bad(akk) {
+    if unusable_pivot(akk) {
         return false;
     }
     let l = a1k / akk;
     let d2 = a11 - l * ak1;
-    if bad(d2) {
+    if unusable_pivot(d2) {
         return false;
     }
     x[k + 1] = (x[k + 1] - l * x[k]) / d2;
@@ -602,8 +606,8 @@ fn solve_band(a: &mut [f64], x: &mut [f64], n: usize) -> bool {
     true
 }
 
-/// Solves the line's pentadiagonal system in place by forward elimination (no pivoting): `a` holds n rows of 5
-/// entries, row r's entry for column r + d (d = −2…2) at a[5r + d + 2]. The solution overwrites
+/// Solves the line's pentadiagonal system in place by forward elimination (no pivoting): `a`
+/// holds n rows of 5 entries, row r's entry for column r + d (d = −2…2) at a[5r + d + 2]. The solution overwrites
 /// `x`. False if a pivot vanishes or the solution is not finite. Written out for the half
 /// bandwidth 2 of [`BAND`] (the generic loop spent a quarter of a steady solve in its bounds and
 /// loop logic); the operations and their order are those of Gaussian elimination without
@@ -617,7 +621,7 @@ fn solve_band_forward(a: &mut [f64], x: &mut [f64], n: usize) -> bool {
         let (head, tail) = a.split_at_mut(5 * r + 5);
         let row: &mut [f64; 5] = (&mut head[5 * r..]).try_into().expect("5 entries");
         let piv = row[2];
-        if piv.abs() <= 1e-300 || !piv.is_finite() {
+        if unusable_pivot(piv) {
             return false;
         }
         // One division per row: the pivot's reciprocal is kept in its place for the back
