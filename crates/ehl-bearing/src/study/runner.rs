@@ -337,15 +337,15 @@ fn compute_point(
     let deadline = options
         .point_time_limit_s
         .and_then(crate::budget::Deadline::after_seconds);
-    let record = match deadline {
-        None => run_point(study, &p, &|e| events(StudyEvent::Loop(p, e))),
-        Some(d) => {
-            let mut bounded = study.clone();
-            bounded.method = bounded.method.with_deadline(Some(d));
-            bounded.settings.deadline = Some(d);
-            run_point(&bounded, &p, &|e| events(StudyEvent::Loop(p, e)))
-        }
-    };
+    let bounded = deadline.map(|d| {
+        let mut b = study.clone();
+        b.method = b.method.with_deadline(Some(d));
+        b.settings.deadline = Some(d);
+        b
+    });
+    let record = run_point(bounded.as_ref().unwrap_or(study), &p, &|e| {
+        events(StudyEvent::Loop(p, e))
+    });
     if record.error.is_some() && deadline.is_some_and(|d| d.expired()) {
         // Out of its time budget: not a result of the point, so no point file.
         let e = format!(
