@@ -109,13 +109,13 @@ fn settings(args: &EhlArgs) -> EhlSettings {
 /// with the way to bound it (issue 15: `ehl --grid 1025` gave up after 293 s; measured since on
 /// the 2-core machine, 2026-11-25: circular M 20 L 10 0.4 s at 513², 1.9 s at 1025²; the seed's
 /// inner contact 0.4 s and 12 s, five starts, at 1025²; a quasi-static family of 7 solutions at
-/// 513², 9–90 s).
+/// 513², 9–90 s in docs/contact.md, "Default accuracy").
 pub fn large_grid_notice(s: &EhlSettings, time_limit: Option<f64>) {
     if s.grid >= 513 {
         eprintln!(
-            "note: a {0}×{0} grid takes seconds per EHL solve (0.4 s at 513², 2–12 s at 1025² \
-             on two cores for the seed contacts) and up to minutes for a characterization or a \
-             hard case (up to {1} cycles per start){2}",
+            "note: a {0}×{0} grid takes seconds per EHL solve (on two cores: 0.4 s at 513², \
+             2 s for a circular contact and 12 s for the seed's inner contact at 1025²) and up to \
+             minutes for a characterization or a hard case (up to {1} cycles per start){2}",
             s.grid,
             s.max_cycles,
             match time_limit {
