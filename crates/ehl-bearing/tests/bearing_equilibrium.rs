@@ -3,6 +3,7 @@
 #![allow(clippy::needless_range_loop)]
 
 mod bearing_common;
+mod seeded;
 use bearing_common::fd_jacobian;
 use ehl_bearing::bearing::{
     solve_equilibrium, BallState, Bearing, BearingGeometry, BearingModel, ContactLaws, Control,
@@ -551,7 +552,7 @@ fn loads_the_bearing_cannot_carry_are_errors_with_residual_or_reason() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(24))]
+    #![proptest_config(seeded::config(24))]
     /// The analytic (dual-number + implicit-function) Jacobian equals central finite differences
     /// of the reactions, for random displacements, speeds and race controls. Tolerance: central
     /// differences with h = 0.1 nm have truncation error ~h²·f‴ and round-off ~ε·F/h ≈ 1e-4 N/m·…;

@@ -5,6 +5,7 @@
 #![allow(clippy::needless_range_loop)]
 
 mod bearing_common;
+mod seeded;
 use bearing_common::fd_jacobian;
 use ehl_bearing::bearing::equilibrium::MU_MAX;
 use ehl_bearing::bearing::{
@@ -613,7 +614,7 @@ fn kinematics_key_in_case_files() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(16))]
+    #![proptest_config(seeded::config(16))]
     /// The exact Jacobian equals central finite differences for the 218 at 15000 rpm (contact
     /// angles split by 30°, gyroscopic friction near its limit), around its thrust equilibrium
     /// (δ_a = −20 µm), for every race control and both kinematics models. Tolerance as in

@@ -1,6 +1,7 @@
 //! Case files: the seed parses to the paper's values; every invalid input is a clear error naming
 //! the key, never a panic.
 
+mod seeded;
 use ehl_bearing::bearing::{Control, RaceControl};
 use ehl_bearing::io::parse_case;
 use proptest::prelude::*;
@@ -164,7 +165,7 @@ fn wrong_types_and_enum_values_name_the_key() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(400))]
+    #![proptest_config(seeded::config(400))]
     /// Arbitrary text never panics the parser.
     #[test]
     fn arbitrary_text_never_panics(s in "\\PC{0,400}") {

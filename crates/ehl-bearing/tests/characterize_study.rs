@@ -2,6 +2,7 @@
 //! the synthetic characterizer's known laws, trend JSON round trip, and the trend force element
 //! against the characterized equilibria it came from.
 
+mod seeded;
 use ehl_bearing::characterize::SyntheticCharacterizer;
 use ehl_bearing::io::InputError;
 use ehl_bearing::study::{
@@ -160,7 +161,7 @@ fn inline_case_equals_the_file_case() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(seeded::config(200))]
     /// Random study text: never panics; an error or a study with valid lists.
     #[test]
     fn random_study_text_never_panics(

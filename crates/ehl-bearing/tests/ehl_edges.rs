@@ -48,10 +48,10 @@ fn report(which: usize) {
 }
 
 /// A runner with a fixed seed (CI runs the same cases every time), or a random one with
-/// `EDGE_RANDOM=1`.
+/// `EHL_TEST_RANDOM=1` (as the property tests, `tests/seeded`).
 fn runner(n: u32) -> TestRunner {
     let config = Config::with_cases(n);
-    if std::env::var("EDGE_RANDOM").is_ok() {
+    if std::env::var("EHL_TEST_RANDOM").is_ok_and(|v| v != "0") {
         TestRunner::new(config)
     } else {
         TestRunner::new_with_rng(config, TestRng::deterministic_rng(RngAlgorithm::ChaCha))

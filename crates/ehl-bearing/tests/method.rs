@@ -2,6 +2,7 @@
 //! ranges for case files, study files, the command line and the bindings; errors name the key,
 //! the value and the range; settings round-trip through JSON; no input panics.
 
+mod seeded;
 use ehl_bearing::method::{Method, MethodError, GRID_RANGE};
 use proptest::prelude::*;
 
@@ -170,7 +171,7 @@ fn methods_round_trip_through_json() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(512))]
+    #![proptest_config(seeded::config(512))]
     #[test]
     fn arbitrary_options_never_panic(
         name in prop::sample::select(vec!["quasi-static", "harmonic", "hertz", "synthetic", "x"]),

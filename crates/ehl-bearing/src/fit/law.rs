@@ -6,8 +6,10 @@
 //! Q(δ) = Q_j·exp(s·(δ − δ_j)),   s = Q′(δ_j)/Q(δ_j) = K·d·δ_j^(d−1) / (K·δ_j^d + ΔF),
 //! ```
 //!
-//! which matches value and slope at δ_j (C¹), is positive with a positive slope everywhere (so a
-//! Newton solver never meets a flat region) and decays to 0 as δ → −∞ (the film thickens and the
+//! which matches value and slope at δ_j (C¹), is positive with a positive slope everywhere above
+//! the floating-point floor of the exponential (exactly 0 once s·(δ − δ_j) + ln(Q_j/1 N) < −745,
+//! some 700 decay lengths below the joint: a separated ball), so a Newton solver never meets a flat
+//! region near the fitted range, and decays to 0 as δ → −∞ (the film thickens and the
 //! hydrodynamic force vanishes). The joint is δ_j = max(f·δ_min, δ*) with f the joint fraction
 //! (default 0.5) and δ* = ((Q(δ_min)/2 − ΔF)/K)^(1/d) the approach where the power law falls to
 //! half its value at δ_min (δ* = 0 if it never does for δ > 0, i.e. ΔF ≥ Q(δ_min)/2). So
@@ -46,8 +48,10 @@ pub enum RangeStatus {
 /// δ_j  = max(f·δ_min, δ*),  δ* = ((Q(δ_min)/2 − ΔF)/K)^(1/d)  (δ* = 0 if Q(δ_min)/2 ≤ ΔF)
 /// ```
 ///
-/// Value and slope are continuous at δ_j; Q > 0 and dQ/dδ > 0 everywhere (no flat region for a
-/// Newton solver); Q → 0 as δ → −∞ (film thicker than at zero approach: the hydrodynamic force
+/// Value and slope are continuous at δ_j; Q > 0 and dQ/dδ > 0 everywhere down to the floating-point
+/// floor of the tail (no flat region for a Newton solver): where s·(δ − δ_j) + ln(Q_j/1 N) falls
+/// below ≈ −745 the extension is exactly 0 N with slope 0 — a contact separated by some 700 decay
+/// lengths carries no load; Q → 0 as δ → −∞ (film thicker than at zero approach: the hydrodynamic force
 /// vanishes). f is the joint fraction ([`DEFAULT_JOINT_FRACTION`] = 0.5); δ* keeps
 /// Q_j ≥ Q(δ_min)/2, so a fitted ΔF < 0 still gives a positive law. Justification and tests:
 /// `docs/fit.md`. Construct with [`FittedLaw::new`] or [`PowerLawFit::law`](super::PowerLawFit::law);
