@@ -12,15 +12,34 @@ use serde_json::Value;
 use std::io::IsTerminal;
 use std::path::PathBuf;
 
+/// Most threads `--threads` accepts: 4 per core of this machine (at least 16). The work is
+/// CPU-bound, so threads beyond the cores only add overhead; 100 000 threads took minutes to
+/// start and stalled the machine.
+pub fn max_threads() -> usize {
+    std::thread::available_parallelism().map_or(4, |n| n.get()) * 4
+}
+
+/// Checks `--threads N`: at least 1 and at most [`max_threads`].
+pub fn check_threads(threads: Option<usize>) -> anyhow::Result<()> {
+    let max = max_threads().max(16);
+    match threads {
+        Some(n) if n == 0 || n > max => bail!(
+            "--threads {n}: expected 1 to {max} (4 per core of this machine; the work is \
+             CPU-bound, more threads than cores only add overhead)"
+        ),
+        _ => Ok(()),
+    }
+}
+
 /// Run `f` on a rayon pool of `threads` threads (the global pool, sized by RAYON_NUM_THREADS or
-/// the number of cores, when None).
+/// the number of cores, when None); `threads` is checked by [`check_threads`].
 pub fn with_threads<T: Send>(
     threads: Option<usize>,
     f: impl FnOnce() -> anyhow::Result<T> + Send,
 ) -> anyhow::Result<T> {
+    check_threads(threads)?;
     match threads {
-        None => f(),
-        Some(0) => bail!("--threads 0: expected at least 1 thread"),
+        None | Some(0) => f(),
         Some(n) => rayon::ThreadPoolBuilder::new()
             .num_threads(n)
             .build()

@@ -266,7 +266,9 @@ pub fn run(args: &EhlArgs) -> Result<()> {
                     DensityArg::Incompressible => DensityModel::Incompressible,
                 },
             );
-            ehl::solve_moes(&case, &s)?
+            ehl::solve_moes(&case, &s).with_context(|| {
+                format!("--moes-m {m} --moes-l {l} --ry-over-rx {}", args.ry_over_rx)
+            })?
         }
         _ => bail!("give a contact file, or both --moes-m and --moes-l"),
     };

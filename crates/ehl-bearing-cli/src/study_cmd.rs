@@ -151,9 +151,7 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
         anyhow::bail!("give a study file and -o DIR (or `study merge`)");
     };
     let study = load_study(study_path, args.method.as_deref())?;
-    if args.threads == Some(0) {
-        anyhow::bail!("--threads 0: expected at least 1 thread");
-    }
+    crate::characterize_cmd::check_threads(args.threads)?;
     if args.points_in_flight == 0 {
         anyhow::bail!("--points-in-flight 0: expected at least 1 point");
     }

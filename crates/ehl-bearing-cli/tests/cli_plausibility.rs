@@ -180,3 +180,39 @@ fn an_unresolved_film_is_reported() {
     assert!(o.status.success(), "{err}");
     assert!(err.contains("does not resolve this film"), "{err}");
 }
+
+/// Values that entered without the checks the case file's values get: a speeds list beyond the
+/// speed-factor limit, Moes L far beyond real contacts (it returned a "converged" film of
+/// −4.4e6 m), and absurd thread counts (100 000 threads took 90 s to start).
+#[test]
+fn every_door_applies_the_plausibility_rules() {
+    let case = examples().join("7006.toml");
+    let case = case.to_str().unwrap();
+    refused_at_once(
+        &[
+            "coefficients",
+            case,
+            "--method",
+            "hertz",
+            "--speeds",
+            "3000,100000",
+        ],
+        &["speeds[1] = 100000", "n·d_m ≤ 4.0e6"],
+    );
+    refused_at_once(
+        &[
+            "ehl", "--moes-m", "20", "--moes-l", "1e6", "--grid", "33", "--json",
+        ],
+        &["L = 1000000", "0 < L ≤ 100"],
+    );
+    for cmd in [
+        vec!["characterize", case, "--method", "hertz"],
+        vec!["coefficients", case, "--method", "hertz"],
+    ] {
+        for n in ["0", "100000"] {
+            let mut args = cmd.clone();
+            args.extend(["--threads", n]);
+            refused_at_once(&args, &[&format!("--threads {n}: expected 1 to")]);
+        }
+    }
+}

@@ -55,7 +55,10 @@ fn dry_stiffness(case: &Case) -> Result<[[f64; 5]; 5], crate::Error> {
     Ok(solve_equilibrium(&case.bearing, &laws, &case.operating, &case.settings)?.stiffness)
 }
 
-fn check_speeds(speeds_rpm: &[f64]) -> Result<(), crate::Error> {
+/// Each speed must be a finite number of rpm and, like the case's own speed, pass the
+/// plausibility rules ([`check_case`](crate::plausibility::check_case)) at the case's loads: a
+/// speed they refuse is named by its index in the list.
+fn check_speeds(case: &Case, speeds_rpm: &[f64]) -> Result<(), crate::Error> {
     if speeds_rpm.is_empty() {
         return Err(
             crate::io::InputError::field("speeds", "[]", "at least one speed in rpm").into(),
@@ -69,6 +72,17 @@ fn check_speeds(speeds_rpm: &[f64]) -> Result<(), crate::Error> {
                 "a finite speed in rpm, |n| ≤ 1e6",
             )
             .into());
+        }
+        match crate::plausibility::check_case(&at_speed(case, n)) {
+            Ok(_) => {}
+            Err(crate::io::InputError::Field {
+                field, expected, ..
+            }) if field == "operating.inner_speed_rpm" => {
+                return Err(
+                    crate::io::InputError::field(&format!("speeds[{i}]"), n, expected).into(),
+                )
+            }
+            Err(e) => return Err(e.into()),
         }
     }
     Ok(())
@@ -85,7 +99,7 @@ pub fn from_characterization(
     settings: &CharacterizeSettings,
     progress: &(dyn Fn(usize, Progress) + Sync),
 ) -> Result<Vec<SpeedCoefficients>, crate::Error> {
-    check_speeds(speeds_rpm)?;
+    check_speeds(case, speeds_rpm)?;
     let mut out = Vec::with_capacity(speeds_rpm.len());
     for (i, &rpm) in speeds_rpm.iter().enumerate() {
         let c = at_speed(case, rpm);
@@ -120,7 +134,7 @@ pub fn from_element(
     element: &dyn ForceElement,
     source: &str,
 ) -> Result<Vec<SpeedCoefficients>, crate::Error> {
-    check_speeds(speeds_rpm)?;
+    check_speeds(case, speeds_rpm)?;
     let mut out = Vec::with_capacity(speeds_rpm.len());
     for &rpm in speeds_rpm {
         let c = at_speed(case, rpm);

@@ -242,3 +242,82 @@ fn a_store_error_stops_the_run() {
         assert!((1..=in_flight).contains(&n), "{n} points started");
     }
 }
+
+/// Point names stay short and distinct for every valid value: positional text up to 20
+/// characters (the names of existing studies are unchanged), exponent form beyond (1e-300 gave
+/// a 310-byte name, "File name too long").
+#[test]
+fn point_names_are_short_and_unique_for_every_valid_value() {
+    use ehl_bearing::study::StudyPoint;
+    let name = |n: f64, s: f64| {
+        StudyPoint {
+            index: 0,
+            inner_speed_rpm: n,
+            load_scale: s,
+        }
+        .file_stem()
+    };
+    assert_eq!(name(3000.0, 0.5), "n3000rpm_s0.5");
+    assert_eq!(name(5000.0, 1.0), "n5000rpm_s1");
+    assert_eq!(name(1e-300, 1e-300), "n1e-300rpm_s1e-300");
+    assert_eq!(name(3000.0, 0.1 + 0.2), "n3000rpm_s0.30000000000000004");
+    let values = [
+        1e-300,
+        1e-300 * (1.0 + f64::EPSILON),
+        1e-7,
+        1.0000000000000002e-7,
+        0.1,
+        0.1 + 0.2,
+        0.3,
+        1.0,
+        100.0,
+        1e6,
+        123456.789012345,
+        f64::MIN_POSITIVE,
+    ];
+    let mut names = std::collections::BTreeSet::new();
+    for &v in &values {
+        let stem = name(v, v);
+        assert!(stem.len() < 60, "{stem}");
+        names.insert(stem);
+    }
+    assert_eq!(names.len(), values.len(), "{names:?}");
+}
+
+/// A point file that is a FIFO, a folder, a link to /dev/zero or a huge file is an error naming
+/// the file, at once (a FIFO blocked the read forever, /dev/zero filled the memory).
+#[cfg(unix)]
+#[test]
+fn point_files_that_are_not_regular_files_are_refused_at_once() {
+    use ehl_bearing::io::FsStore;
+    let dir = std::env::temp_dir().join(format!("ehl-store-kinds-{}", std::process::id()));
+    std::fs::remove_dir_all(&dir).ok();
+    let store = FsStore::create(&dir).unwrap();
+    let points = dir.join("points");
+    let fifo = points.join("fifo.json");
+    let made = std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap();
+    assert!(made.success());
+    std::fs::create_dir(points.join("folder.json")).unwrap();
+    std::os::unix::fs::symlink("/dev/zero", points.join("zero.json")).unwrap();
+    let huge = std::fs::File::create(points.join("huge.json")).unwrap();
+    huge.set_len(ehl_bearing::io::MAX_INPUT_BYTES + 1).unwrap();
+    for (stem, what) in [
+        ("fifo", "a FIFO"),
+        ("folder", "a folder"),
+        ("zero", "a device"),
+        ("huge", "larger than 16 MiB"),
+    ] {
+        let e = store.load_point(stem).unwrap_err().to_string();
+        assert!(
+            e.contains(&format!("{stem}.json")) && e.contains(what) && e.contains("remove it"),
+            "{e}"
+        );
+    }
+    assert_eq!(store.load_point("absent").unwrap(), None);
+    std::fs::write(points.join("ok.json"), "{}").unwrap();
+    assert_eq!(store.load_point("ok").unwrap().as_deref(), Some("{}"));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -28,7 +28,7 @@ pub use crate::material::{DensityModel, ViscosityModel};
 pub(crate) use steady::validate_settings;
 pub use steady::{
     solve_moes, solve_steady, solve_steady_extrapolated, solve_steady_from, solve_steady_starts,
-    start_order,
+    start_order, MOES_L_MAX,
 };
 pub use transient::{TransientSolver, TransientStep};
 

@@ -1355,14 +1355,22 @@ fn solve_warm(
     solve_ordered(c, s, &pr, &sc, &order, log, spent, t0)
 }
 
+/// Largest Moes material parameter L accepted by [`solve_moes`] (dimensionless).
+pub const MOES_L_MAX: f64 = 100.0;
+
 /// Solves a dimensionless case. The dimensional contact behind it: E′ = 2.2e11 Pa, Rx = 10 mm,
 /// Ry = Rx·ratio, α = alpha_p0/p0, η0 = exp(ln_eta0_ratio − 9.67), ρ0 = 870 kg/m³; U, W and the
 /// load follow from M and L. The dimensionless results depend only on (M, L, Ry/Rx, α p0,
 /// ln η0 + 9.67), the dimensional ones refer to that contact.
 pub fn solve_moes(c: &MoesCase, s: &EhlSettings) -> Result<EhlSolution, EhlError> {
     check_pos("M", c.m)?;
-    if !(c.l.is_finite() && c.l > 0.0) {
-        return Err(invalid("L", c.l, "finite and > 0"));
+    if !(c.l.is_finite() && c.l > 0.0 && c.l <= MOES_L_MAX) {
+        return Err(invalid(
+            "L",
+            c.l,
+            "0 < L ≤ 100 (L = G·U^(1/4) of oil-lubricated rolling contacts lies between about 1 \
+             and 40; far above, the case describes no real contact)",
+        ));
     }
     if !(c.ry_over_rx.is_finite() && (1.0..=1000.0).contains(&c.ry_over_rx)) {
         return Err(invalid("ry_over_rx", c.ry_over_rx, "1 <= Ry/Rx <= 1000"));

@@ -106,14 +106,72 @@ impl FsStore {
     }
 }
 
-impl PointStore for FsStore {
-    fn load_point(&self, stem: &str) -> Result<Option<String>, StoreError> {
-        let path = self.point_path(stem);
-        match std::fs::read(&path) {
-            Ok(bytes) => Ok(Some(String::from_utf8_lossy(&bytes).into_owned())),
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
-            Err(e) => Err(err("reading", &path, e)),
+/// What a file that is not a regular file is, for messages.
+fn file_kind(t: &std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return "a FIFO";
         }
+        if t.is_char_device() || t.is_block_device() {
+            return "a device";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    if t.is_dir() {
+        "a folder"
+    } else {
+        "not a regular file"
+    }
+}
+
+impl PointStore for FsStore {
+    /// The point file's text; `None` when there is none. A point file is a regular file this
+    /// program wrote (a few kB): a folder, FIFO, device or a link to one (reading a FIFO would
+    /// block forever, `/dev/zero` would fill the memory) or a file above
+    /// [`MAX_INPUT_BYTES`](super::MAX_INPUT_BYTES) is an error naming it, before any read.
+    fn load_point(&self, stem: &str) -> Result<Option<String>, StoreError> {
+        use std::io::Read;
+        let path = self.point_path(stem);
+        let meta = match std::fs::metadata(&path) {
+            Ok(m) => m,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+            Err(e) => return Err(err("reading", &path, e)),
+        };
+        let foreign = |what: String| {
+            err(
+                "reading",
+                &path,
+                format!(
+                    "{what}: not a point file of this program; remove it to recompute the point"
+                ),
+            )
+        };
+        if !meta.is_file() {
+            return Err(foreign(format!(
+                "not a regular file ({})",
+                file_kind(&meta.file_type())
+            )));
+        }
+        let limit = super::MAX_INPUT_BYTES;
+        if meta.len() > limit {
+            return Err(foreign(format!(
+                "{} bytes, larger than {} MiB",
+                meta.len(),
+                limit >> 20
+            )));
+        }
+        let mut bytes = Vec::new();
+        std::fs::File::open(&path)
+            .and_then(|f| f.take(limit + 1).read_to_end(&mut bytes))
+            .map_err(|e| err("reading", &path, e))?;
+        if bytes.len() as u64 > limit {
+            return Err(foreign(format!("larger than {} MiB", limit >> 20)));
+        }
+        Ok(Some(String::from_utf8_lossy(&bytes).into_owned()))
     }
 
     fn save_point(&self, stem: &str, text: &str) -> Result<(), StoreError> {

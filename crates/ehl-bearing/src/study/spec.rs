@@ -45,9 +45,26 @@ pub struct StudyPoint {
 
 impl StudyPoint {
     /// File stem of the point, e.g. `n3000rpm_s1.5`: Rust's shortest round-trip formatting, so
-    /// a value always maps to the same name.
+    /// a value always maps to the same name, and distinct values to distinct names. Values whose
+    /// positional form is longer than 20 characters (e.g. 1e-300, which would be 302) are written
+    /// in exponent form (`n3000rpm_s1e-300`), so a name stays under 60 bytes for every valid value.
     pub fn file_stem(&self) -> String {
-        format!("n{}rpm_s{}", self.inner_speed_rpm, self.load_scale)
+        format!(
+            "n{}rpm_s{}",
+            stem_number(self.inner_speed_rpm),
+            stem_number(self.load_scale)
+        )
+    }
+}
+
+/// Shortest round-trip text of `v`: positional (`3000`, `0.5`) when at most 20 characters, else
+/// exponent form (`1e-300`). The two forms never coincide (only the second has an `e`).
+fn stem_number(v: f64) -> String {
+    let positional = format!("{v}");
+    if positional.len() <= 20 {
+        positional
+    } else {
+        format!("{v:e}")
     }
 }
 
