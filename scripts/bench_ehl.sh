@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# The steady-EHL benchmark set of BENCHMARKS.md (issues 11 and 16): criterion benches of
+# The steady-EHL benchmark set of BENCHMARKS.md: criterion benches of
 # crates/ehl-bearing/benches/{ehl,contact}.rs, with the load average before and after.
 #   scripts/bench_ehl.sh            # everything except the harmonic method (~15 min on 2 cores)
 #   scripts/bench_ehl.sh quick      # circular 257², seed contact, kernel cache on/off (~3 min)
-#   scripts/bench_ehl.sh speed      # issue 16 goals: circular 257² (new stopping rule and fixed
+#   scripts/bench_ehl.sh speed      # speed goals: circular 257² (new stopping rule and fixed
 #                                   # tolerances), the 22 seed contacts and the slowest one,
 #                                   # quasi-static seed contact, plus the CLI under /usr/bin/time
-#   scripts/bench_ehl.sh harmonic   # the harmonic method (issue 16), see the block at the end
+#   scripts/bench_ehl.sh harmonic   # the harmonic method, see the block at the end
 # Write down the two `uptime` lines next to every figure you copy.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -29,7 +29,7 @@ elif [[ "${1:-}" != harmonic ]]; then
   cargo bench -p ehl-bearing --bench contact "${args[@]}" 'quasi_static'
 fi
 uptime
-# Harmonic method (issue 16, BENCHMARKS.md "Harmonic method speed-up"): the seed contact at the
+# Harmonic method (BENCHMARKS.md, "Harmonic method speed-up"): the seed contact at the
 # defaults, with the two whole settling periods of before, and on 65² (~6 min on 2 cores).
 #   scripts/bench_ehl.sh harmonic
 if [[ "${1:-}" == harmonic ]]; then

@@ -203,7 +203,7 @@ pub struct HarmonicExcitation {
     pub settling_periods: usize,
     /// Time steps actually run before recording: a quarter period, then further sixteenths of a
     /// period until the periodicity is at most `periodicity_tol` or `settling_periods` are
-    /// reached (quarter periods in results written before issue 16's session 8).
+    /// reached (quarter periods in results written by earlier versions).
     #[serde(default)]
     pub settling_steps: usize,
     /// Bound on the periodicity that ends the settling (the setting).
@@ -496,14 +496,14 @@ pub struct HarmonicSettings {
     /// with the steps' cubic H0 predictor: the laws of the 22 seed contacts at 3000 rpm are
     /// within 1.1e-3 in d and 0.33 N in ΔF of steps iterated to 1e-6, as with 3e-5 and the
     /// quadratic H0 predictor of before, in 2.16 instead of 2.53 cycles per step —
-    /// docs/contact.md, issue 16).
+    /// docs/contact.md).
     pub step_tol_film: f64,
     /// Film tolerance of the steps of the first quarter period (default 1e-3, > 0), which only
     /// settle the start transient and are never recorded (the recorded period starts a quarter
     /// period in at the earliest; with `settling_periods` 0 every step uses `step_tol_film`).
     /// Their H0, and so δ, still converges in the first cycle; looser film iterations there
     /// leave the law within 5e-5 in d and 0.05 % in ΔF of fully iterated settling steps on the
-    /// seed contact, in 6 % fewer cycles (docs/contact.md, issue 16).
+    /// seed contact, in 6 % fewer cycles (docs/contact.md).
     #[serde(default = "default_settling_tol_film")]
     pub settling_tol_film: f64,
     /// Points per side of the coarsest multigrid level of the time steps, 2^k + 1 ≥ 9 (default
@@ -512,7 +512,7 @@ pub struct HarmonicSettings {
     /// `ehl.coarsest` and `ehl.coarse_sweeps`, as a 33²/17² pair stalls in some steps). From the
     /// converged state of the previous step the extra levels pay: on the seed contact 2.74
     /// instead of 2.92 cycles per step and ≈ 13 % less time on 129², 2.52 instead of 3.42 on 65²,
-    /// with `step_coarse_sweeps` 6 (docs/contact.md, issue 16).
+    /// with `step_coarse_sweeps` 6 (docs/contact.md).
     #[serde(default = "default_step_coarsest")]
     pub step_coarsest: usize,
     /// Relaxation sweeps per visit of the steps' coarsest level, 1 to 100 (default 6; the steady

@@ -239,7 +239,7 @@ mod tests {
 
     #[test]
     fn circular_limit_closed_form() {
-        // Ball of radius R0 on a flat: Rx = Ry = R0. Reference (shared/reference/README.md, Johnson ch. 4):
+        // Ball of radius R0 on a flat: Rx = Ry = R0. Reference (Johnson, Contact Mechanics ch. 4):
         // a = (3 Q R0/(2E'))^(1/3), δ = (9Q²/(4E'² R0))^(1/3), p_max = 3Q/(2πa²).
         let (r0, e, q) = (3.5e-3, 228.6e9, 1000.0);
         let g = HertzGeometry::new(r0, r0, e).unwrap();
@@ -253,7 +253,7 @@ mod tests {
 
     #[test]
     fn brewe_hamrock_within_a_few_percent_at_moderate_ratio() {
-        // Brewe–Hamrock approximations (shared/reference/README.md) are fits good to a few percent;
+        // Brewe–Hamrock approximations are fits good to a few percent;
         // at Ry/Rx = 12 they should agree within 4 %.
         let ratio = 12.0;
         let g = HertzGeometry::new(1.0, ratio, 1e11).unwrap();

@@ -14,7 +14,8 @@ pub struct Solid {
 }
 
 impl Solid {
-    /// AISI 52100 bearing steel: E = 208 GPa, ν = 0.3, ρ = 7850 kg/m³ (DESIGN.md §2).
+    /// AISI 52100 bearing steel: E = 208 GPa, ν = 0.3, ρ = 7850 kg/m³ (the seed case's material,
+    /// docs/paper.md).
     pub const AISI_52100: Solid = Solid {
         youngs_modulus: 208e9,
         poisson_ratio: 0.3,
@@ -82,7 +83,7 @@ pub struct Lubricant {
 impl Lubricant {
     /// Default mineral oil (as in Hamrock's worked examples): η0 = 0.04 Pa·s, α = 2.2e-8 1/Pa,
     /// ρ0 = 870 kg/m³, Roelands and Dowson–Higginson. The seed paper gives no lubricant; this is
-    /// the project's assumption (DESIGN.md §2).
+    /// the project's assumption (docs/paper.md).
     pub const DEFAULT_MINERAL_OIL: Lubricant = Lubricant {
         viscosity: 0.04,
         pressure_viscosity: 2.2e-8,

@@ -88,8 +88,8 @@ pub struct ContactConditions {
     pub ball_mass: f64,
 }
 
-/// Dimensionless groups of an EHL point contact (Moes; see DESIGN.md §2 for the definitions —
-/// the seed paper's eq. (7) is wrong).
+/// Dimensionless groups of an EHL point contact (Moes; the definitions are below and in
+/// docs/paper.md — the seed paper's eq. (7) is wrong).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct MoesParameters {
     /// Load parameter W = w/(E′Rx²).

@@ -57,7 +57,7 @@ fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs().max(1e-300)
 }
 
-/// Pure thrust at zero speed: Jones' relation (shared/reference/README.md; Harris ch. 7):
+/// Pure thrust at zero speed: Jones' relation (Jones 1960; Harris ch. 7):
 /// F_a = Z·K_n·(A(cos α0/cos α − 1))^1.5·sin α, δ_a = A·sin(α − α0)/cos α, with
 /// 1/K_n^(2/3) = 1/K_i^(2/3) + 1/K_o^(2/3). The relation is exact for the model, so the tolerance
 /// is set by the solver's convergence (1e-11 relative force) and round-off. With the Hertz
@@ -665,7 +665,7 @@ fn a_little_thrust_under_heavy_radial_load_is_carried_and_a_deep_groove_bearing_
         );
         assert!((e.reaction[0] - fa).abs() < 1e-6, "{fa}");
     }
-    // Deep-groove bearing given by its clearance (Hamrock's 209, shared/reference/README.md):
+    // Deep-groove bearing given by its clearance (Hamrock's worked example of a 209 bearing):
     // a reversed thrust is carried on the other groove flank.
     let text = "[bearing]\nball_count = 9\nball_diameter_mm = 12.7\npitch_diameter_mm = 64.9985\ninner_conformity = 0.52\nouter_conformity = 0.52\ndiametral_clearance_mm = 0.015\n[operating]\ninner_speed_rpm = 3820\nforce_axial_n = -100\nforce_y_n = 8900\ntilt_y_deg = 0\ntilt_z_deg = 0\n";
     let case = ehl_bearing::io::parse_case(text, "209").unwrap();

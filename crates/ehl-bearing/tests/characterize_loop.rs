@@ -414,7 +414,7 @@ fn quasi_static_characterizer_is_the_contact_module_behind_the_trait() {
     // The lubricated law: softer index than Hertz and a positive lift (the paper's findings).
     assert!(got.d > 1.0 && got.d < 1.5, "{}", got.d);
     assert!(got.delta_f > 0.0, "{}", got.delta_f);
-    // Moes M as defined in DESIGN.md §2 (not the paper's eq. 7), against this module's own.
+    // Moes M as defined in docs/paper.md (not the paper's eq. 7), against this module's own.
     assert!(
         (got.moes_m / c.moes().m - 1.0).abs() < 1e-9,
         "{} vs {}",

@@ -1,6 +1,6 @@
 //! Transient EHL with the ball's equation of motion, and the harmonic method, on the seed's
 //! inner-race contact (7006: Rx = 2.9487 mm, Ry = 178.5 mm, 7 mm steel ball, 10.85 m/s at
-//! 5000 rpm; DESIGN.md §2). Grids of 65² keep the tests fast; docs/contact.md has the 129²
+//! 5000 rpm; docs/paper.md). Grids of 65² keep the tests fast; docs/contact.md has the 129²
 //! figures.
 
 use ehl_bearing::contact::{
@@ -96,7 +96,7 @@ fn free_vibration(load: f64, grid: usize) -> (f64, f64, f64, f64) {
     };
     let k_lin = 0.1 * load / (side(1.05) - side(0.95));
     let w_lin = (k_lin / m).sqrt();
-    // DESIGN.md §3: ω_n = √(1.5·w0/(m·δ0)) for the dry Hertz contact.
+    // docs/design.md §2: ω_n = √(1.5·w0/(m·δ0)) for the dry Hertz contact.
     let w_hertz = (1.5 * load / (m * steady.approach_hertz)).sqrt();
     let film_share = steady.h_central / steady.approach;
     let n = 64.0;
@@ -156,7 +156,7 @@ fn bdf2_frequency_ratio_matches_its_known_values() {
     assert!(((1.0 - r64) / (1.0 - r128) - 4.0).abs() < 0.05);
 }
 
-/// Dry limit (DESIGN.md §3): the lubricated contact's natural frequency tends to the Hertz value
+/// Dry limit (docs/design.md §2): the lubricated contact's natural frequency tends to the Hertz value
 /// ω_n = √(1.5·w0/(m·δ0)) as the load (M) grows. The bound: the lubricated contact differs from
 /// the dry one by its film, whose share of the approach is h_c/δ0 (6.6 % at 600 N, 3.6 % at
 /// 1200 N); ω ∝ √k moves by about half the relative change of k, so |ω/ω_H − 1| < h_c/δ0 must

@@ -7,7 +7,7 @@ use ehl_bearing::ehl::{EhlContact, EhlSettings};
 use ehl_bearing::material::{reduced_modulus, Lubricant, Solid};
 use ehl_bearing::ContactLaw;
 
-/// The seed's inner-race contact (7006, DESIGN.md §2): Rx = 2.9487 mm, Ry = 178.5 mm; sum
+/// The seed's inner-race contact (7006, docs/paper.md): Rx = 2.9487 mm, Ry = 178.5 mm; sum
 /// velocity 10.85 m/s at 5000 rpm and 6.5 m/s at 3000 rpm.
 fn inner(load: f64, us: f64) -> EhlContact {
     EhlContact {

@@ -73,7 +73,7 @@ fn hertz_error(n: usize) -> (f64, f64) {
     (err, (s2 / cnt).sqrt())
 }
 
-/// Hertz check (Johnson, Contact Mechanics ch. 3–4; DESIGN.md §3):
+/// Hertz check (Johnson, Contact Mechanics ch. 3–4; docs/design.md §2):
 /// (2/π²)∬√(1 − r'²)/|r − r'| dA' = 1 − r²/2 for r ≤ 1. With piecewise-constant cells the
 /// error is set by the square-root edge of the pressure. Measured (max, RMS over r ≤ 1):
 /// 33 points (1.8e-3, 6.2e-4), 65 (1.5e-3, 2.2e-4), 129 (4.8e-4, 7.4e-5), 257 (2.4e-4, 1.7e-5):

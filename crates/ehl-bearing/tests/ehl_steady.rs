@@ -105,7 +105,7 @@ fn rejects_invalid_input_naming_the_field() {
     assert!(solve_moes(&barus(20.0, 10.0, 0.9), &s).is_err());
 }
 
-/// The combination rule of the NVM formula (reference README reading) reduces to each asymptote
+/// The combination rule of the NVM formula (docs/ehl.md §5.4) reduces to each asymptote
 /// where the others are negligible.
 #[test]
 fn nvm_combination_rule_reproduces_its_asymptotes() {

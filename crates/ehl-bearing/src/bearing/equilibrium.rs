@@ -81,9 +81,9 @@ pub enum Kinematics {
     /// centres (README, "Modelling choices").
     #[default]
     OperatingAngles,
-    /// The model before issue 14: both contacts' kinematics at the angle of the line of
-    /// groove-curvature centres, and every contact law used as given (dry Hertz constants at the
-    /// free contact angle). Close to the textbook model only while the contact angles split by
+    /// The earlier model, kept to reproduce earlier results: both contacts' kinematics at the
+    /// angle of the line of groove-curvature centres, and every contact law used as given (dry
+    /// Hertz constants at the free contact angle). Close to the textbook model only while the contact angles split by
     /// about a degree or less (n·d_m below about 0.3 million mm/min).
     GrooveLine,
 }

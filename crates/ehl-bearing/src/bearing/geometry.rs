@@ -267,7 +267,7 @@ mod tests {
 
     #[test]
     fn seed_curvature_ratios() {
-        // DESIGN.md §3: Ry/Rx ≈ 61 at the inner race and ≈ 12 at the outer for the 7006.
+        // docs/design.md §2: Ry/Rx ≈ 61 at the inner race and ≈ 12 at the outer for the 7006.
         let g = g7006();
         let (rx, ry) = g.curvature_radii(Race::Inner, g.free_contact_angle);
         assert!((ry / rx - 60.65).abs() < 0.1, "{}", ry / rx);

@@ -44,8 +44,8 @@ pub fn nijenbanning_asymptotes(m: f64, l: f64, rx_over_ry: f64) -> [f64; 6] {
 /// Nijenbanning, Venner & Moes (1994, Wear 176:217) central film thickness for elliptical
 /// contacts, in Moes scaling H_c = (h_c/Rx)·U^(−1/2); `rx_over_ry` = D = Rx/Ry ≤ 1.
 ///
-/// Combination rule (shared/reference/README.md reading, checked in the tests against its own
-/// asymptotes): H_c = {[H_RI^(3/2) + (H_EI^(−4) + H00^(−4))^(−3/8)]^(2s/3)
+/// Combination rule (one consistent reading of the four asymptotes, checked in the tests against
+/// them; docs/ehl.md §5.4): H_c = {[H_RI^(3/2) + (H_EI^(−4) + H00^(−4))^(−3/8)]^(2s/3)
 /// + (H_RP^(−8) + H_EP^(−8))^(−s/8)}^(1/s). A fit to numerical solutions: expect a few percent.
 pub fn nijenbanning_central(m: f64, l: f64, rx_over_ry: f64) -> f64 {
     let [h_ri, h_ei, h_rp, h_ep, s, h00] = nijenbanning_asymptotes(m, l, rx_over_ry);

@@ -4,7 +4,7 @@
 //! [`Lubricant::viscosity_ratio`](crate::material::Lubricant::viscosity_ratio) and
 //! [`Lubricant::density_ratio`](crate::material::Lubricant::density_ratio)); the film update
 //! calls it at every loaded node after every relaxation sweep, and its `pow` and `exp` were a
-//! fifth of a steady solve (issue 16, BENCHMARKS.md "Rheology table"). [`RheologyTable`] holds
+//! fifth of a steady solve (BENCHMARKS.md, "Rheology table"). [`RheologyTable`] holds
 //! η̄ on a uniform grid in P, interpolated by cubic Hermite with the exact derivative, with the
 //! step chosen from the largest slope of ln η̄ so that the relative interpolation error stays
 //! below [`TABLE_REL_ERROR`] (bound (h·max|d ln η̄/dP|)⁴/384 of the leading term); pressures

@@ -1214,7 +1214,7 @@ fn continuation(
 /// pressure P = p/p_h at the same point in Hertz semi-axes (X = x/a_x, Y = y/a_y) and the
 /// previous H0 = −δ·Rx/a_x², so that a Hertzian solution at another load starts exactly where it
 /// ends (on the seed's quasi-static family this halves the cycles per member, 7–8 → 4–5, against
-/// a start at the same physical point; BENCHMARKS.md, issue 16 session 7). Useful for sweeps in
+/// a start at the same physical point; BENCHMARKS.md). Useful for sweeps in
 /// load or speed and for the bearing loop. Falls back to the cold starts of [`solve_steady`] if
 /// the warm start does not converge (its cycles are counted, and it is the first entry of
 /// `attempt_log`; a converged warm start reports `attempts` = 1).

@@ -42,8 +42,8 @@
 //! min_contact_angle_deg = -5.0   # shoulder limit of the inner contact angle; -90 with
 //!                                # diametral_clearance_mm (deep-groove bearings)
 //! kinematics = "operating-angles" # ball speeds and Hertz constants at each contact's operating
-//!                                # angle (textbook, default) or "groove-line" (the model before
-//!                                # issue 14; README, "Modelling choices of the bearing model")
+//!                                # angle (textbook, default) or "groove-line" (the earlier
+//!                                # model; README, "Modelling choices of the bearing model")
 //! ```
 
 use super::InputError;
