@@ -17,7 +17,17 @@ cargo clippy --manifest-path "$crate/Cargo.toml" --all-targets -- -D warnings
 venv=target/py-venv
 if [ ! -x "$venv/bin/python" ]; then
     echo "== python: venv $venv"
-    "$PYTHON" -m venv "$venv"
+    if ! "$PYTHON" -m venv "$venv" 2>/dev/null; then
+        # Debian's python3 makes virtual environments only with its python3-venv package.
+        rm -rf "$venv"
+        if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+            echo "== python: apt-get install python3-venv (python3 -m venv needs it on Debian)"
+            apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq python3-venv >/dev/null
+        else
+            echo "python3 -m venv failed: install Debian's python3-venv (sudo apt-get install python3-venv)" >&2
+        fi
+        "$PYTHON" -m venv "$venv"
+    fi
     "$venv/bin/python" -m pip install --quiet --upgrade pip
 fi
 echo "== python: pip install ./$crate[ross,test]"
