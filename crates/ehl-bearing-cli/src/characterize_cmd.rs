@@ -259,10 +259,16 @@ pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
     } else {
         print!("{}", table(&case, &c));
     }
+    // One rule for every command with one result (ehl, contact, characterize, coefficients):
+    // a result that did not converge is printed and written, marked, and the exit status is 1.
     if !c.converged {
-        eprintln!(
-            "warning: the loop did not converge in {} iterations (largest relative load change {:.3e}, tolerance {:.1e})",
-            c.iterations, c.max_load_change, settings.tolerance
+        bail!(
+            "the loop did not converge in {} iterations (largest relative load change {:.3e}, \
+             tolerance {:.1e}; the results above are marked NOT converged: raise \
+             --max-iterations or loosen --tolerance)",
+            c.iterations,
+            c.max_load_change,
+            settings.tolerance
         );
     }
     Ok(())

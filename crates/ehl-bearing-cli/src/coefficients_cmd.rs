@@ -94,6 +94,19 @@ pub fn run(args: &CoefficientsArgs) -> anyhow::Result<()> {
     } else {
         print!("{}", table(&coeffs));
     }
+    // As for characterize: results are printed and written, and a loop that did not converge
+    // at any speed gives exit status 1.
+    let failed: Vec<String> = coeffs
+        .iter()
+        .filter(|x| !x.converged)
+        .map(|x| format!("{} rpm", x.inner_speed_rpm))
+        .collect();
+    if !failed.is_empty() {
+        anyhow::bail!(
+            "the coupled loop did not converge at {} (marked NOT converged above)",
+            failed.join(", ")
+        );
+    }
     Ok(())
 }
 

@@ -233,6 +233,8 @@ pub fn write_fields(r: &EhlSolution, dir: &Path) -> Result<()> {
 /// Runs `ehl-bearing ehl`.
 pub fn run(args: &EhlArgs) -> Result<()> {
     let mut s = settings(args);
+    s.validate()
+        .context("--grid, --inlet, --half-width or --max-cycles")?;
     s.deadline = crate::characterize_cmd::deadline(args.time_limit)?;
     if let Some(dir) = &args.fields {
         crate::characterize_cmd::check_output_dir(dir, "--fields")?;

@@ -98,6 +98,14 @@ pub fn run(args: &EquilibriumArgs) -> anyhow::Result<()> {
     let laws = ContactLaws::hertz(&case.bearing)?;
     let eq = solve_equilibrium(&case.bearing, &laws, &case.operating, &case.settings)
         .with_context(|| format!("solving {}", args.case.display()))?;
+    if let Some(g) = args.grid {
+        ehl_bearing::ehl::EhlSettings {
+            grid: g,
+            ..Default::default()
+        }
+        .validate()
+        .with_context(|| format!("--grid {g}"))?;
+    }
     let films = if args.film {
         Some(films(&case, &eq, args.grid))
     } else {

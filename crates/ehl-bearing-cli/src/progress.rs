@@ -87,6 +87,27 @@ fn read_json(path: &Path) -> Option<Value> {
     serde_json::from_str(&text).ok()
 }
 
+/// A marker file that must be this program's when present: `Ok(None)` if absent, an error
+/// naming the file if it cannot be read or is not a JSON object (a garbage plan or shard marker
+/// showed as "0 points, pending").
+fn read_marker(path: &Path) -> anyhow::Result<Option<Value>> {
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => anyhow::bail!("{}: unreadable ({e})", path.display()),
+    };
+    match serde_json::from_str::<Value>(&text) {
+        Ok(v) if v.is_object() => Ok(Some(v)),
+        _ => anyhow::bail!(
+            "{}: not a marker written by this program (not a JSON object); remove the folder {} \
+             and run the study (or `study sbatch`) again to rewrite it",
+            path.display(),
+            path.parent()
+                .map_or(String::new(), |p| p.display().to_string())
+        ),
+    }
+}
+
 /// Write `DIR/.progress/plan.json` for `study` run as `shards` shards.
 pub fn write_plan(
     out: &Path,
@@ -452,7 +473,7 @@ pub fn read_status(out: &Path, stale_after_s: u64) -> anyhow::Result<StudyStatus
         );
     }
     let pdir = progress_dir(out);
-    let plan = read_json(&pdir.join("plan.json"));
+    let plan = read_marker(&pdir.join("plan.json"))?;
     let merged = plan.is_none() && out.join("points.csv").is_file();
     let me = hostname();
     let now = now_s();
@@ -479,23 +500,33 @@ pub fn read_status(out: &Path, stale_after_s: u64) -> anyhow::Result<StudyStatus
             submissions: Vec::new(),
         });
     };
+    let plan_error = |what: &str| {
+        anyhow::anyhow!(
+            "{}: {what}; remove the folder {} and run the study (or `study sbatch`) again to \
+             rewrite it",
+            pdir.join("plan.json").display(),
+            pdir.display()
+        )
+    };
     let stems: Vec<String> = plan["points"]
         .as_array()
-        .map(|a| {
-            a.iter()
-                .filter_map(|s| s.as_str().map(str::to_string))
-                .collect()
-        })
-        .unwrap_or_default();
+        .ok_or_else(|| plan_error("no list of points"))?
+        .iter()
+        .map(|s| s.as_str().map(str::to_string))
+        .collect::<Option<_>>()
+        .ok_or_else(|| plan_error("a point name that is not text"))?;
     let n = plan["shards"]
         .as_u64()
         .and_then(|n| usize::try_from(n).ok())
-        .filter(|&n| n >= 1)
-        .unwrap_or(1);
+        .filter(|&n| (1..=stems.len().max(1)).contains(&n))
+        .ok_or_else(|| plan_error("no shard count between 1 and the number of points"))?;
+    let markers: Vec<Option<Value>> = (1..=n)
+        .map(|i| read_marker(&shard_file(out, Shard { index: i, count: n })))
+        .collect::<anyhow::Result<_>>()?;
     let mut shards: Vec<ShardStatus> = (1..=n)
-        .map(|i| {
+        .zip(markers)
+        .map(|(i, m)| {
             let shard = Shard { index: i, count: n };
-            let m = read_json(&shard_file(out, shard));
             let (state, slurm_job, host, message) = match &m {
                 None => ("pending".to_string(), None, None, None),
                 Some(m) => {

@@ -306,13 +306,51 @@ fn load(args: &SbatchArgs) -> anyhow::Result<Study> {
     Ok(study)
 }
 
+/// `--bin`: an executable file where it exists on this machine (a folder or a file without
+/// execute permission is refused); a path absent here is accepted with a warning, since it may
+/// exist only on the compute nodes.
+fn check_bin(bin: &std::path::Path) -> anyhow::Result<()> {
+    match std::fs::metadata(bin) {
+        Err(_) => {
+            eprintln!(
+                "warning: --bin {}: not found on this machine; the jobs fail unless it exists on \
+                 the compute nodes",
+                bin.display()
+            );
+            Ok(())
+        }
+        Ok(m) if !m.is_file() => anyhow::bail!(
+            "--bin {}: not a file (expected the ehl-bearing executable)",
+            bin.display()
+        ),
+        Ok(m) => {
+            #[cfg(unix)]
+            {
+                use std::os::unix::fs::PermissionsExt;
+                if m.permissions().mode() & 0o111 == 0 {
+                    anyhow::bail!(
+                        "--bin {}: not executable (expected the ehl-bearing executable)",
+                        bin.display()
+                    );
+                }
+            }
+            let _ = m;
+            Ok(())
+        }
+    }
+}
+
 /// Run `study sbatch`.
 pub fn run(args: &SbatchArgs) -> anyhow::Result<()> {
     let study = load(args)?;
     let points = study.points().len();
     validate(args, points)?;
     let bin = match &args.bin {
-        Some(b) => absolute(b).map_err(|e| anyhow::anyhow!("--bin: {e}"))?,
+        Some(b) => {
+            let bin = absolute(b).map_err(|e| anyhow::anyhow!("--bin: {e}"))?;
+            check_bin(&bin)?;
+            bin
+        }
         None => std::env::current_exe()?,
     };
     std::fs::create_dir_all(args.output.join("points"))

@@ -139,6 +139,56 @@ fn load_study(path: &Path, method: Option<&str>) -> anyhow::Result<Study> {
     Ok(study)
 }
 
+/// The lock of one shard's run: the file is removed when the run ends (a finished folder holds
+/// exactly what a single run writes); the kernel releases the lock if the process dies.
+struct ShardLock {
+    path: std::path::PathBuf,
+    _file: std::fs::File,
+}
+
+impl Drop for ShardLock {
+    fn drop(&mut self) {
+        std::fs::remove_file(&self.path).ok();
+    }
+}
+
+/// An exclusive lock on `DIR/.lock-shard-I-of-N` (flock), so that two runs of the same shard
+/// (or of the whole study) on one folder do not both compute every point: the second is refused
+/// at once. Array tasks of other shards take other locks and run side by side.
+fn lock_shard(output: &std::path::Path, shard: Shard) -> anyhow::Result<ShardLock> {
+    let path = output.join(format!(".lock-shard-{}-of-{}", shard.index, shard.count));
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&path)
+        .with_context(|| format!("creating the lock file {}", path.display()))?;
+    #[cfg(unix)]
+    {
+        use std::os::unix::io::AsRawFd;
+        // SAFETY: flock on a file descriptor this function owns; no memory is passed.
+        let rc = unsafe { libc::flock(file.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) };
+        if rc != 0 {
+            let e = std::io::Error::last_os_error();
+            if e.kind() == std::io::ErrorKind::WouldBlock {
+                anyhow::bail!(
+                    "-o {}: another `ehl-bearing study` is computing {} in this folder (lock {}); \
+                     wait for it to finish, or give another -o",
+                    output.display(),
+                    if shard == Shard::ALL {
+                        "the whole study".to_string()
+                    } else {
+                        format!("shard {shard}")
+                    },
+                    path.display()
+                );
+            }
+            return Err(e).with_context(|| format!("locking {}", path.display()));
+        }
+    }
+    Ok(ShardLock { path, _file: file })
+}
+
 /// Run `study` (or `study merge`).
 pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     match &args.command {
@@ -171,8 +221,11 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     }
     // The output folder is checked (and created) before any work.
     let store = FsStore::create(output)?;
+    let shard = args.shard.unwrap_or(Shard::ALL);
+    // Held until the run ends (the kernel releases it if the process dies).
+    let _lock = lock_shard(output, shard)?;
     let options = RunOptions {
-        shard: args.shard.unwrap_or(Shard::ALL),
+        shard,
         overwrite: args.overwrite,
         point_time_limit_s: args.time_limit,
         points_in_flight: args.points_in_flight,

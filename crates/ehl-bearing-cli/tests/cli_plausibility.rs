@@ -216,3 +216,76 @@ fn every_door_applies_the_plausibility_rules() {
         }
     }
 }
+
+/// Values refused with their key, value and range at whichever door: a conformity at 0.5
+/// (the Hertz constant's table failed), a ball density of 1e30 kg/m³ (residual 4e58 N), an axial
+/// force of 1e300 N (residual NaN), and grids outside 2^k + 1, 17 to 1025 refused before any
+/// solve (the equilibrium printed "22 EHL contact solutions did not converge"; `ehl --grid 2049`
+/// first printed how long such a solve takes).
+#[test]
+fn absurd_case_values_and_grids_are_named() {
+    let tmp = tempfile::tempdir().unwrap();
+    for (from, to, needles) in [
+        (
+            "inner_conformity = 0.51",
+            "inner_conformity = 0.5000001",
+            &["bearing.inner_conformity = 0.5000001", "at least 0.501"][..],
+        ),
+        (
+            "density_kg_m3 = 7850.0",
+            "density_kg_m3 = 1e30",
+            &["ball_material.density_kg_m3", "500 to 25000 kg/m³"][..],
+        ),
+        (
+            "force_axial_n = 1000.0",
+            "force_axial_n = 1e300",
+            &[
+                "operating.force_axial_n = 1e300",
+                "GPa limit of the inner contact",
+            ][..],
+        ),
+    ] {
+        let c = case_with(tmp.path(), from, to);
+        refused_at_once(&["characterize", c.to_str().unwrap()], needles);
+    }
+    let case = examples().join("7006.toml");
+    for g in ["0", "18", "100000"] {
+        refused_at_once(
+            &["equilibrium", case.to_str().unwrap(), "--film", "--grid", g],
+            &[&format!("--grid {g}"), "2^k + 1, 17 to 1025"],
+        );
+    }
+    let contact = examples().join("contact_7006_inner.toml");
+    let (o, _) = run(&["ehl", contact.to_str().unwrap(), "--grid", "2049"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("settings.grid = 2049") && !err.contains("note:"),
+        "{err}"
+    );
+}
+
+/// One rule for commands with one result: a loop that did not converge prints its result
+/// marked and exits 1 (characterize exited 0 with a warning).
+#[test]
+fn a_loop_that_did_not_converge_exits_1_after_printing() {
+    let case = examples().join("7006.toml");
+    let (o, _) = run(&[
+        "characterize",
+        case.to_str().unwrap(),
+        "--method",
+        "hertz",
+        "--tolerance",
+        "1e-15",
+        "--max-iterations",
+        "1",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(out.contains("NOT converged"), "{out}");
+    assert!(
+        err.contains("did not converge in 1 iterations") && err.contains("--max-iterations"),
+        "{err}"
+    );
+}

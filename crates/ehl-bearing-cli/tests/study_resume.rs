@@ -79,6 +79,23 @@ fn killed_study_resumes_to_identical_files() {
         );
         std::thread::sleep(Duration::from_millis(5));
     }
+    // A second run on the same folder while the first computes is refused at once (both used to
+    // compute every point).
+    let second = bin()
+        .args([
+            "study",
+            study.to_str().unwrap(),
+            "-o",
+            resumed.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&second.stderr);
+    assert!(
+        !second.status.success()
+            && err.contains("another `ehl-bearing study` is computing the whole study"),
+        "{err}"
+    );
     child.kill().unwrap(); // SIGKILL
     child.wait().unwrap();
     let done = finished_points();

@@ -132,7 +132,14 @@ fn sbatch_refuses_bad_options_naming_them() {
     let tmp = tempfile::tempdir().unwrap();
     let study = hertz_study(tmp.path());
     let out = tmp.path().join("o");
-    let cases: [(&[&str], &[&str]); 11] = [
+    let not_executable = tmp.path().join("plain.txt");
+    std::fs::write(&not_executable, "").unwrap();
+    let cases: [(&[&str], &[&str]); 13] = [
+        (&["--bin", "/tmp"], &["--bin /tmp", "not a file"]),
+        (
+            &["--bin", s(&not_executable)],
+            &["plain.txt", "not executable"],
+        ),
         (
             &["--stale-after-s", "10"],
             &["--stale-after-s 10", "30 to 86400"],
@@ -548,5 +555,47 @@ fn a_shard_refused_before_any_work_is_shown_failed_with_its_message() {
     assert!(
         text.contains("failed: ") && text.contains("different study"),
         "{text}"
+    );
+}
+
+/// A garbage plan or shard marker is an error naming the file and the remedy (it showed as
+/// "0 points, pending").
+#[test]
+fn garbage_markers_are_named_not_shown_as_pending() {
+    let tmp = tempfile::tempdir().unwrap();
+    let study = study_file(tmp.path(), "hertz", "[3000, 5000]", "[0.5, 1.0]", "");
+    let out = tmp.path().join("o");
+    ok(run(&[
+        "study",
+        "sbatch",
+        s(&study),
+        "-o",
+        s(&out),
+        "--shards",
+        "2",
+    ]));
+    let progress = out.join(".progress");
+    let plan = progress.join("plan.json");
+    let good = std::fs::read(&plan).unwrap();
+    for garbage in [
+        "not json at all",
+        "[1, 2]",
+        "{\"points\": 3, \"shards\": 2}",
+    ] {
+        std::fs::write(&plan, garbage).unwrap();
+        let e = err(run(&["study", "status", s(&out)]));
+        assert!(
+            e.contains("plan.json") && e.contains("remove the folder"),
+            "{garbage}: {e}"
+        );
+    }
+    std::fs::write(&plan, good).unwrap();
+    ok(run(&["study", "status", s(&out)]));
+    // The marker `study status` reads for shard 1/2.
+    std::fs::write(progress.join("shard-1of2.json"), "\u{0}\u{1}garbage").unwrap();
+    let e = err(run(&["study", "status", s(&out)]));
+    assert!(
+        e.contains("shard-1of2.json") && e.contains("not a marker"),
+        "{e}"
     );
 }

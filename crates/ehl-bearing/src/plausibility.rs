@@ -19,7 +19,7 @@
 //! - Young's moduli: 0.1 to 1200 GPa in case and contact files (checked by the parsers; diamond,
 //!   the stiffest solid, has about 1050–1200 GPa).
 
-use crate::bearing::{solve_equilibrium, ContactLaws, Control};
+use crate::bearing::{solve_equilibrium, ContactLaws, Control, Race};
 use crate::ehl::EhlContact;
 use crate::hertz::HertzGeometry;
 use crate::io::{Case, InputError};
@@ -60,6 +60,63 @@ fn load_keys(case: &Case) -> (String, String) {
     }
 }
 
+/// The largest load one ball's inner contact carries at [`PRESSURE_MAX`], N, at the contact
+/// angle that lets it carry most (90°, the largest rolling radius Rx): no ball load can exceed
+/// it while the dry Hertz pressure stays within the models. `None` if the Hertz constants fail.
+fn inner_capacity(case: &Case) -> Option<f64> {
+    let g = case
+        .bearing
+        .hertz(Race::Inner, std::f64::consts::FRAC_PI_2)
+        .ok()?;
+    let p1 = g.contact(1.0).max_pressure;
+    let q = (PRESSURE_MAX / p1).powi(3);
+    (q.is_finite() && q > 0.0).then_some(q)
+}
+
+/// A necessary bound on the given loads, checked before any equilibrium: every force the shaft
+/// passes to the bearing goes through the Z inner contacts, so |F| ≤ Z·Q_cap and |M| ≤ Z·Q_cap·d_m
+/// with Q_cap from [`inner_capacity`]. Loads beyond it (e.g. 1e300 N, which made the equilibrium's
+/// residual NaN) are refused naming the key, the value and the bound.
+fn check_load_bounds(case: &Case) -> Result<(), InputError> {
+    let Some(cap) = inner_capacity(case) else {
+        return Ok(());
+    };
+    let geo = &case.bearing.geometry;
+    let z = geo.ball_count as f64;
+    let names = [
+        "force_axial_n",
+        "force_y_n",
+        "force_z_n",
+        "moment_y_nm",
+        "moment_z_nm",
+    ];
+    for (k, c) in case.operating.dofs.iter().enumerate() {
+        let Control::Load(v) = c else { continue };
+        let (bound, unit, arm) = if k < 3 {
+            (z * cap, "N", String::new())
+        } else {
+            (
+                z * cap * geo.pitch_diameter,
+                "N·m",
+                format!(" times the pitch diameter {} mm", geo.pitch_diameter * 1e3),
+            )
+        };
+        if !(v.abs() <= bound) {
+            return Err(InputError::field(
+                &format!("operating.{}", names[k]),
+                crate::io::number_text(*v),
+                format!(
+                    "|value| ≤ {bound:.4e} {unit}: {} balls each at the {:.1} GPa limit of the \
+                     inner contact ({cap:.4e} N per ball){arm} carry no more (docs/robustness.md)",
+                    geo.ball_count,
+                    PRESSURE_MAX * 1e-9
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Checks a validated case: refuses inputs outside what the models describe (an
 /// [`InputError::Field`] naming the key, its value and the range) and returns warnings for
 /// milder excesses. A dry equilibrium that fails is not an error here (the solve that follows
@@ -88,6 +145,7 @@ pub fn check_case(case: &Case) -> Result<Vec<String>, InputError> {
             ),
         ));
     }
+    check_load_bounds(case)?;
     if ndm > NDM_WARN {
         warnings.push(format!(
             "{} = {}: speed factor n·d_m = {ndm:.3e} rpm·mm is above {NDM_WARN:.1e}, the upper end \

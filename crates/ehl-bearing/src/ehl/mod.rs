@@ -264,6 +264,13 @@ impl EhlSettings {
             ..Default::default()
         }
     }
+
+    /// Checks every setting against its valid range (the check every solve makes first), so a
+    /// caller can refuse invalid settings before any work; the error names the setting, its
+    /// value and the range.
+    pub fn validate(&self) -> Result<(), EhlError> {
+        validate_settings(self)
+    }
 }
 
 /// One lubricated elliptical point contact, SI units. x is the rolling (entrainment) direction.

@@ -250,13 +250,15 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
     }
     let conformity = |v: Option<f64>, key: &str| -> Result<f64, InputError> {
         let f = require(v, key, "groove radius over ball diameter, e.g. 0.52")?;
-        if f.is_finite() && f > 0.5 && f < 5.0 {
+        if f.is_finite() && (CONFORMITY_MIN..5.0).contains(&f) {
             Ok(f)
         } else {
             Err(InputError::field(
                 key,
                 f,
-                "groove radius over ball diameter, greater than 0.5 and less than 5",
+                "groove radius over ball diameter, at least 0.501 and less than 5 (ball-bearing \
+                 grooves: about 0.505 to 0.54; closer to 0.5 the groove wraps the ball and the \
+                 Hertz point contact no longer describes it)",
             ))
         }
     };
@@ -406,6 +408,16 @@ fn size(v: f64, key: &str) -> Result<f64, InputError> {
     }
 }
 
+/// Smallest race conformity f = r/D accepted (dimensionless). The tightest ball-bearing grooves
+/// are about 0.505; at f → 0.5 the transverse radius Ry = f·D/(2f − 1) diverges (Ry/Rx ≈ 300 at
+/// 0.502 for the seed bearing, beyond 1000 below 0.5005) and the Hertz constant over the contact
+/// angle cannot be represented (f = 0.5001).
+pub const CONFORMITY_MIN: f64 = 0.501;
+
+/// Density range of solids (balls and rings), kg/m³: from polymer balls (≈ 1000) past tungsten
+/// carbide (≈ 15 600) to above osmium, the densest element (22 590).
+pub const SOLID_DENSITY_RANGE: [f64; 2] = [500.0, 25_000.0];
+
 fn positive(v: f64, key: &str, unit: &str) -> Result<f64, InputError> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
@@ -458,7 +470,16 @@ pub(crate) fn solid(raw: Option<&RawSolid>, table: &str) -> Result<Solid, InputE
             s.poisson_ratio = nu;
         }
         if let Some(rho) = r.density_kg_m3 {
-            s.density = positive(rho, &format!("{table}.density_kg_m3"), "kg/m³")?;
+            let [lo, hi] = SOLID_DENSITY_RANGE;
+            if !(rho.is_finite() && (lo..=hi).contains(&rho)) {
+                return Err(InputError::field(
+                    &format!("{table}.density_kg_m3"),
+                    rho,
+                    "500 to 25000 kg/m³ (polymer balls ≈ 1000, silicon nitride 3200, steel 7850, \
+                     tungsten carbide ≈ 15600; osmium, the densest element, 22590)",
+                ));
+            }
+            s.density = rho;
         }
     }
     Ok(s)

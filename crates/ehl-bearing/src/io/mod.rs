@@ -59,6 +59,18 @@ pub enum InputError {
     },
 }
 
+/// Shortest round-trip text of `v` for names and messages: positional (`3000`, `0.5`) when at
+/// most 20 characters, else exponent form (`1e-300`, `1e300`, where positional text runs to
+/// 300 digits). Distinct values give distinct texts (only the exponent form has an `e`).
+pub fn number_text(v: f64) -> String {
+    let positional = format!("{v}");
+    if positional.len() <= 20 {
+        positional
+    } else {
+        format!("{v:e}")
+    }
+}
+
 /// Largest input file read (case, contact, study, trend files are a few kB): 16 MiB.
 pub const MAX_INPUT_BYTES: u64 = 16 << 20;
 

@@ -51,20 +51,9 @@ impl StudyPoint {
     pub fn file_stem(&self) -> String {
         format!(
             "n{}rpm_s{}",
-            stem_number(self.inner_speed_rpm),
-            stem_number(self.load_scale)
+            crate::io::number_text(self.inner_speed_rpm),
+            crate::io::number_text(self.load_scale)
         )
-    }
-}
-
-/// Shortest round-trip text of `v`: positional (`3000`, `0.5`) when at most 20 characters, else
-/// exponent form (`1e-300`). The two forms never coincide (only the second has an `e`).
-fn stem_number(v: f64) -> String {
-    let positional = format!("{v}");
-    if positional.len() <= 20 {
-        positional
-    } else {
-        format!("{v:e}")
     }
 }
 
