@@ -101,7 +101,7 @@ fn check_load_bounds(case: &Case) -> Result<(), InputError> {
                 format!(" times the pitch diameter {} mm", geo.pitch_diameter * 1e3),
             )
         };
-        if !(v.abs() <= bound) {
+        if v.is_nan() || v.abs() > bound {
             return Err(InputError::field(
                 &format!("operating.{}", names[k]),
                 crate::io::number_text(*v),
