@@ -23,7 +23,11 @@ const GRACE_S: f64 = 60.0;
 mod splitmix;
 use splitmix::Rng;
 
-const NUMBERS: [&str; 22] = [
+const NUMBERS: [&str; 26] = [
+    "100000",
+    "1e300",
+    "1e-300",
+    "3000,1e6",
     "0",
     "-1",
     "nan",
@@ -48,7 +52,9 @@ const NUMBERS: [&str; 22] = [
     "--json",
 ];
 
-const FLAGS: [&str; 36] = [
+const FLAGS: [&str; 38] = [
+    "--speeds",
+    "--points-in-flight",
     "--json",
     "--method",
     "-o",
