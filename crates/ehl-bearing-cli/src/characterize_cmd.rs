@@ -12,7 +12,7 @@ use serde_json::Value;
 use std::io::IsTerminal;
 use std::path::PathBuf;
 
-/// Most threads `--threads` accepts: 4 per core of this machine (at least 16). The work is
+/// 4 threads per core of this machine (`--threads` accepts up to this, and at least 16). The work is
 /// CPU-bound, so threads beyond the cores only add overhead; 100 000 threads took minutes to
 /// start and stalled the machine.
 pub fn max_threads() -> usize {
@@ -24,8 +24,8 @@ pub fn check_threads(threads: Option<usize>) -> anyhow::Result<()> {
     let max = max_threads().max(16);
     match threads {
         Some(n) if n == 0 || n > max => bail!(
-            "--threads {n}: expected 1 to {max} (4 per core of this machine; the work is \
-             CPU-bound, more threads than cores only add overhead)"
+            "--threads {n}: expected 1 to {max} (4 per core of this machine, at least 16; the \
+             work is CPU-bound, more threads than cores only add overhead)"
         ),
         _ => Ok(()),
     }
