@@ -24,7 +24,10 @@
 #  6. fault test: the quasi-static array again, task 2 cancelled with scancel while its point is in
 #     flight; `study status` must show the shard interrupted and the merge job must not have run;
 #     resubmitting must submit task 2 only, and the merged folder must again equal the single run;
-#  7. stops every daemon it started (trap on EXIT) and removes the temporary folder
+#  7. pending tasks: the node drained, the array submitted, task 1 cancelled: the resubmission
+#     submits task 1 only (squeue shows 2 and 3 pending); then a late run of task 2 after the
+#     merge leaves the merged folder and its status unchanged;
+#  8. stops every daemon it started (trap on EXIT) and removes the temporary folder
 #     (KEEP_SLURM_TMP=1 keeps it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -180,5 +183,48 @@ expect_completed "fault: merge" "$MERGE_ID"
 diff -r "$TMP/ref-quasi-static" "$FAULT" ||
     fail "fault: the merged folder after the resubmission differs from the single-machine run"
 log "fault: only task 2 resubmitted; merged folder identical to the single run"
+
+# ---------------------------------------------------------------- 6. pending and late tasks
+# Resubmission asks Slurm what it still holds: with the node drained the array's tasks stay
+# PENDING; after scancel of task 1 the resubmission must submit task 1 only (not 2 and 3 a second
+# time) with a merge that also waits for the pending ones. After the merge, a late run of task 2
+# (a held task released late) must leave the merged folder as it is.
+log "pending tasks: hertz array on a drained node, task 1 cancelled, resubmission"
+PEND=$TMP/pending
+timeout 10 scontrol update NodeName=localhost State=DRAIN Reason=ehl-bearing-test ||
+    fail "pending: could not drain the node"
+out=$(run_bin study sbatch "$SEED_STUDY" -o "$PEND" --method hertz --shards 3 \
+    --cpus-per-task 1 --time-limit-min 30 --submit) || fail "pending: study sbatch --submit failed: $out"
+parse_submission "$out"
+FIRST_ID=$ARRAY_ID
+FIRST_MERGE=$MERGE_ID
+scancel "${FIRST_ID}_1" || fail "pending: scancel ${FIRST_ID}_1 failed"
+t0=$SECONDS
+while timeout 10 squeue -h -r -j "$FIRST_ID" -o %i | grep -qx "${FIRST_ID}_1"; do
+    ((SECONDS - t0 > 60)) && fail "pending: task ${FIRST_ID}_1 still queued 60 s after scancel"
+    sleep 0.2
+done
+out=$(run_bin study sbatch "$SEED_STUDY" -o "$PEND" --method hertz --shards 3 \
+    --cpus-per-task 1 --time-limit-min 30 --submit) || fail "pending: resubmission failed: $out"
+echo "$out"
+grep -q "still queued in Slurm, not resubmitted: shard(s) 2 (${FIRST_ID}, PENDING), 3 (${FIRST_ID}, PENDING)" <<<"$out" ||
+    fail "pending: the resubmission does not report tasks 2 and 3 as still queued"
+parse_submission "$out"
+[ "$ARRAY_TASKS" = 1 ] || fail "pending: resubmission submitted tasks $ARRAY_TASKS, expected only 1"
+timeout 10 scontrol update NodeName=localhost State=RESUME || fail "pending: could not resume the node"
+wait_jobs "$JOB_LIMIT" "$FIRST_ID" "$FIRST_MERGE" "$ARRAY_ID" "$MERGE_ID"
+expect_completed "pending: tasks 2 and 3 of the first array" "${FIRST_ID}_2" "${FIRST_ID}_3"
+expect_completed "pending: the resubmitted task and its merge" "$ARRAY_ID" "$MERGE_ID"
+diff -r "$TMP/ref-hertz" "$PEND" || fail "pending: the merged folder differs from the single run"
+log "pending: tasks 2 and 3 not queued twice; only task 1 resubmitted; identical merge"
+log "late task: task 2 submitted again after the merge"
+late=$(sbatch --parsable --array=2 "$PEND.slurm/study.sbatch") || fail "late task: sbatch failed"
+late=${late%%;*}
+wait_jobs "$JOB_LIMIT" "$late"
+expect_completed "late task" "$late"
+diff -r "$TMP/ref-hertz" "$PEND" || fail "late task: the merged folder changed"
+run_bin study status "$PEND" --json | grep -q '"merged": true' ||
+    fail "late task: study status no longer calls the study merged"
+log "late task: the merged folder unchanged, status still merged"
 
 log "Slurm stage passed in $(($(date +%s) - T_START)) s"

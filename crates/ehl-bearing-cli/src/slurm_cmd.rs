@@ -277,6 +277,66 @@ fn sbatch(cmd: &str, args: &[String]) -> anyhow::Result<String> {
     parse_job_id(&String::from_utf8_lossy(&out.stdout))
 }
 
+/// The `squeue` next to the `--sbatch` command (`squeue` on the PATH for a bare `sbatch`).
+fn squeue_command(sbatch_cmd: &str) -> PathBuf {
+    let p = std::path::Path::new(sbatch_cmd);
+    match p.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir.join("squeue"),
+        _ => PathBuf::from("squeue"),
+    }
+}
+
+/// Array tasks of the jobs `array_ids` that Slurm still holds (any state before completion:
+/// pending, held, running, …), task number → (job, state), from
+/// `squeue --noheader --array --jobs IDS --format "%i %T"` (one line per task, e.g.
+/// `41_2 PENDING`). Jobs Slurm no longer knows are simply absent.
+fn queued_tasks(
+    sbatch_cmd: &str,
+    array_ids: &[String],
+) -> anyhow::Result<std::collections::BTreeMap<usize, (String, String)>> {
+    let mut out = std::collections::BTreeMap::new();
+    if array_ids.is_empty() {
+        return Ok(out);
+    }
+    let squeue = squeue_command(sbatch_cmd);
+    let o = Command::new(&squeue)
+        .args([
+            "--noheader",
+            "--array",
+            "--jobs",
+            &array_ids.join(","),
+            "--format",
+            "%i %T",
+        ])
+        .output()
+        .map_err(|e| anyhow::anyhow!("running {}: {e}", squeue.display()))?;
+    // squeue fails for job ids it has forgotten entirely: nothing of them is queued.
+    let text = String::from_utf8_lossy(&o.stdout);
+    if !o.status.success() && text.trim().is_empty() {
+        let err = String::from_utf8_lossy(&o.stderr);
+        if err.contains("Invalid job id") {
+            return Ok(out);
+        }
+        anyhow::bail!("{} failed ({}): {}", squeue.display(), o.status, err.trim());
+    }
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        let (Some(id), Some(state)) = (words.next(), words.next()) else {
+            continue;
+        };
+        let Some((job, task)) = id.split_once('_') else {
+            continue;
+        };
+        if !array_ids.iter().any(|a| a == job) {
+            continue;
+        }
+        if let Ok(t) = task.parse::<usize>() {
+            out.insert(t, (job.to_string(), state.to_string()));
+        }
+    }
+    Ok(out)
+}
+
 /// Compress sorted task numbers into Slurm's array syntax, e.g. `1-3,5`.
 pub fn array_ranges(tasks: &[usize]) -> String {
     let mut parts = Vec::new();
@@ -438,7 +498,42 @@ pub fn run(args: &SbatchArgs) -> anyhow::Result<()> {
             live.join(", ")
         );
     }
-    let tasks = status.shards_to_run();
+    // Tasks of earlier submissions that Slurm still holds (pending, held or running) are not
+    // submitted again: the scheduler is asked, not only the markers (a pending task has none).
+    let array_ids: Vec<String> = status
+        .submissions
+        .iter()
+        .filter_map(|(a, _, _)| a.clone())
+        .collect();
+    let queued = match queued_tasks(&args.sbatch, &array_ids) {
+        Ok(q) => q,
+        Err(e) => {
+            eprintln!(
+                "warning: could not ask Slurm which tasks are still queued ({e}); \
+                 resubmitting from the progress markers alone"
+            );
+            std::collections::BTreeMap::new()
+        }
+    };
+    if !queued.is_empty() {
+        let list: Vec<String> = queued
+            .iter()
+            .map(|(t, (job, state))| format!("{t} ({job}, {state})"))
+            .collect();
+        println!(
+            "  still queued in Slurm, not resubmitted: shard(s) {}",
+            list.join(", ")
+        );
+    }
+    let tasks: Vec<usize> = status
+        .shards_to_run()
+        .into_iter()
+        .filter(|t| !queued.contains_key(t))
+        .collect();
+    let live: Vec<String> = live
+        .into_iter()
+        .chain(queued.keys().map(|t| format!("{t}/{}", args.shards)))
+        .collect();
     let merge_s = merge.display().to_string();
     let (array_id, tasks_s, merge_id) = if tasks.is_empty() && live.is_empty() {
         println!("  every point has its file: submitting the merge job only");
@@ -460,11 +555,16 @@ pub fn run(args: &SbatchArgs) -> anyhow::Result<()> {
                 array.display().to_string(),
             ],
         )?;
+        // The merge also waits for the earlier arrays' tasks still queued (whatever their end:
+        // a missing point then fails the merge visibly).
+        let earlier: std::collections::BTreeSet<&String> =
+            queued.values().map(|(job, _)| job).collect();
+        let earlier: String = earlier.iter().map(|j| format!(",afterany:{j}")).collect();
         let m = sbatch(
             &args.sbatch,
             &[
                 "--parsable".into(),
-                format!("--dependency=afterok:{a}"),
+                format!("--dependency=afterok:{a}{earlier}"),
                 "--kill-on-invalid-dep=yes".into(),
                 merge_s,
             ],

@@ -266,7 +266,17 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
             to_compute,
             redone,
         } => {
-            markers.get_or_init(start_markers);
+            // A late task of a merged study (every point stored, the outputs written, no markers
+            // left) leaves the folder as the merge left it: no markers that would ask for a
+            // merge again.
+            let merged = to_compute == 0
+                && output.join("points.csv").is_file()
+                && !progress::progress_dir(output).exists();
+            if merged {
+                markers.get_or_init(|| None);
+            } else {
+                markers.get_or_init(start_markers);
+            }
             bar.set_position((points - to_compute) as u64);
             if redone > 0 {
                 eprintln!("{redone} unreadable point file(s) (e.g. truncated by a crash) will be recomputed");

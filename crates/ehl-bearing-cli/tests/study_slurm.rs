@@ -347,6 +347,82 @@ fn scripts_run_as_array_tasks_give_the_single_run() {
         serde_json::from_str(&ok(run(&["study", "status", s(&out), "--json"]))).unwrap();
     assert_eq!(st["merged"], true, "{st}");
     assert_eq!(st["done"], 12, "{st}");
+    // A late task (held, then released after the merge) does not undo the merge: it finds its
+    // points stored and leaves the folder as it was (it re-created the markers, and the status
+    // asked for a merge again).
+    let o = Command::new("bash")
+        .arg(jobs.join("study.sbatch"))
+        .env("SLURM_ARRAY_TASK_ID", "2")
+        .env("SLURM_CPUS_PER_TASK", "1")
+        .output()
+        .unwrap();
+    assert!(ok(o).contains("0 computed"));
+    assert_same_tree(&full, &out);
+    let st: Value =
+        serde_json::from_str(&ok(run(&["study", "status", s(&out), "--json"]))).unwrap();
+    assert_eq!(st["merged"], true, "{st}");
+}
+
+/// Resubmission asks Slurm what is still queued: pending (or held) tasks of the earlier array
+/// are not submitted twice, and the new merge also waits for them.
+#[test]
+fn resubmission_skips_tasks_slurm_still_holds() {
+    let tmp = tempfile::tempdir().unwrap();
+    let study = hertz_study(tmp.path());
+    let out = tmp.path().join("o");
+    let (sb, log) = fake_sbatch(tmp.path());
+    // A stand-in squeue: tasks 2 and 3 of array 41 are pending (after a scancel of task 1).
+    let squeue = tmp.path().join("squeue");
+    let squeue_log = tmp.path().join("squeue.log");
+    std::fs::write(
+        &squeue,
+        format!(
+            "#!/bin/sh\necho \"$*\" >> {squeue_log:?}\necho '41_2 PENDING'\necho '41_3 PENDING'\n"
+        ),
+    )
+    .unwrap();
+    Command::new("chmod")
+        .arg("+x")
+        .arg(&squeue)
+        .status()
+        .unwrap();
+    let submit = || {
+        ok(run(&[
+            "study",
+            "sbatch",
+            s(&study),
+            "-o",
+            s(&out),
+            "--shards",
+            "3",
+            "--submit",
+            "--sbatch",
+            s(&sb),
+        ]))
+    };
+    let o = submit();
+    assert!(o.contains("submitted array job 41 (tasks 1-3)"), "{o}");
+    let o = submit();
+    assert!(
+        o.contains(
+            "still queued in Slurm, not resubmitted: shard(s) 2 (41, PENDING), 3 (41, PENDING)"
+        ),
+        "{o}"
+    );
+    assert!(o.contains("(tasks 1)"), "{o}");
+    let calls = std::fs::read_to_string(&log).unwrap();
+    let lines: Vec<_> = calls.lines().collect();
+    assert_eq!(lines.len(), 4, "{calls}");
+    assert!(lines[2].starts_with("--parsable --array=1 "), "{calls}");
+    assert!(
+        lines[3].starts_with("--parsable --dependency=afterok:43,afterany:41 "),
+        "{calls}"
+    );
+    let asked = std::fs::read_to_string(&squeue_log).unwrap();
+    assert!(
+        asked.contains("--array --jobs 41 --format %i %T"),
+        "{asked}"
+    );
 }
 
 fn hostname() -> String {
