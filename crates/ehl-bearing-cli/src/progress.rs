@@ -108,6 +108,27 @@ fn read_marker(path: &Path) -> anyhow::Result<Option<Value>> {
     }
 }
 
+/// The outputs of a finished study folder: the library's tables and the CLI's figures
+/// (`trends.json` is absent when no trend could be fitted, so it is not required).
+pub const STUDY_OUTPUTS: [&str; 8] = [
+    "results.csv",
+    "points.csv",
+    "k_vs_load.png",
+    "k_vs_load.svg",
+    "d_vs_load.png",
+    "d_vs_load.svg",
+    "delta_f_vs_load.png",
+    "delta_f_vs_load.svg",
+];
+
+/// The outputs of [`STUDY_OUTPUTS`] missing from `out`.
+pub fn missing_outputs(out: &Path) -> Vec<&'static str> {
+    STUDY_OUTPUTS
+        .into_iter()
+        .filter(|n| !out.join(n).is_file())
+        .collect()
+}
+
 /// Write `DIR/.progress/plan.json` for `study` run as `shards` shards.
 pub fn write_plan(
     out: &Path,
@@ -474,7 +495,9 @@ pub fn read_status(out: &Path, stale_after_s: u64) -> anyhow::Result<StudyStatus
     }
     let pdir = progress_dir(out);
     let plan = read_marker(&pdir.join("plan.json"))?;
-    let merged = plan.is_none() && out.join("points.csv").is_file();
+    // Merged: no markers left and every output present (each is written atomically, so a present
+    // file is whole; a disk that filled while plotting leaves a figure missing, not truncated).
+    let merged = plan.is_none() && missing_outputs(out).is_empty();
     let me = hostname();
     let now = now_s();
     let Some(plan) = plan else {
@@ -632,6 +655,7 @@ impl StudyStatus {
             "method": self.method,
             "complete": self.counts.points > 0 && self.counts.finished(),
             "merged": self.merged,
+            "missing_outputs": missing_outputs(&self.dir),
         });
         if let (Some(t), Some(o)) = (top.as_object(), v.as_object_mut()) {
             let mut all = t.clone();
@@ -685,8 +709,18 @@ impl StudyStatus {
                 out += &format!(", method {m}");
             }
         }
+        let missing = missing_outputs(&self.dir);
         if self.merged {
             out += "\n  outputs written (merged); no progress markers left";
+        } else if c.points > 0
+            && c.finished()
+            && !missing.is_empty()
+            && missing.len() < STUDY_OUTPUTS.len()
+        {
+            out += &format!(
+                "\n  every point is finished but outputs are missing ({}): run `ehl-bearing study merge` to write them",
+                missing.join(", ")
+            );
         } else if c.points > 0 && c.finished() {
             out +=
                 "\n  every point is finished: run `ehl-bearing study merge` to write the outputs";

@@ -62,20 +62,7 @@ fn full_disk_fails_clearly_and_keeps_finished_points() {
     let before = point_files(&out);
     assert_eq!(before.len(), 2);
     let mut c = study(&file, &out, &[]);
-    // SAFETY: only async-signal-safe calls (setrlimit, signal) between fork and exec.
-    unsafe {
-        c.pre_exec(|| {
-            libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
-            let lim = libc::rlimit {
-                rlim_cur: 64,
-                rlim_max: 64,
-            };
-            if libc::setrlimit(libc::RLIMIT_FSIZE, &lim) != 0 {
-                return Err(std::io::Error::last_os_error());
-            }
-            Ok(())
-        });
-    }
+    full_disk_above(&mut c, 64);
     let o = c.output().unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{err}");
@@ -90,6 +77,93 @@ fn full_disk_fails_clearly_and_keeps_finished_points() {
     let o = study(&file, &out, &[]).output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(String::from_utf8_lossy(&o.stdout).contains("2 computed, 2 loaded"));
+    assert_same_tree(&clean, &out);
+}
+
+/// Files written by the child fail above `bytes` (as on a full file system).
+fn full_disk_above(c: &mut Command, bytes: u64) {
+    // SAFETY: only async-signal-safe calls (setrlimit, signal) between fork and exec.
+    unsafe {
+        c.pre_exec(move || {
+            libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+            let lim = libc::rlimit {
+                rlim_cur: bytes as libc::rlim_t,
+                rlim_max: bytes as libc::rlim_t,
+            };
+            if libc::setrlimit(libc::RLIMIT_FSIZE, &lim) != 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        });
+    }
+}
+
+/// The disk fills while the figures are written (the tables fit, the figures do not): no
+/// truncated figure stays under its final name, and `study status` does not call the study
+/// merged (it said `complete: true, merged: true` with a truncated k_vs_load.png); with space
+/// again `study merge` completes it, identical to an undisturbed run.
+#[test]
+fn full_disk_while_plotting_leaves_no_partial_figure_and_no_merged_status() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = study_file(tmp.path(), "hertz", "[3000, 5000]", "[0.5, 1.0]", "");
+    let clean = tmp.path().join("clean");
+    assert!(study(&file, &clean, &[]).output().unwrap().status.success());
+    let size = |p: &Path| std::fs::metadata(p).unwrap().len();
+    let mut tables = vec![
+        size(&clean.join("results.csv")),
+        size(&clean.join("points.csv")),
+        size(&clean.join("trends.json")),
+    ];
+    tables.extend(point_files(&clean).iter().map(|(_, b)| b.len() as u64));
+    let limit = tables.into_iter().max().unwrap() + 1;
+    // The PNG figures (≈ 140 kB) do not fit; the tables (results.csv ≈ 47 kB) and the SVGs may.
+    let smallest_png = ["k", "d", "delta_f"]
+        .iter()
+        .map(|s| size(&clean.join(format!("{s}_vs_load.png"))))
+        .min()
+        .unwrap();
+    assert!(smallest_png > limit, "{smallest_png} <= {limit}");
+    let out = tmp.path().join("full");
+    let mut c = study(&file, &out, &[]);
+    full_disk_above(&mut c, limit);
+    let o = c.output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("File too large"), "{err}");
+    for entry in std::fs::read_dir(&out).unwrap() {
+        let name = entry.unwrap().file_name().to_string_lossy().to_string();
+        assert!(!name.contains(".tmp-"), "temporary file left: {name}");
+        if let Some(stem) = name.strip_suffix(".png").or(name.strip_suffix(".svg")) {
+            let ext = &name[stem.len()..];
+            assert_eq!(
+                std::fs::read(out.join(&name)).unwrap(),
+                std::fs::read(clean.join(&name)).unwrap(),
+                "a partial figure {name} ({ext}) under its final name"
+            );
+        }
+    }
+    let status = bin()
+        .args(["study", "status", out.to_str().unwrap(), "--json"])
+        .output()
+        .unwrap();
+    let st: serde_json::Value = serde_json::from_slice(&status.stdout).unwrap();
+    assert_eq!(st["complete"], true, "{st}");
+    assert_eq!(st["merged"], false, "{st}");
+    assert!(
+        !st["missing_outputs"].as_array().unwrap().is_empty(),
+        "{st}"
+    );
+    let o = bin()
+        .args([
+            "study",
+            "merge",
+            "-o",
+            out.to_str().unwrap(),
+            file.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_same_tree(&clean, &out);
 }
 

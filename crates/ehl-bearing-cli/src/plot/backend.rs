@@ -49,7 +49,9 @@ pub(crate) fn save_both<F: Figure>(stem: &Path, size: (u32, u32), fig: &F) -> Re
         "href=\"data:png;base64,",
         "preserveAspectRatio=\"none\" href=\"data:image/png;base64,",
     );
-    std::fs::write(&svg_path, svg).with_context(|| format!("writing {}", svg_path.display()))?;
+    // Both files are written atomically (a temporary file, synced, renamed): a full disk never
+    // leaves a truncated figure under its final name.
+    ehl_bearing::io::write_atomic(&svg_path, svg.as_bytes())?;
 
     // PNG: drawn at SUPERSAMPLE times the size, then averaged down, which
     // anti-aliases lines and markers.
@@ -66,11 +68,28 @@ pub(crate) fn save_both<F: Figure>(stem: &Path, size: (u32, u32), fig: &F) -> Re
         root.present().map_err(drawing)?;
     }
     let small = downsample(&big, size);
-    let mut out = BitMapBackend::new(&png_path, size);
-    out.blit_bitmap((0, 0), size, &small).map_err(drawing)?;
-    out.present()
-        .map_err(|e| anyhow!("writing {}: {e}", png_path.display()))?;
-    Ok(())
+    // The encoder picks the format from the extension, so the temporary file ends in .png.
+    let name = png_path
+        .file_name()
+        .map(|n| n.to_string_lossy().to_string())
+        .unwrap_or_default();
+    let tmp = png_path.with_file_name(format!(".{name}.tmp-{}.png", std::process::id()));
+    let written = (|| {
+        let mut out = BitMapBackend::new(&tmp, size);
+        out.blit_bitmap((0, 0), size, &small).map_err(drawing)?;
+        out.present()
+            .map_err(|e| anyhow!("writing {}: {e}", tmp.display()))?;
+        drop(out);
+        std::fs::File::open(&tmp)
+            .and_then(|f| f.sync_all())
+            .with_context(|| format!("syncing {}", tmp.display()))?;
+        std::fs::rename(&tmp, &png_path)
+            .with_context(|| format!("renaming into {}", png_path.display()))
+    })();
+    if written.is_err() {
+        std::fs::remove_file(&tmp).ok();
+    }
+    written
 }
 
 /// Linear scale of the PNG drawing buffer over the figure size.
