@@ -674,6 +674,8 @@ def time_response(
     gravity: bool = True,
     extra_force_n: Optional[np.ndarray] = None,
     progress: Optional[Callable[[int, int, float], Any]] = None,
+    start_displacement: Optional[np.ndarray] = None,
+    start_velocity: Optional[np.ndarray] = None,
 ) -> dict:
     """Nonlinear time response of ``rotor`` on our bearings (the Rust integrator).
 
@@ -684,8 +686,10 @@ def time_response(
     number holds them — hold them with fitted laws (a ``LawElement`` from a characterization
     keeps each ball's law, fitted at that ball's position in the case: a rolling cage would carry
     the laws around and excite the cage frequency, an artifact); ball-pass studies with dry Hertz
-    or a ``TrendForceElement``. Starts from the static equilibrium at the initial speed.
-    Constant loads: gravity (``gravity=True``) and ``extra_force_n`` (n,).
+    or a ``TrendForceElement``. Starts from the static equilibrium at the initial speed, or
+    from ``start_displacement`` and ``start_velocity`` ((ndof,), ROSS's global DOFs, SI; e.g.
+    the static equilibrium plus a linear steady orbit). Constant loads: gravity
+    (``gravity=True``) and ``extra_force_n`` (n,).
 
     Returns :meth:`ehl_bearing.RotorModel.simulate`'s dict (``time_s``, ``speed_rad_s``,
     ``displacement`` over ROSS's global DOFs ``record_dofs``, ``bearing_reaction``,
@@ -713,12 +717,18 @@ def time_response(
             record_dofs=None if record_dofs is None else list(record_dofs),
             coupling=coupling,
             cage_angle_rad=cage_angle_rad,
+            start_displacement=_real_vector(start_displacement),
+            start_velocity=_real_vector(start_velocity),
             progress=progress,
         )
     except _native.EhlBearingError as e:
         raise _native.EhlBearingError(_name_dofs(rotor, bearings, str(e))) from e
     out["model"] = model
     return out
+
+
+def _real_vector(v: Optional[np.ndarray]) -> Optional[np.ndarray]:
+    return None if v is None else np.ascontiguousarray(np.real(v), dtype=float)
 
 
 def _check_supported(rotor: Any, bearings: Sequence[BearingSite]) -> None:
