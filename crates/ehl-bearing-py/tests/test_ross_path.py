@@ -213,7 +213,7 @@ def test_ross_table_csv_reads_into_a_bearing_element(tmp_path, case, dry):
         er.read_ross_table("\n".join([lines[0], lines[2], lines[1]]), 0)
 
 
-def test_messages_name_what_is_missing(bare, dry):
+def test_messages_name_what_is_missing(bare, case, dry):
     """The three messages of the issue: no speed given; a rotor without bearings or on one
     unpreloaded bearing (the cause, not a residual list); a bearing at a wrong node (the node,
     the bearing and the valid range)."""
@@ -226,6 +226,13 @@ def test_messages_name_what_is_missing(bare, dry):
         er.rotor_model(rotor, [er.BearingSite(dry, 0), er.BearingSite(dry, 9, -1)])
     with pytest.raises(ValueError, match=r"unbalance 0 .* node = 7; .* nodes are 0\.\.6"):
         er.rotor_model(rotor, _pair(dry), [er.Unbalance(7, 1e-5)])
+    co = eb.coefficients(case, [RPM], element=dry)
+    with pytest.raises(ValueError, match=r"tag 'b9' at node 9: node outside the shaft.* 0\.\.6"):
+        er.EhlRotor(
+            rotor.shaft_elements,
+            rotor.disk_elements,
+            [er.EhlBearingElement(0, co), er.EhlBearingElement(9, co, mounting=-1, tag="b9")],
+        )
     # The native model with no bearing at all: the load drives a free (rigid-body) direction.
     model = er.rotor_model(rotor, [])
     with pytest.raises(eb.EhlBearingError, match=r"0 bearing\(s\) has 6 free direction\(s\)"):
