@@ -453,10 +453,15 @@ impl RotorModel {
             if mdiag > 0.0 {
                 jac += &self.mass * (1e-12 * kmax / mdiag);
             }
-            let step = jac.lu().solve(&(-&residual)).ok_or(RotorError::Singular {
-                what: "static stiffness",
-                time_s: 0.0,
-            })?;
+            // A singular Newton matrix (nothing holds some direction, not even the mass shift:
+            // no structural stiffness, no bearing) ends the search with the diagnosis.
+            let Some(step) = jac.lu().solve(&(-&residual)) else {
+                return Err(RotorError::StaticNotConverged {
+                    iterations: iteration,
+                    residual_history: history,
+                    diagnosis: self.diagnose(&outs),
+                });
+            };
             // Backtracking: halve the step until the residual falls (bearings stiffen with load,
             // so a full step from q = 0 may overshoot into separation).
             let mut alpha = 1.0;
@@ -527,28 +532,38 @@ impl RotorModel {
         let a = &l_inv * sym * l_inv.transpose();
         let eig = a.symmetric_eigen();
         let lambda_max = eig.eigenvalues.max();
-        if lambda_max.is_nan() || lambda_max <= 0.0 {
+        if lambda_max.is_nan() {
             return None;
         }
-        // Below this an eigenvalue is round-off: a free (rigid-body) direction.
-        let free_below = 1e-12 * lambda_max;
+        // Below this an eigenvalue is round-off: a free (rigid-body) direction (all of them
+        // when nothing is held at all).
+        let free_below = 1e-12 * lambda_max.max(0.0);
+        let is_free = |lambda: f64| lambda <= free_below;
         let modes = l_inv.transpose() * &eig.eigenvectors;
-        let f = &self.constant_force;
-        let mut best = (0usize, -1.0_f64);
-        let mut total = 0.0;
-        let mut free = 0;
-        for i in 0..n {
-            let lambda = eig.eigenvalues[i];
-            if lambda <= free_below {
-                free += 1;
-            }
-            let p = modes.column(i).dot(f);
-            let share = p * p / lambda.abs().max(free_below);
-            total += share;
-            if share > best.1 {
-                best = (i, share);
-            }
-        }
+        let p: Vec<f64> = (0..n)
+            .map(|i| modes.column(i).dot(&self.constant_force))
+            .collect();
+        let p_max = p.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let free = (0..n).filter(|&i| is_free(eig.eigenvalues[i])).count();
+        // A free direction the load drives (beyond round-off) dominates any held one; among the
+        // held ones the static compliance (φᵀf)²/λ decides.
+        let loaded_free: Vec<(usize, f64)> = (0..n)
+            .filter(|&i| is_free(eig.eigenvalues[i]) && p[i].abs() > 1e-6 * p_max)
+            .map(|i| (i, p[i] * p[i]))
+            .collect();
+        let weights = if loaded_free.is_empty() {
+            (0..n)
+                .filter(|&i| !is_free(eig.eigenvalues[i]))
+                .map(|i| (i, p[i] * p[i] / eig.eigenvalues[i]))
+                .collect()
+        } else {
+            loaded_free
+        };
+        let total: f64 = weights.iter().map(|w| w.1).sum();
+        let best = weights
+            .iter()
+            .copied()
+            .fold((0usize, -1.0_f64), |b, c| if c.1 > b.1 { c } else { b });
         let (i, share) = best;
         let phi = modes.column(i);
         let mut order: Vec<usize> = (0..n).collect();
@@ -563,7 +578,7 @@ impl RotorModel {
         Some(StaticDiagnosis {
             bearings: self.bearings.len(),
             free_directions: free,
-            pushed_along_free_direction: lambda <= free_below,
+            pushed_along_free_direction: is_free(lambda),
             frequency_hz: lambda.max(0.0).sqrt() / (2.0 * std::f64::consts::PI),
             load_share: if total > 0.0 { share / total } else { 0.0 },
             dofs,
