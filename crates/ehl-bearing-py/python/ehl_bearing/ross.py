@@ -582,7 +582,10 @@ def rotor_model(
     """The native ``RotorModel`` of ``rotor`` (ROSS's M0, C0, G0, K0: the matrices without any
     bearing element) with our force elements at the bearing sites, the unbalances and the
     constant force (gravity along −ROSS y from ROSS's ``gravitational_force`` with the rotor's
-    mass matrix, plus ``extra_force_n``)."""
+    mass matrix, plus ``extra_force_n``). Each site's offset is :meth:`BearingSite.offset` (the
+    element's preload unless ``offset_m`` is given); a site or unbalance at a node the rotor does
+    not have raises ``ValueError`` naming it and the node range. ROSS bearing elements of
+    ``rotor`` are not part of M0, C0, K0 (:func:`linearize_at_equilibrium` includes them)."""
     return _rotor_model(rotor, bearings, unbalances, gravity, extra_force_n)
 
 
