@@ -226,6 +226,12 @@ def test_messages_name_what_is_missing(bare, case, dry):
         er.rotor_model(rotor, [er.BearingSite(dry, 0), er.BearingSite(dry, 9, -1)])
     with pytest.raises(ValueError, match=r"unbalance 0 .* node = 7; .* nodes are 0\.\.6"):
         er.rotor_model(rotor, _pair(dry), [er.Unbalance(7, 1e-5)])
+    # A ROSS bearing of the rotor is not in the nonlinear model (M0, K0): said, not dropped
+    # silently.
+    support = rs.BearingElement(3, kxx=1e6, cxx=0.0, tag="support")
+    with_ross = rs.Rotor(rotor.shaft_elements, rotor.disk_elements, [support])
+    with pytest.warns(UserWarning, match=r"'support' \(node 3\) are not in this nonlinear model"):
+        er.rotor_model(with_ross, _pair(dry))
     co = eb.coefficients(case, [RPM], element=dry)
     with pytest.raises(ValueError, match=r"tag 'b9' at node 9: node outside the shaft.* 0\.\.6"):
         er.EhlRotor(

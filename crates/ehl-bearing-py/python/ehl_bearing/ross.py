@@ -585,7 +585,8 @@ def rotor_model(
     mass matrix, plus ``extra_force_n``). Each site's offset is :meth:`BearingSite.offset` (the
     element's preload unless ``offset_m`` is given); a site or unbalance at a node the rotor does
     not have raises ``ValueError`` naming it and the node range. ROSS bearing elements of
-    ``rotor`` are not part of M0, C0, K0 (:func:`linearize_at_equilibrium` includes them)."""
+    ``rotor`` other than ours are not part of M0, C0, K0: a ``UserWarning`` names them
+    (:func:`linearize_at_equilibrium` includes them at each speed)."""
     return _rotor_model(rotor, bearings, unbalances, gravity, extra_force_n)
 
 
@@ -617,6 +618,16 @@ def _rotor_model(
         _check_node(rotor, u.node, f"unbalance {i} ({u.mass_eccentricity_kg_m} kg·m)")
     if speed_rad_s is None:
         m, c, k = rotor.M0, rotor.C0, rotor.K0
+        others = [b for b in rotor.bearing_elements if not isinstance(b, EhlBearingElement)]
+        if others:
+            warnings.warn(
+                "the rotor's ROSS bearing elements "
+                + ", ".join(f"{b.tag!r} (node {b.n})" for b in others)
+                + " are not in this nonlinear model (ROSS's M0, C0, K0 leave all bearing "
+                "elements out): only the BearingSite force elements hold the rotor",
+                UserWarning,
+                stacklevel=3,
+            )
     else:
         m, c, k = rotor.M(speed_rad_s), rotor.C(speed_rad_s), rotor.K(speed_rad_s)
     m = np.asarray(m, dtype=float)
