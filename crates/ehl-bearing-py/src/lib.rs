@@ -328,7 +328,7 @@ impl Characterization {
     /// The bearing with the fitted laws as a force element (`LawElement`).
     fn law_element(&self) -> PyResult<PyLawElement> {
         let e = LawElement::from_characterization(&self.case, &self.inner).map_err(err)?;
-        Ok(PyLawElement::new(Arc::new(e), false))
+        Ok(PyLawElement::new(Arc::new(e), false, &self.case))
     }
 }
 
@@ -619,13 +619,16 @@ pub struct PyLawElement {
     #[pyo3(get)]
     /// Whether this is the dry Hertz element.
     dry: bool,
+    /// The case the element was built for (its loads give the default preload offset).
+    case: Case,
 }
 
 impl PyLawElement {
-    fn new(e: Arc<LawElement>, dry: bool) -> Self {
+    fn new(e: Arc<LawElement>, dry: bool, case: &Case) -> Self {
         PyLawElement {
             core: ElementCore::new(e),
             dry,
+            case: case.clone(),
         }
     }
 }
@@ -638,7 +641,18 @@ impl PyLawElement {
         Ok(Self::new(
             Arc::new(LawElement::hertz_case(&case.case).map_err(err)?),
             true,
+            &case.case,
         ))
+    }
+
+    /// The case the element was built for (`hertz`, `from_report` or
+    /// `Characterization.law_element`): its loads and speed are the element's own equilibrium
+    /// (`equilibrium(element.case)`), e.g. the default preload offset of a rotor bearing.
+    #[getter]
+    fn case(&self) -> PyCase {
+        PyCase {
+            case: self.case.clone(),
+        }
     }
 
     /// The fitted laws of a characterization report dict (a study point's `result` or
@@ -653,6 +667,7 @@ impl PyLawElement {
         Ok(Self::new(
             Arc::new(e.with_kinematics(case.case.settings.kinematics)),
             false,
+            &case.case,
         ))
     }
 

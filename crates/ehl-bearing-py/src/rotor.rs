@@ -273,7 +273,18 @@ impl PyRotorModel {
                 end_rad_s: b,
                 duration_s: d,
             },
-            _ => return Err(err("give either speed_rad_s or ramp, not both")),
+            (None, None) => {
+                return Err(err(
+                    "no shaft speed given: pass speed_rad_s (constant speed, rad/s) or ramp = \
+                     (start_rad_s, end_rad_s, duration_s) (a run-up)",
+                ))
+            }
+            (Some(s), Some(r)) => {
+                return Err(err(format!(
+                    "both speed_rad_s = {s} and ramp = {r:?} given: pass one of them \
+                     (speed_rad_s for a constant speed, ramp for a run-up)"
+                )))
+            }
         };
         let coupling = match coupling {
             "implicit" => Coupling::Implicit,

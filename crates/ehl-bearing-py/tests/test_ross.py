@@ -10,6 +10,9 @@ import ehl_bearing as eb
 rs = pytest.importorskip("ross")
 er = pytest.importorskip("ehl_bearing.ross")
 
+# These tests check the block placement of coefficients at the case's loads (on purpose).
+pytestmark = pytest.mark.filterwarnings("ignore::ehl_bearing.ross.CaseLoadsWarning")
+
 
 @pytest.fixture(scope="module")
 def dry(case):

@@ -495,3 +495,30 @@ fn invalid_inputs_name_the_field_and_value() {
         assert!(e.to_string().contains(expected), "{e}");
     }
 }
+
+#[test]
+fn static_failure_says_which_direction_nothing_holds() {
+    // No bearing under a vertical load: the rigid ring's five directions are free and the load
+    // pushes along z (DOF 2); the error says so instead of listing residuals.
+    let mut force = vec![0.0; 5];
+    force[2] = -10.0;
+    let model = RotorModel::new(rigid_ring(0.0), vec![], vec![], force).unwrap();
+    let e = model.static_equilibrium(100.0).unwrap_err();
+    let RotorError::StaticNotConverged {
+        diagnosis: Some(d), ..
+    } = &e
+    else {
+        panic!("{e}")
+    };
+    assert!(d.pushed_along_free_direction, "{d:?}");
+    assert_eq!((d.bearings, d.free_directions), (0, 5), "{d:?}");
+    assert_eq!(d.dofs, vec![2], "{d:?}");
+    assert!((d.load_share - 1.0).abs() < 1e-9, "{d:?}");
+    let text = e.to_string();
+    assert!(
+        text.contains("0 bearing(s) has 5 free direction(s)")
+            && text.contains("rotor DOFs [2]")
+            && text.len() < 900,
+        "{text}"
+    );
+}

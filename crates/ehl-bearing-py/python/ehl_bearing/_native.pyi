@@ -63,6 +63,9 @@ class LawElement(_Element):
 
     @property
     def dry(self) -> bool: ...
+    @property
+    def case(self) -> Case:
+        """The case the element was built for (its equilibrium gives the default preload)."""
     @staticmethod
     def hertz(case: Case) -> LawElement: ...
     @staticmethod

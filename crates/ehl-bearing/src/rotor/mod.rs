@@ -28,7 +28,9 @@
 mod model;
 mod time;
 
-pub use model::{BearingSite, RotorMatrices, RotorModel, StaticSolution, Unbalance};
+pub use model::{
+    BearingSite, RotorMatrices, RotorModel, StaticDiagnosis, StaticSolution, Unbalance,
+};
 pub use time::{
     CageMotion, Coupling, RotorProgress, SpeedProfile, Start, TimeBreakdown, TimeOptions,
     TimeResponse,
@@ -51,16 +53,23 @@ pub enum RotorError {
         /// Simulated time, s.
         time_s: f64,
     },
-    /// The static equilibrium did not converge within its iteration budget.
+    /// The static equilibrium did not converge within its iteration budget; the message says
+    /// why, from [`StaticDiagnosis`] (the direction the load pushes the rotor along).
     #[error(
-        "static equilibrium not converged after {iterations} Newton iterations \
-         (force residual history, N: {residual_history:?})"
+        "static equilibrium not converged after {iterations} Newton iterations (largest force \
+         residual {first:.4e} at the start, {last:.4e} at the end, N or N·m){why}",
+        first = residual_history.first().copied().unwrap_or(f64::NAN),
+        last = residual_history.last().copied().unwrap_or(f64::NAN),
+        why = diagnosis.as_ref().map(|d| format!("; {d}")).unwrap_or_default()
     )]
     StaticNotConverged {
         /// Iterations done.
         iterations: usize,
         /// Largest force residual per iteration, N (or N·m).
         residual_history: Vec<f64>,
+        /// Why: the rotor's softest loaded direction at the last iterate (None if the mass
+        /// matrix is not positive definite).
+        diagnosis: Option<StaticDiagnosis>,
     },
     /// The Newton iteration of one implicit step did not converge within its budget.
     #[error(

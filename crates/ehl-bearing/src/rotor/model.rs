@@ -200,6 +200,55 @@ pub struct StaticSolution {
     pub residual_n: f64,
 }
 
+/// Why a static equilibrium failed: the direction the constant load pushes the rotor along at
+/// the last Newton iterate ([`RotorError::StaticNotConverged`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StaticDiagnosis {
+    /// Number of bearings.
+    pub bearings: usize,
+    /// Directions nothing holds at the last iterate: eigenvalues of the tangent stiffness
+    /// (against the mass) at round-off, below 1e-12 of the largest (torsion included).
+    pub free_directions: usize,
+    /// Whether the load pushes the rotor mostly along such a free direction.
+    pub pushed_along_free_direction: bool,
+    /// Natural frequency of that direction on the bearings at the last iterate, Hz (0 if free).
+    pub frequency_hz: f64,
+    /// Its share of the load's static compliance, 0–1.
+    pub load_share: f64,
+    /// The rotor DOFs that move most in it (largest first, those above a tenth of the largest).
+    pub dofs: Vec<usize>,
+}
+
+impl fmt::Display for StaticDiagnosis {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.pushed_along_free_direction {
+            write!(
+                f,
+                "the rotor on its {} bearing(s) has {} free direction(s) (rigid-body motions no \
+                 bearing holds, torsion included) and the constant load pushes it along one \
+                 (mostly rotor DOFs {:?}): no static equilibrium exists. The bearings must hold \
+                 the rotor in every direction a load pushes it: a shaft needs bearings at two \
+                 nodes (or one that carries the moment), and angular-contact bearings an opposed \
+                 partner and a preload axially",
+                self.bearings, self.free_directions, self.dofs
+            )
+        } else {
+            write!(
+                f,
+                "at the last iterate {:.0} % of the constant load's static compliance goes into \
+                 a mode of {:.3} Hz (mostly rotor DOFs {:?}) that the {} bearing(s) barely hold: \
+                 they do not hold the rotor firmly in that direction. Check the bearings' nodes \
+                 and mounting, and their preload offsets (an unloaded ball bearing has no \
+                 stiffness; a shaft on one bearing pivots about it)",
+                100.0 * self.load_share,
+                self.frequency_hz,
+                self.dofs,
+                self.bearings
+            )
+        }
+    }
+}
+
 /// A rotor with bearings, unbalances and constant loads.
 #[derive(Debug, Clone)]
 pub struct RotorModel {
@@ -404,10 +453,15 @@ impl RotorModel {
             if mdiag > 0.0 {
                 jac += &self.mass * (1e-12 * kmax / mdiag);
             }
-            let step = jac.lu().solve(&(-&residual)).ok_or(RotorError::Singular {
-                what: "static stiffness",
-                time_s: 0.0,
-            })?;
+            // A singular Newton matrix (nothing holds some direction, not even the mass shift:
+            // no structural stiffness, no bearing) ends the search with the diagnosis.
+            let Some(step) = jac.lu().solve(&(-&residual)) else {
+                return Err(RotorError::StaticNotConverged {
+                    iterations: iteration,
+                    residual_history: history,
+                    diagnosis: self.diagnose(&outs),
+                });
+            };
             // Backtracking: halve the step until the residual falls (bearings stiffen with load,
             // so a full step from q = 0 may overshoot into separation).
             let mut alpha = 1.0;
@@ -430,6 +484,7 @@ impl RotorModel {
         Err(RotorError::StaticNotConverged {
             iterations: STATIC_MAX_ITERATIONS,
             residual_history: history,
+            diagnosis: self.diagnose(&outs),
         })
     }
 
@@ -458,6 +513,76 @@ impl RotorModel {
             .flat_map(|o| o.reaction.iter().take(3))
             .fold(0.0_f64, |m, v| m.max(v.abs()));
         f.max(r).max(1.0)
+    }
+
+    /// Why the static equilibrium failed: at the bearing state `outs` (the last iterate), the
+    /// rotor's tangent stiffness J = K + Σ Lᵀ·K_b·L (symmetric part) against its mass M. The
+    /// modes φ of J·φ = λ·M·φ split the static compliance of the constant load f into shares
+    /// (φᵀf)²/λ; the mode with the largest share is the direction the load pushes the rotor
+    /// along. None if M is not positive definite.
+    fn diagnose(&self, outs: &[ElementOutput]) -> Option<StaticDiagnosis> {
+        let n = self.dofs();
+        let mut jac = self.stiffness.clone();
+        for (b, o) in outs.iter().enumerate() {
+            self.scatter_matrix(b, &o.stiffness, &mut jac);
+        }
+        let sym = (&jac + jac.transpose()) * 0.5;
+        let l = self.mass.clone().cholesky()?.l();
+        let l_inv = l.try_inverse()?;
+        let a = &l_inv * sym * l_inv.transpose();
+        let eig = a.symmetric_eigen();
+        let lambda_max = eig.eigenvalues.max();
+        if lambda_max.is_nan() {
+            return None;
+        }
+        // Below this an eigenvalue is round-off: a free (rigid-body) direction (all of them
+        // when nothing is held at all).
+        let free_below = 1e-12 * lambda_max.max(0.0);
+        let is_free = |lambda: f64| lambda <= free_below;
+        let modes = l_inv.transpose() * &eig.eigenvectors;
+        let p: Vec<f64> = (0..n)
+            .map(|i| modes.column(i).dot(&self.constant_force))
+            .collect();
+        let p_max = p.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let free = (0..n).filter(|&i| is_free(eig.eigenvalues[i])).count();
+        // A free direction the load drives (beyond round-off) dominates any held one; among the
+        // held ones the static compliance (φᵀf)²/λ decides.
+        let loaded_free: Vec<(usize, f64)> = (0..n)
+            .filter(|&i| is_free(eig.eigenvalues[i]) && p[i].abs() > 1e-6 * p_max)
+            .map(|i| (i, p[i] * p[i]))
+            .collect();
+        let weights = if loaded_free.is_empty() {
+            (0..n)
+                .filter(|&i| !is_free(eig.eigenvalues[i]))
+                .map(|i| (i, p[i] * p[i] / eig.eigenvalues[i]))
+                .collect()
+        } else {
+            loaded_free
+        };
+        let total: f64 = weights.iter().map(|w| w.1).sum();
+        let best = weights
+            .iter()
+            .copied()
+            .fold((0usize, -1.0_f64), |b, c| if c.1 > b.1 { c } else { b });
+        let (i, share) = best;
+        let phi = modes.column(i);
+        let mut order: Vec<usize> = (0..n).collect();
+        order.sort_by(|&a, &b| phi[b].abs().total_cmp(&phi[a].abs()));
+        let peak = phi[order[0]].abs();
+        let dofs = order
+            .into_iter()
+            .take(4)
+            .filter(|&k| phi[k].abs() >= 0.1 * peak)
+            .collect();
+        let lambda = eig.eigenvalues[i];
+        Some(StaticDiagnosis {
+            bearings: self.bearings.len(),
+            free_directions: free,
+            pushed_along_free_direction: is_free(lambda),
+            frequency_hz: lambda.max(0.0).sqrt() / (2.0 * std::f64::consts::PI),
+            load_share: if total > 0.0 { share / total } else { 0.0 },
+            dofs,
+        })
     }
 
     /// The rotor linearized about its static equilibrium at `speed_rad_s`: K + Σ Lᵀ·K_b·L and
