@@ -223,8 +223,8 @@ late=${late%%;*}
 wait_jobs "$JOB_LIMIT" "$late"
 expect_completed "late task" "$late"
 diff -r "$TMP/ref-hertz" "$PEND" || fail "late task: the merged folder changed"
-run_bin study status "$PEND" --json | grep -q '"merged": true' ||
-    fail "late task: study status no longer calls the study merged"
+status=$(run_bin study status "$PEND" --json) || fail "late task: study status failed"
+grep -q '"merged": true' <<<"$status" || fail "late task: study status no longer calls the study merged: $status"
 log "late task: the merged folder unchanged, status still merged"
 
 log "Slurm stage passed in $(($(date +%s) - T_START)) s"
