@@ -19,7 +19,10 @@ use ehl_bearing::io::{json::equilibrium_json, parse_case, read_case, Case, FsSto
 use ehl_bearing::study::{
     finish_study, points_csv, read_study, results_csv, run_study, RunOptions, StudyEvent,
 };
-use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{
+    AllowTypeChange, PyArray1, PyArray2, PyArrayLike1, PyReadonlyArray1, PyReadonlyArray2,
+    PyUntypedArrayMethods,
+};
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -51,13 +54,77 @@ pub(crate) fn to_py(py: Python<'_>, v: &serde_json::Value) -> PyResult<PyObject>
         .unbind())
 }
 
-/// A Python object (dict, list, numbers, strings) as a JSON value via the `json` module.
-fn from_py(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<serde_json::Value> {
-    let text: String = py
-        .import_bound("json")?
-        .call_method1("dumps", (obj,))?
-        .extract()?;
-    serde_json::from_str(&text).map_err(err)
+/// A Python object (dicts with text keys, lists and tuples, bools, ints, floats, strings, numpy
+/// scalars and 0-d arrays) as a JSON value, walked directly: an unsupported value or a number
+/// that is not finite is an error naming its key path (`bearing.ball_diameter_mm = nan`).
+fn from_py(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<serde_json::Value> {
+    use pyo3::types::{PyBool, PyFloat, PyInt, PyList, PyString, PyTuple};
+    let at = |p: &str| {
+        if p.is_empty() {
+            "<dict>".to_string()
+        } else {
+            p.to_string()
+        }
+    };
+    if let Ok(d) = obj.downcast::<PyDict>() {
+        let mut map = serde_json::Map::new();
+        for (k, v) in d.iter() {
+            let key: String = k.extract().map_err(|_| {
+                err(format!(
+                    "{}: key {} is not text (keys are the case file's names, e.g. \"ball_count\")",
+                    at(path),
+                    k.repr().map_or_else(|_| "?".into(), |r| r.to_string())
+                ))
+            })?;
+            let sub = if path.is_empty() {
+                key.clone()
+            } else {
+                format!("{path}.{key}")
+            };
+            map.insert(key, from_py(&v, &sub)?);
+        }
+        return Ok(serde_json::Value::Object(map));
+    }
+    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+        let mut out = Vec::new();
+        for (i, v) in obj.iter()?.enumerate() {
+            out.push(from_py(&v?, &format!("{path}[{i}]"))?);
+        }
+        return Ok(serde_json::Value::Array(out));
+    }
+    if obj.is_instance_of::<PyBool>() {
+        return Ok(serde_json::Value::Bool(obj.extract()?));
+    }
+    if obj.is_instance_of::<PyString>() {
+        return Ok(serde_json::Value::String(obj.extract()?));
+    }
+    if obj.is_instance_of::<PyInt>() {
+        let i: i64 = obj
+            .extract()
+            .map_err(|_| err(format!("{} = {obj}: an integer beyond 64 bits", at(path))))?;
+        return Ok(serde_json::Value::from(i));
+    }
+    if obj.is_instance_of::<PyFloat>() {
+        let x: f64 = obj.extract()?;
+        return serde_json::Number::from_f64(x)
+            .map(serde_json::Value::Number)
+            .ok_or_else(|| err(format!("{} = {x}: expected a finite number", at(path))));
+    }
+    // numpy scalars (int64, float32, bool_, …) and 0-d arrays: their Python value.
+    if obj.hasattr("item")? && obj.hasattr("dtype")? {
+        let item = obj.call_method0("item")?;
+        if !item.hasattr("dtype")? {
+            return from_py(&item, path);
+        }
+    }
+    Err(err(format!(
+        "{} = {}: expected a number, text, bool, list or dict (a {})",
+        at(path),
+        obj.repr().map_or_else(|_| "?".into(), |r| r.to_string()),
+        obj.get_type()
+            .name()
+            .map_or_else(|_| "?".into(), |n| n.to_string())
+    )))
 }
 
 /// Call a Python progress callback with a dict, from any thread; errors are printed, not raised
@@ -127,7 +194,8 @@ impl PyCase {
     /// "operating": {"inner_speed_rpm": 5000.0, ...}}`); validated by the same parser.
     #[staticmethod]
     fn from_dict(py: Python<'_>, values: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let v = from_py(py, values)?;
+        let _ = py;
+        let v = from_py(values, "")?;
         let text = toml::to_string(&v).map_err(|e| err(format!("case dict as TOML: {e}")))?;
         Self::from_toml(&text, "<dict>")
     }
@@ -175,6 +243,8 @@ impl PyCase {
     }
 
     /// The same case with the inner-ring speed set to `rpm`.
+    /// Refused like the case file's own speed: not finite, or beyond the plausibility rules
+    /// (speed factor n·d_m), with the key, the value and the range.
     fn with_inner_speed_rpm(&self, rpm: f64) -> PyResult<Self> {
         if !rpm.is_finite() {
             return Err(err(format!(
@@ -183,6 +253,8 @@ impl PyCase {
         }
         let mut c = self.case.clone();
         c.operating.inner_speed = rpm * PI / 30.0;
+        ehl_bearing::plausibility::check_case(&c)
+            .map_err(|e| err(format!("with_inner_speed_rpm({rpm}): {e}")))?;
         Ok(PyCase { case: c })
     }
 
@@ -465,8 +537,8 @@ impl ElementCore {
     fn evaluate<'py>(
         &self,
         py: Python<'py>,
-        displacement: PyReadonlyArray1<'_, f64>,
-        velocity: Option<PyReadonlyArray1<'_, f64>>,
+        displacement: PyArrayLike1<'_, f64, AllowTypeChange>,
+        velocity: Option<PyArrayLike1<'_, f64, AllowTypeChange>>,
         inner_speed_rad_s: f64,
         outer_speed_rad_s: f64,
         cage_angle_rad: f64,
@@ -536,8 +608,8 @@ macro_rules! element_methods {
             fn evaluate(
                 &self,
                 py: Python<'_>,
-                displacement: PyReadonlyArray1<'_, f64>,
-                velocity: Option<PyReadonlyArray1<'_, f64>>,
+                displacement: PyArrayLike1<'_, f64, AllowTypeChange>,
+                velocity: Option<PyArrayLike1<'_, f64, AllowTypeChange>>,
                 inner_speed_rad_s: f64,
                 outer_speed_rad_s: f64,
                 cage_angle_rad: f64,
@@ -557,10 +629,19 @@ macro_rules! element_methods {
             /// Cage speed under pure rolling at ring speeds `inner_speed_rad_s`,
             /// `outer_speed_rad_s`, rad/s: ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)], γ = D·cos α0/d_m.
             #[pyo3(signature = (inner_speed_rad_s, outer_speed_rad_s = 0.0))]
-            fn cage_speed(&self, inner_speed_rad_s: f64, outer_speed_rad_s: f64) -> f64 {
-                self.core
+            fn cage_speed(&self, inner_speed_rad_s: f64, outer_speed_rad_s: f64) -> PyResult<f64> {
+                for (name, v) in [
+                    ("inner_speed_rad_s", inner_speed_rad_s),
+                    ("outer_speed_rad_s", outer_speed_rad_s),
+                ] {
+                    if !v.is_finite() {
+                        return Err(err(format!("{name} = {v}: expected a finite speed in rad/s")));
+                    }
+                }
+                Ok(self
+                    .core
                     .element
-                    .cage_speed(inner_speed_rad_s, outer_speed_rad_s)
+                    .cage_speed(inner_speed_rad_s, outer_speed_rad_s))
             }
 
             /// Number of balls Z.
@@ -658,8 +739,8 @@ impl PyLawElement {
     /// The fitted laws of a characterization report dict (a study point's `result` or
     /// `Characterization.report()`) for the bearing of `case`.
     #[staticmethod]
-    fn from_report(py: Python<'_>, case: &PyCase, report: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let v = from_py(py, report)?;
+    fn from_report(case: &PyCase, report: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let v = from_py(report, "")?;
         let r: ehl_bearing::characterize::CharacterizationReport =
             serde_json::from_value(v).map_err(|e| err(format!("characterization report: {e}")))?;
         let e = LawElement::from_report(&case.case.bearing, case.case.operating.race_control, &r)
@@ -778,8 +859,8 @@ fn coefficients(
 /// cxy, cyx, cyy, kzz, czz) of coefficient dicts from `coefficients`, in ROSS's axes (ROSS
 /// x ← our y, y ← our z, z ← our x).
 #[pyfunction]
-fn ross_table_csv(py: Python<'_>, coefficients: &Bound<'_, PyAny>) -> PyResult<String> {
-    let v = from_py(py, coefficients)?;
+fn ross_table_csv(coefficients: &Bound<'_, PyAny>) -> PyResult<String> {
+    let v = from_py(coefficients, "")?;
     let c: Vec<ehl_bearing::coefficients::SpeedCoefficients> =
         serde_json::from_value(v).map_err(|e| err(format!("coefficients: {e}")))?;
     Ok(ehl_bearing::coefficients::ross_table_csv(&c))

@@ -241,7 +241,9 @@ impl PyRotorModel {
     /// None lets every cage roll at its cage speed (ball passes at Z·f_cage), a number holds
     /// them there. Start: the static equilibrium at the initial speed, or `start_displacement`
     /// and `start_velocity` (n,). `progress(step, steps, time_s)` is called about a hundred
-    /// times.
+    /// times; an exception it raises stops the run and is raised from `simulate` (so a callback
+    /// can cancel), as is Ctrl-C (KeyboardInterrupt). `time_limit_s` bounds the wall time:
+    /// beyond it the run stops with `EhlBearingError` naming the step and time reached.
     ///
     /// Returns a dict of numpy arrays: `time_s`, `speed_rad_s` (R,), `record_dofs`,
     /// `displacement` (R, len(record_dofs)), `cage_angle_rad` (R, B), `bearing_displacement`
@@ -249,7 +251,7 @@ impl PyRotorModel {
     /// `max_newton_iterations`, `steps_outside_range`, `breakdown` (dict: `total_s`,
     /// `bearing_s`, `factorization_s`). Raises `EhlBearingError` if a step's Newton iteration
     /// fails or the response diverges (with the step and time).
-    #[pyo3(signature = (step_s, duration_s, speed_rad_s = None, ramp = None, record_every = 1, record_dofs = None, coupling = "implicit", cage_angle_rad = None, start_displacement = None, start_velocity = None, progress = None))]
+    #[pyo3(signature = (step_s, duration_s, speed_rad_s = None, ramp = None, record_every = 1, record_dofs = None, coupling = "implicit", cage_angle_rad = None, start_displacement = None, start_velocity = None, progress = None, time_limit_s = None))]
     #[allow(clippy::too_many_arguments)]
     fn simulate(
         &self,
@@ -265,7 +267,15 @@ impl PyRotorModel {
         start_displacement: Option<PyReadonlyArray1<'_, f64>>,
         start_velocity: Option<PyReadonlyArray1<'_, f64>>,
         progress: Option<PyObject>,
+        time_limit_s: Option<f64>,
     ) -> PyResult<PyObject> {
+        if let Some(t) = time_limit_s {
+            if !(t.is_finite() && t > 0.0) {
+                return Err(err(format!(
+                    "time_limit_s = {t}: expected a finite number of seconds > 0"
+                )));
+            }
+        }
         let profile = match (speed_rad_s, ramp) {
             (Some(s), None) => SpeedProfile::Constant { speed_rad_s: s },
             (None, Some((a, b, d))) => SpeedProfile::Ramp {
@@ -319,20 +329,53 @@ impl PyRotorModel {
             ..TimeOptions::default()
         };
         let m = self.model()?;
-        let r = py
-            .allow_threads(|| {
-                let mut cb = |p: &RotorProgress| {
+        // The library calls back every min(steps/100, 1000) steps: the user's callback sees
+        // about a hundred of them; every one checks Ctrl-C and the time limit. A Python exception
+        // (the callback's, or KeyboardInterrupt) stops the run and is raised as it is.
+        let clock = std::time::Instant::now();
+        let mut raised: Option<PyErr> = None;
+        let mut out_of_time = false;
+        let result = py.allow_threads(|| {
+            let mut cb = |p: &RotorProgress| {
+                let user_every = (p.steps / 100).max(1);
+                let stop = Python::with_gil(|py| {
+                    py.check_signals()?;
                     if let Some(f) = &progress {
-                        Python::with_gil(|py| {
-                            if let Err(e) = f.call1(py, (p.step, p.steps, p.time_s)) {
-                                e.print(py);
-                            }
-                        });
+                        if p.step % user_every == 0 || p.step == p.steps {
+                            f.call1(py, (p.step, p.steps, p.time_s))?;
+                        }
                     }
-                };
-                m.simulate(&profile, &options, Some(&mut cb))
-            })
-            .map_err(err)?;
+                    Ok::<(), PyErr>(())
+                });
+                if let Err(e) = stop {
+                    raised = Some(e);
+                    return std::ops::ControlFlow::Break(());
+                }
+                if time_limit_s.is_some_and(|t| clock.elapsed().as_secs_f64() > t) {
+                    out_of_time = true;
+                    return std::ops::ControlFlow::Break(());
+                }
+                std::ops::ControlFlow::Continue(())
+            };
+            m.simulate(&profile, &options, Some(&mut cb))
+        });
+        if let Some(e) = raised {
+            return Err(e);
+        }
+        let r = match result {
+            Err(ehl_bearing::rotor::RotorError::Cancelled {
+                step,
+                steps,
+                time_s,
+            }) if out_of_time => {
+                return Err(err(format!(
+                    "time limit of {} s reached at step {step} of {steps} (t = {time_s} s); \
+                     raise time_limit_s or shorten duration_s",
+                    time_limit_s.unwrap_or(f64::NAN)
+                )))
+            }
+            r => r.map_err(err)?,
+        };
         let d = PyDict::new_bound(py);
         d.set_item("time_s", PyArray1::from_slice_bound(py, &r.time_s))?;
         d.set_item(

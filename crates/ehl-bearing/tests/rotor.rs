@@ -353,7 +353,10 @@ fn run_up_follows_the_ramp() {
     )
     .unwrap();
     let mut calls = 0;
-    let mut progress = |_: &ehl_bearing::rotor::RotorProgress| calls += 1;
+    let mut progress = |_: &ehl_bearing::rotor::RotorProgress| {
+        calls += 1;
+        std::ops::ControlFlow::Continue(())
+    };
     let r = model
         .simulate(
             &profile,
@@ -376,6 +379,47 @@ fn run_up_follows_the_ramp() {
     };
     // Unbalance force ∝ Ω² far below resonance: the late orbit is several times the early one.
     assert!(amp(n - n / 10..n) > 5.0 * amp(n / 10..n / 5));
+    // The callback stops the run (a cancel button): an error saying where, at once.
+    let mut stop_at_half = |p: &ehl_bearing::rotor::RotorProgress| {
+        if 2 * p.step >= p.steps {
+            std::ops::ControlFlow::Break(())
+        } else {
+            std::ops::ControlFlow::Continue(())
+        }
+    };
+    let options = TimeOptions {
+        step_s: 5e-5,
+        duration_s: 0.4,
+        ..TimeOptions::default()
+    };
+    let e = model
+        .simulate(&profile, &options, Some(&mut stop_at_half))
+        .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            ehl_bearing::rotor::RotorError::Cancelled {
+                step: 4000,
+                steps: 8000,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    // A record that cannot fit in memory is refused before any step.
+    let huge = TimeOptions {
+        step_s: 1e-9,
+        duration_s: 1.0,
+        ..TimeOptions::default()
+    };
+    let e = model
+        .simulate(&profile, &huge, None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("recorded samples") && e.contains("record_every"),
+        "{e}"
+    );
 }
 
 /// Two identical bearings at one node, the second mirrored, each preloaded by the same axial

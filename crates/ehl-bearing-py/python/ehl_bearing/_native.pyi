@@ -133,6 +133,7 @@ class RotorModel:
         start_displacement: Optional[_Array] = None,
         start_velocity: Optional[_Array] = None,
         progress: Optional[Callable[[int, int, float], Any]] = None,
+        time_limit_s: Optional[float] = None,
     ) -> dict[str, Any]: ...
 
 def equilibrium(case: Case) -> dict[str, Any]: ...

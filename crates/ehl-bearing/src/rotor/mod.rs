@@ -103,6 +103,16 @@ pub enum RotorError {
         /// The limit, m.
         limit_m: f64,
     },
+    /// The caller's progress callback asked to stop (e.g. a cancel button, a time limit).
+    #[error("run stopped by the caller at step {step} of {steps} (t = {time_s} s)")]
+    Cancelled {
+        /// Steps done.
+        step: usize,
+        /// Steps in all.
+        steps: usize,
+        /// Simulated time reached, s.
+        time_s: f64,
+    },
     /// A bearing's force element failed (e.g. a ball equilibrium that did not converge).
     #[error("bearing {bearing} at t = {time_s} s: {source}")]
     Element {

@@ -5,6 +5,7 @@ use super::model::{check_speed, check_vector, RotorModel};
 use super::RotorError;
 use crate::force_element::{ElementOutput, ElementState};
 use nalgebra::{DMatrix, DVector};
+use std::ops::ControlFlow;
 use std::time::Instant;
 
 /// Shaft speed over time.
@@ -218,6 +219,23 @@ impl TimeOptions {
                 "record_dofs contains {i}; rotor DOF indices run 0..{n}"
             )));
         }
+        // The record is kept in memory: refuse one that cannot fit before any step (1e9 steps
+        // recorded every step asked for hundreds of GB).
+        let rows = steps / self.record_every as f64 + 1.0;
+        let per_row = if self.record_dofs.is_empty() {
+            n
+        } else {
+            self.record_dofs.len()
+        };
+        let bytes = rows * (per_row as f64 + 2.0) * 8.0;
+        if bytes > MAX_RECORD_BYTES {
+            return Err(RotorError::Invalid(format!(
+                "duration_s / step_s / record_every = {rows:.3e} recorded samples of {per_row} \
+                 DOFs ({:.1} GB); at most {:.0} GB: raise record_every or narrow record_dofs",
+                bytes * 1e-9,
+                MAX_RECORD_BYTES * 1e-9
+            )));
+        }
         if let CageMotion::Fixed { angle_rad } = self.cage {
             if !angle_rad.is_finite() {
                 return Err(RotorError::Invalid(format!(
@@ -248,7 +266,12 @@ pub struct TimeBreakdown {
     pub factorization_s: f64,
 }
 
-/// Progress of a run, passed to the caller's callback about a hundred times.
+/// Largest time-response record held in memory, bytes (recorded DOFs and time and speed; the
+/// bearing records add to it).
+pub const MAX_RECORD_BYTES: f64 = 1e9;
+
+/// Progress of a run, passed to the caller's callback every min(steps/100, 1000) steps (at
+/// least every step), which may stop the run by returning [`ControlFlow::Break`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RotorProgress {
     /// Steps done.
@@ -356,7 +379,9 @@ impl BearingDofs {
 
 impl RotorModel {
     /// The shaft speed's time response under `profile`: see the module documentation for the
-    /// equation and the scheme. `progress` is called about a hundred times with the steps done.
+    /// equation and the scheme. `progress` is called every min(steps/100, 1000) steps with the
+    /// steps done; returning [`ControlFlow::Break`] stops the run with
+    /// [`RotorError::Cancelled`] (a caller's cancel button or wall-time limit).
     /// Ends with an error carrying the step, the time and the residual history when a step's
     /// Newton iteration does not converge, when a bearing element fails, or when the response
     /// diverges (beyond `divergence_limit_m`).
@@ -364,7 +389,7 @@ impl RotorModel {
         &self,
         profile: &SpeedProfile,
         options: &TimeOptions,
-        mut progress: Option<&mut dyn FnMut(&RotorProgress)>,
+        mut progress: Option<&mut dyn FnMut(&RotorProgress) -> ControlFlow<()>>,
     ) -> Result<TimeResponse, RotorError> {
         let clock = Instant::now();
         profile.validate()?;
@@ -456,7 +481,7 @@ impl RotorModel {
         record(&mut response, 0.0, &q, &angles, &outs);
 
         let mut condensed: Option<Condensed> = None;
-        let progress_every = (steps / 100).max(1);
+        let progress_every = (steps / 100).clamp(1, 1000);
         for step in 1..=steps {
             let t = step as f64 * h;
             let speed = profile.speed(t);
@@ -555,11 +580,18 @@ impl RotorModel {
             }
             if let Some(p) = progress.as_deref_mut() {
                 if step % progress_every == 0 || step == steps {
-                    p(&RotorProgress {
+                    let at = RotorProgress {
                         step,
                         steps,
                         time_s: t,
-                    });
+                    };
+                    if p(&at).is_break() {
+                        return Err(RotorError::Cancelled {
+                            step,
+                            steps,
+                            time_s: t,
+                        });
+                    }
                 }
             }
         }
