@@ -253,8 +253,12 @@ impl PyCase {
         }
         let mut c = self.case.clone();
         c.operating.inner_speed = rpm * PI / 30.0;
-        ehl_bearing::plausibility::check_case(&c)
-            .map_err(|e| err(format!("with_inner_speed_rpm({rpm}): {e}")))?;
+        ehl_bearing::plausibility::check_case(&c).map_err(|e| {
+            err(format!(
+                "with_inner_speed_rpm({}): {e}",
+                ehl_bearing::io::number_text(rpm)
+            ))
+        })?;
         Ok(PyCase { case: c })
     }
 

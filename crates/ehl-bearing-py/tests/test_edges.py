@@ -42,7 +42,7 @@ def test_case_dicts_take_numpy_scalars_and_name_bad_values():
     assert math.isclose(c.inner_speed_rad_s, 5000.0 * math.pi / 30.0)
     # NaN, inf and objects name their key ("expected value at line 1 column 28" before).
     for value, words in [
-        (float("nan"), ["bearing.ball_diameter_mm = nan", "finite"]),
+        (float("nan"), ["bearing.ball_diameter_mm = NaN", "finite"]),
         (np.float64("inf"), ["bearing.ball_diameter_mm = inf", "finite"]),
         (object(), ["bearing.ball_diameter_mm", "expected a number"]),
         (None, ["bearing.ball_diameter_mm", "NoneType"]),
@@ -61,7 +61,7 @@ def test_speeds_are_checked_where_they_enter(case):
     with pytest.raises(eb.EhlBearingError, match="n·d_m"):
         case.with_inner_speed_rpm(1e6)
     element = eb.LawElement.hertz(case)
-    with pytest.raises(eb.EhlBearingError, match="inner_speed_rad_s = nan"):
+    with pytest.raises(eb.EhlBearingError, match="inner_speed_rad_s = NaN"):
         element.cage_speed(float("nan"))
     assert 0.0 < element.cage_speed(100.0) < 100.0
 
@@ -70,7 +70,7 @@ def test_evaluate_takes_any_real_array_like(case):
     element = eb.LawElement.hertz(case)
     q, _, _ = element.equilibrium(case)
     w = case.inner_speed_rad_s
-    ref, k_ref, _ = element.evaluate(np.asarray(q, dtype=np.float64), inner_speed_rad_s=w)
+    ref, _, _ = element.evaluate(np.asarray(q, dtype=np.float64), inner_speed_rad_s=w)
     for q_in in [
         list(q),
         tuple(q),
@@ -78,9 +78,10 @@ def test_evaluate_takes_any_real_array_like(case):
         np.asarray(q, dtype=">f8"),
         np.asarray(q, dtype=np.float64)[::-1][::-1],
     ]:
-        r, k, _ = element.evaluate(q_in, inner_speed_rad_s=w)
-        tol = 1e-6 if getattr(q_in, "dtype", None) == np.float32 else 1e-12
-        assert np.allclose(r, ref, rtol=tol * 1e3, atol=0.0), (q_in, r, ref)
+        r, _, _ = element.evaluate(q_in, inner_speed_rad_s=w)
+        # float32 rounds the displacement to 6e-8 relative; the stiff contacts amplify it.
+        rtol = 1e-3 if getattr(q_in, "dtype", None) == np.float32 else 1e-9
+        assert np.allclose(r, ref, rtol=rtol, atol=0.0), (q_in, r, ref)
     with pytest.raises(eb.EhlBearingError, match="displacement: expected 5 values, got 3"):
         element.evaluate([0.0, 0.0, 0.0])
 
@@ -119,7 +120,7 @@ def test_a_progress_callback_can_stop_a_run_and_time_is_bounded(case):
         model.simulate(1e-5, 0.05, speed_rad_s=w, progress=progress)
     assert len(calls) == 3
     # A wall-time limit stops a long run with the step reached.
-    with pytest.raises(eb.EhlBearingError, match="time limit of 0.2 s reached at step"):
+    with pytest.raises(eb.EhlBearingError, match=r"time limit of 0\.2 s reached at step"):
         model.simulate(1e-5, 100.0, speed_rad_s=w, record_every=1000, time_limit_s=0.2)
     with pytest.raises(eb.EhlBearingError, match="time_limit_s = -1"):
         model.simulate(1e-5, 0.01, speed_rad_s=w, time_limit_s=-1.0)

@@ -136,7 +136,7 @@ pub fn check_case(case: &Case) -> Result<Vec<String>, InputError> {
     if ndm > NDM_MAX {
         return Err(InputError::field(
             speed_key.0,
-            speed_key.1,
+            crate::io::number_text(speed_key.1),
             format!(
                 "a speed factor n·d_m ≤ {NDM_MAX:.1e} rpm·mm (here {ndm:.3e} with d_m = {dm_mm} mm, \
                  i.e. at most {:.0} rpm relative ring speed): beyond any rolling bearing, where \
