@@ -132,7 +132,8 @@ pub struct CharacterizeArgs {
     #[arg(long)]
     pub method: Option<String>,
     /// Relative load amplitude ε of each contact's characterization: loads w0·(1 ± ε)
-    /// (0 < ε ≤ 0.9). Default: the case file's [method_options] amplitude, else 0.2.
+    /// (quasi-static and harmonic: 0 < ε ≤ 0.9; hertz: 0 < ε < 1). Default: the case file's
+    /// [method_options] amplitude, else the method's default (0.2 for the EHL methods).
     #[arg(long)]
     pub amplitude: Option<f64>,
     /// Print JSON in SI units instead of a table.
