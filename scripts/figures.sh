@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates every figure of the README and docs/gallery.md, and measures the timings the
-# README quotes, on this machine. Writes docs/figures/timings.md (date, `uname -a`, `nproc`, the
+# README quotes, on this machine; then reruns the Python worked example into docs/python
+# (`examples/python/rotor_7006.py --out docs/python`, with target/py-venv/bin/python or $PYTHON:
+# the package installed as scripts/test_python.sh does; SKIP_PYTHON=1 leaves it out). Writes docs/figures/timings.md (date, `uname -a`, `nproc`, the
 # load average before and after every command, wall and CPU time).
 #
 #   bash scripts/figures.sh            # everything: ≈ 10 min on 2 idle cores (the seed study ≈ 5 min)
@@ -71,6 +73,10 @@ if [ -z "${SKIP_HARMONIC:-}" ]; then
     cp "$OUT/study_7006_harmonic/$f.png" "$FIG/study_7006_harmonic_$f.png"
   done
   cp "$OUT/study_7006_harmonic/trends.json" "$FIG/study_7006_harmonic_trends.json"
+fi
+# The Python worked example: a rotor on two 7006 bearings (docs/python/rotor_7006.md).
+if [ -z "${SKIP_PYTHON:-}" ]; then
+  run rotor_7006 "${PYTHON:-target/py-venv/bin/python}" examples/python/rotor_7006.py --out docs/python
 fi
 echo >> "$LOG"
 echo "Figures: docs/gallery.md. Command outputs: $OUT/*.txt." >> "$LOG"
