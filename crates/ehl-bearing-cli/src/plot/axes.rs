@@ -213,11 +213,12 @@ fn times_power_of_ten(m: f64, e: i32) -> f64 {
 
 impl Axis {
     /// Ticks of a log axis: the labelled ones (at most `max`, at least two where the range
-    /// holds two integer multiples of a power of ten) and the grid-only ones. Labelled: 1, 2
+    /// holds two integer multiples of a power of ten) and the grid-only ones. Labelled: 1, 2, 3
     /// and 5 times the powers of ten in range, so that a range starting at 27 N is labelled
-    /// from 50 N on (and 20 N when it starts below); when more than `max` of them fall in
-    /// range, the powers of ten (every k-th one when still too many); when fewer than two, the
-    /// integer multiples 1–9. Grid-only: the other integer multiples 1–9 over at most 8
+    /// from 30 N on (plotters' own ticks start at the first power of ten, 100 N); when more
+    /// than `max` of them fall in range, 1, 2 and 5 times the powers of ten, then the powers
+    /// of ten (every k-th one when still too many); when fewer than two, the integer multiples
+    /// 1–9. Grid-only: the other integer multiples 1–9 over at most 8
     /// decades, else the unlabelled powers of ten.
     pub(crate) fn log_ticks(&self, max: usize) -> (Vec<f64>, Vec<f64>) {
         let max = max.max(2);
@@ -234,9 +235,11 @@ impl Axis {
                 .collect()
         };
         let multiples = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0];
-        let mut labelled = with(&[1.0, 2.0, 5.0], 1);
+        let mut labelled = with(&[1.0, 2.0, 3.0, 5.0], 1);
         if labelled.len() < 2 {
             labelled = with(&multiples, 1);
+        } else if labelled.len() > max {
+            labelled = with(&[1.0, 2.0, 5.0], 1);
         }
         let mut step = 1;
         while labelled.len() > max {

@@ -328,19 +328,27 @@ fn tick_labels_are_short() {
 
 #[test]
 fn log_ticks_label_the_decade_the_data_start_in() {
-    // Contact loads from 27 N to 1100 N (the seed study, 15 % margins): labelled from 50 N on,
+    // Contact loads from 27 N to 1100 N (the seed study, 15 % margins): labelled from 30 N on,
     // where plotters' own ticks start at 100 N.
     let q = Axis::new(27.0 / 1.15, 1100.0 * 1.15, true);
     let (labelled, grid) = q.log_ticks(X_LABELS);
-    assert_eq!(labelled, vec![50.0, 100.0, 200.0, 500.0, 1000.0]);
-    for v in [30.0, 40.0, 60.0, 300.0, 900.0] {
+    assert_eq!(
+        labelled,
+        vec![30.0, 50.0, 100.0, 200.0, 300.0, 500.0, 1000.0]
+    );
+    for v in [40.0, 60.0, 400.0, 900.0] {
         assert!(grid.contains(&v), "{v} not in {grid:?}");
     }
     assert!(labelled.iter().all(|v| !grid.contains(v)));
     assert!(labelled.iter().all(|v| !q.tick_label(*v).is_empty()));
     assert_eq!(
         Axis::new(18.0, 1265.0, true).log_ticks(X_LABELS).0,
-        vec![20.0, 50.0, 100.0, 200.0, 500.0, 1000.0]
+        vec![20.0, 30.0, 50.0, 100.0, 200.0, 300.0, 500.0, 1000.0]
+    );
+    // Three decades: 1, 2 and 5 times the powers of ten (1-2-3-5 would be 12 labels).
+    assert_eq!(
+        Axis::new(1.5, 1100.0, true).log_ticks(X_LABELS).0,
+        vec![2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0]
     );
     // A narrow range: the integer multiples of the decade.
     assert_eq!(
