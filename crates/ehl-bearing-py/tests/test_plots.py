@@ -85,6 +85,8 @@ def test_waterfall_order_labels_lie_inside_the_plot():
         order_labels=("1×", "Z·f_cage (4.62×)", "20×"),
     )
     ax = fig.axes[0]
+    lo, hi = ax.collections[0].get_clim()
+    assert hi - lo == pytest.approx(6.0)  # the default dynamic range, 1e6
     fig.canvas.draw()
     box = ax.get_window_extent()
     labels = [c for c in ax.texts if c.get_text() in ("1×", "Z·f_cage (4.62×)", "20×")]

@@ -181,11 +181,13 @@ def waterfall(
     max_hz: Optional[float] = None,
     orders: Sequence[float] = (1.0,),
     order_labels: Optional[Sequence[str]] = None,
+    dynamic_range: float = 1e6,
 ) -> Any:
     """Waterfall of a run-up: amplitude spectra (µm) of global DOF ``dof`` over consecutive
     windows of ``window_s`` against the mean shaft speed of each window (rpm), as a colour map
-    (frequency × speed), with order lines (multiples of the shaft speed, e.g. 1× and the
-    ball-pass order Z·f_cage/f_shaft)."""
+    (frequency × speed) over ``dynamic_range`` below the largest amplitude, with order lines
+    (multiples of the shaft speed, e.g. 1× and the ball-pass order Z·f_cage/f_shaft) labelled
+    inside the plot."""
     plt = _plt()
     t = np.asarray(response["time_s"])
     h = t[1] - t[0]
@@ -198,9 +200,19 @@ def waterfall(
         rows.append(1e6 * a)
         rpm.append(speed[k : k + n].mean() * 30 / np.pi)
     amp = np.array(rows)
+    # Colours over `dynamic_range` below the largest amplitude (lower ones at the bottom colour).
+    top = float(np.log10(max(amp.max(), 1e-300)))
+    bottom = top - np.log10(dynamic_range)
     fig, ax = plt.subplots(figsize=(7, 4.5))
     mesh = ax.pcolormesh(
-        f, rpm, np.log10(amp + 1e-9), shading="nearest", cmap="viridis", rasterized=True
+        f,
+        rpm,
+        np.log10(np.maximum(amp, 10.0**bottom)),
+        shading="nearest",
+        cmap="viridis",
+        vmin=bottom,
+        vmax=top,
+        rasterized=True,
     )
     fig.colorbar(mesh, ax=ax, label="log10 amplitude, µm")
     labels = order_labels or [f"{o:g}×" for o in orders]
