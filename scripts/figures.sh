@@ -18,13 +18,15 @@ mkdir -p "$FIG" "$OUT"
 cargo build --release -p ehl-bearing-cli
 BIN=target/release/ehl-bearing
 LOG="$FIG/timings.md"
+# Before the log is rewritten (the log itself is tracked).
+dirty=$(git diff --quiet || echo ' (with uncommitted changes)')
 {
   echo "# Timings of scripts/figures.sh"
   echo
   echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC')"
   echo "- machine: \`$(uname -a)\`"
   echo "- cores (nproc): $(nproc)"
-  echo "- commit: $(git rev-parse --short HEAD)$(git diff --quiet || echo ' (with uncommitted changes)')"
+  echo "- commit: $(git rev-parse --short HEAD)$dirty"
   echo
   echo "| command | wall s | CPU s (user+sys) | load average before | after |"
   echo "|---|---|---|---|---|"
