@@ -202,7 +202,7 @@ pub fn option_names(message: &str) -> String {
 /// "1 recorded period", "2 settling periods" (NaN when the report lacks the count).
 fn periods(n: Option<f64>, noun: &str) -> String {
     match n {
-        Some(n) if n == 1.0 => format!("1 {noun}"),
+        Some(1.0) => format!("1 {noun}"),
         Some(n) => format!("{n} {noun}s"),
         None => format!("NaN {noun}s"),
     }
