@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates every figure of the README and docs/gallery.md, and measures the timings the
-# README quotes, on this machine. Writes docs/figures/timings.md (date, `uname -a`, `nproc`, the
+# README quotes, on this machine; then reruns the Python worked example into docs/python
+# (`examples/python/rotor_7006.py --out docs/python`, with target/py-venv/bin/python or $PYTHON:
+# the package installed as scripts/test_python.sh does; SKIP_PYTHON=1 leaves it out). Writes docs/figures/timings.md (date, `uname -a`, `nproc`, the
 # load average before and after every command, wall and CPU time).
 #
 #   bash scripts/figures.sh            # everything: ≈ 10 min on 2 idle cores (the seed study ≈ 5 min)
@@ -16,13 +18,15 @@ mkdir -p "$FIG" "$OUT"
 cargo build --release -p ehl-bearing-cli
 BIN=target/release/ehl-bearing
 LOG="$FIG/timings.md"
+# Before the log is rewritten (the log itself is tracked).
+dirty=$(git diff --quiet || echo ' (with uncommitted changes)')
 {
   echo "# Timings of scripts/figures.sh"
   echo
   echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC')"
   echo "- machine: \`$(uname -a)\`"
   echo "- cores (nproc): $(nproc)"
-  echo "- commit: $(git rev-parse --short HEAD)$(git diff --quiet || echo ' (with uncommitted changes)')"
+  echo "- commit: $(git rev-parse --short HEAD)$dirty"
   echo
   echo "| command | wall s | CPU s (user+sys) | load average before | after |"
   echo "|---|---|---|---|---|"
@@ -71,6 +75,10 @@ if [ -z "${SKIP_HARMONIC:-}" ]; then
     cp "$OUT/study_7006_harmonic/$f.png" "$FIG/study_7006_harmonic_$f.png"
   done
   cp "$OUT/study_7006_harmonic/trends.json" "$FIG/study_7006_harmonic_trends.json"
+fi
+# The Python worked example: a rotor on two 7006 bearings (docs/python/rotor_7006.md).
+if [ -z "${SKIP_PYTHON:-}" ]; then
+  run rotor_7006 "${PYTHON:-target/py-venv/bin/python}" examples/python/rotor_7006.py --out docs/python
 fi
 echo >> "$LOG"
 echo "Figures: docs/gallery.md. Command outputs: $OUT/*.txt." >> "$LOG"

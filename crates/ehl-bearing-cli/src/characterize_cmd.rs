@@ -6,7 +6,9 @@ use ehl_bearing::characterize::{
     characterization_json, characterize_bearing_with_progress, BearingCharacterization,
     CharacterizeSettings, ContactRow, LawSource, Progress,
 };
+use ehl_bearing::contact::{HarmonicSettings, QuasiStaticSettings};
 use ehl_bearing::io::{read_case, Case};
+use ehl_bearing::method::{HertzCharacterizer, Method, SyntheticCharacterizer};
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::Value;
 use std::io::IsTerminal;
@@ -148,6 +150,11 @@ pub struct CharacterizeArgs {
     /// Default: the case file's `method` (with its [method_options]), else quasi-static.
     #[arg(long)]
     pub method: Option<String>,
+    /// Relative load amplitude ε of each contact's characterization: loads w0·(1 ± ε)
+    /// (quasi-static and harmonic: 0 < ε ≤ 0.9; hertz: 0 < ε < 1). Default: the case file's
+    /// [method_options] amplitude, else the method's default (0.2 for the EHL methods).
+    #[arg(long)]
+    pub amplitude: Option<f64>,
     /// Print JSON in SI units instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -186,6 +193,40 @@ pub struct CharacterizeArgs {
     pub no_load_prediction: bool,
 }
 
+/// `method` with the relative load amplitude ε of `--amplitude`, if given, validated (the error
+/// names `--amplitude`, the value and the valid range).
+pub fn with_amplitude(method: Method, amplitude: Option<f64>) -> anyhow::Result<Method> {
+    let Some(a) = amplitude else {
+        return Ok(method);
+    };
+    let m = match method {
+        Method::QuasiStatic(s) => Method::QuasiStatic(QuasiStaticSettings { amplitude: a, ..s }),
+        Method::Harmonic(s) => Method::Harmonic(HarmonicSettings { amplitude: a, ..s }),
+        Method::Hertz(s) => Method::Hertz(HertzCharacterizer { amplitude: a, ..s }),
+        Method::Synthetic(s) => Method::Synthetic(SyntheticCharacterizer { amplitude: a, ..s }),
+    };
+    m.validate()
+        .map_err(|e| anyhow::anyhow!(option_names(&e.to_string())))?;
+    Ok(m)
+}
+
+/// A library message with the settings `characterize` has options for named as those options:
+/// `method_options.amplitude` → `--amplitude`, `min_load_fraction` → `--min-load-fraction`.
+pub fn option_names(message: &str) -> String {
+    message
+        .replace("method_options.amplitude", "--amplitude")
+        .replace("min_load_fraction", "--min-load-fraction")
+}
+
+/// "1 recorded period", "2 settling periods" (NaN when the report lacks the count).
+fn periods(n: Option<f64>, noun: &str) -> String {
+    match n {
+        Some(1.0) => format!("1 {noun}"),
+        Some(n) => format!("{n} {noun}s"),
+        None => format!("NaN {noun}s"),
+    }
+}
+
 /// Contacts as CSV (the columns of [`ContactRow`]).
 pub fn contacts_csv(c: &BearingCharacterization) -> String {
     let rows: Vec<Value> = c
@@ -221,8 +262,8 @@ pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
     let deadline = deadline(args.time_limit)?;
     let ch = case
         .method_or(args.method.as_deref())
-        .map_err(|e| anyhow::anyhow!("--method: {e}"))?
-        .with_deadline(deadline);
+        .map_err(|e| anyhow::anyhow!("--method: {e}"))?;
+    let ch = with_amplitude(ch, args.amplitude)?.with_deadline(deadline);
     if let Some(dir) = &args.output {
         check_output_dir(dir, "-o")?;
     }
@@ -241,6 +282,7 @@ pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
     let (bar, callback) = contact_progress(&multi);
     let c = with_threads(args.threads, || {
         characterize_bearing_with_progress(&case, &ch, &settings, &callback)
+            .map_err(|e| anyhow::anyhow!(option_names(&e.to_string())))
             .with_context(|| format!("characterizing {}", args.case.display()))
     });
     bar.finish_and_clear();
@@ -486,9 +528,9 @@ fn settings_summary(v: &Value) -> String {
             _ => "Ω ?".into(),
         };
         return format!(
-            "w0·(1 + {a}·sin Ωt), {freq}, ≤ {} settling + {} recorded periods, {} steps per period, {}",
-            num("/settling_periods").unwrap_or(f64::NAN),
-            num("/recorded_periods").unwrap_or(f64::NAN),
+            "w0·(1 + {a}·sin Ωt), {freq}, ≤ {} + {}, {} steps per period, {}",
+            periods(num("/settling_periods"), "settling period"),
+            periods(num("/recorded_periods"), "recorded period"),
             num("/steps_per_period").unwrap_or(f64::NAN),
             ehl("/ehl")
         );

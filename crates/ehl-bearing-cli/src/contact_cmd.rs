@@ -105,6 +105,14 @@ pub fn fit_json(f: &ContactFit) -> serde_json::Value {
     })
 }
 
+/// A count of the JSON report and its noun ("1 recorded period", "24 settling steps").
+fn count(n: &serde_json::Value, noun: &str) -> String {
+    match n.as_u64() {
+        Some(n) => crate::plot::contact::count(n as usize, noun),
+        None => format!("{n} {noun}s"),
+    }
+}
+
 fn table(f: &ContactFit) -> String {
     let mut s = String::new();
     let _ = writeln!(
@@ -131,17 +139,17 @@ fn table(f: &ContactFit) -> String {
         let _ = writeln!(
             s,
             "excitation: ε = {}, Ω = {:.5e} rad/s = {:.3}·ω_n (ω_n = {:.5e} rad/s; dry Hertz {:.5e}), \
-             m = {:.4e} kg, {} settling steps (at most {} periods) + {} recorded periods × {} \
-             steps; periodicity {:.1e} (bound {:.0e}: {}); {} steps not converged",
+             m = {:.4e} kg, {} (at most {}) + {} × {} steps; periodicity {:.1e} (bound {:.0e}: \
+             {}); {} not converged",
             g("amplitude"),
             g("frequency_rad_s"),
             g("frequency_over_natural"),
             g("natural_frequency_rad_s"),
             g("natural_frequency_hertz_rad_s"),
             g("mass_kg"),
-            e["settling_steps"],
-            e["settling_periods"],
-            e["recorded_periods"],
+            count(&e["settling_steps"], "settling step"),
+            count(&e["settling_periods"], "period"),
+            count(&e["recorded_periods"], "recorded period"),
             e["steps_per_period"],
             g("periodicity"),
             g("periodicity_tol"),
@@ -150,7 +158,7 @@ fn table(f: &ContactFit) -> String {
             } else {
                 "NOT settled"
             },
-            e["steps_not_converged"],
+            count(&e["steps_not_converged"], "step"),
         );
     }
     let _ = writeln!(
@@ -294,6 +302,14 @@ fn method_of(args: &ContactArgs) -> Result<ehl_bearing::method::Method> {
     })
 }
 
+/// A library error with the method option it names as this command's option
+/// (`method_options.amplitude` → `--amplitude`, e.g. in the hydrodynamic-regime error).
+fn option_names(e: ehl_bearing::Error) -> anyhow::Error {
+    anyhow::anyhow!(e
+        .to_string()
+        .replace("method_options.amplitude", "--amplitude"))
+}
+
 /// An error naming every option given (`(given, name)`) that applies to `scope` only.
 fn refuse_options(options: &[(bool, &str)], scope: &str) -> Result<()> {
     let given: Vec<&str> = options
@@ -378,7 +394,7 @@ pub fn run(args: &ContactArgs) -> Result<()> {
                     args.contact.display()
                 ),
             };
-            characterize_harmonic(&c, mass, &s)?
+            characterize_harmonic(&c, mass, &s).map_err(option_names)?
         }
         ehl_bearing::method::Method::QuasiStatic(s) => {
             // The estimate needs the twice finer grid: none beyond 513² (1025 is the finest).
@@ -386,7 +402,7 @@ pub fn run(args: &ContactArgs) -> Result<()> {
                 film_extrapolation: !args.no_film_extrapolation && s.ehl.grid <= 513,
                 ..s
             };
-            characterize_quasi_static(&c, &s)?
+            characterize_quasi_static(&c, &s).map_err(option_names)?
         }
         other => bail!("method {other} does not characterize a single contact"),
     };

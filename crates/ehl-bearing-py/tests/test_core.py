@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import io
 import math
 
 import numpy as np
@@ -141,7 +142,8 @@ def test_study_runs_and_reports_progress(tmp_path, examples):
 
 
 def test_print_progress_names_the_point_of_a_loop_event(capsys):
-    """A study's points may run concurrently: loop lines carry their point."""
+    """A study's points may run concurrently: loop lines carry their point; every line starts
+    with the time elapsed since the run began."""
     eb.print_progress(
         {
             "event": "loop",
@@ -151,4 +153,47 @@ def test_print_progress_names_the_point_of_a_loop_event(capsys):
     )
     eb.print_progress({"event": "iteration_started", "iteration": 1, "contacts": 5})
     err = capsys.readouterr().err.splitlines()
-    assert err == ["point 2, iteration 3: 22 contacts", "iteration 1: 5 contacts"]
+    assert [line.split("] ", 1)[1] for line in err] == [
+        "point 2, iteration 3: 22 contacts",
+        "iteration 1: 5 contacts",
+    ]
+    assert all(line.startswith("[") and line.split("] ")[0].endswith(" s") for line in err)
+
+
+def test_progress_printer_prints_elapsed_and_per_iteration_and_point_times():
+    """Elapsed time since the run began (a loop's first iteration, a study's plan), and the
+    times the events carry: the iteration's wall time with its contacts, the point's."""
+    now = [100.0]
+    out = io.StringIO()
+    p = eb.ProgressPrinter(file=out, clock=lambda: now[0])
+    now[0] = 105.0
+    p({"event": "iteration_started", "iteration": 0, "contacts": 22})  # the clock restarts
+    now[0] = 107.5
+    p({"event": "contact_done", "iteration": 0})  # skipped
+    p({"event": "iteration_started", "iteration": 1, "contacts": 12})  # same run
+    now[0] = 119.0
+    record = {
+        "iteration": 1,
+        "seconds": 11.46,
+        "characterized": 12,
+        "reused": 10,
+        "max_load_change": 0.0123,
+    }
+    p({"event": "iteration_done", "record": record})
+    now[0] = 200.0
+    p({"event": "planned", "points": 3, "to_compute": 2, "redone": 0})  # a study: restarts
+    now[0] = 212.25
+    p({"event": "point_started", "index": 0, "inner_speed_rpm": 3000.0, "load_scale": 1.0})
+    p({"event": "point_done", "index": 0, "converged": True, "error": None, "seconds": 12.04})
+    now[0] = 300.0
+    p({"event": "iteration_started", "iteration": 1, "contacts": 4})  # a new loop: restarts
+    assert out.getvalue().splitlines() == [
+        "[   0.0 s] load prediction: 22 contacts",
+        "[   2.5 s] iteration 1: 12 contacts",
+        "[  14.0 s] iteration 1 done in 11.5 s (12 contacts characterized, 10 reused): "
+        "largest relative load change 1.23e-02",
+        "[   0.0 s] study: 3 points, 2 to compute",
+        "[  12.2 s] point 1: 3000.0 rpm × 1.0",
+        "[  12.2 s] point 1: converged in 12.0 s",
+        "[   0.0 s] iteration 1: 4 contacts",
+    ]

@@ -63,7 +63,7 @@ pub enum CharacterizeError {
     #[error("dry Hertz equilibrium failed: {0}")]
     DryEquilibrium(BearingError),
     /// Characterizing one contact failed.
-    #[error("characterization of ball {ball} {race:?} contact at load {load:.6e} N failed in iteration {iteration}: {cause}")]
+    #[error("characterization of ball {ball} {race:?} contact at load {load:.6e} N failed in iteration {iteration}: {cause}{hint}")]
     Contact {
         /// Ball index.
         ball: usize,
@@ -75,6 +75,9 @@ pub enum CharacterizeError {
         iteration: usize,
         /// What went wrong.
         cause: Box<crate::Error>,
+        /// What the loop's settings can do about it ("" when nothing): for a contact in the
+        /// hydrodynamic regime, the load floor `min_load_fraction` with its value.
+        hint: String,
     },
     /// The wall-time budget ([`CharacterizeSettings::deadline`]) ran out.
     #[error(
@@ -631,8 +634,12 @@ pub fn characterize_bearing_with_progress(
             iteration,
             contacts: runs.len(),
         });
-        let mut fresh = characterize_runs(ch, &conds, &runs, iteration, progress)?;
-        let assembled = assemble_laws(&plan, &fresh, &cache, &conds, &keys, iteration)?;
+        let floor = LoadFloor {
+            fraction: settings.min_load_fraction,
+            largest: contact_loads(&eq).into_iter().fold(0.0_f64, f64::max),
+        };
+        let mut fresh = characterize_runs(ch, &conds, &runs, iteration, floor, progress)?;
+        let assembled = assemble_laws(&plan, &fresh, &cache, &conds, &keys, iteration, floor)?;
         for &i in &runs {
             let result = fresh[i].take().ok_or_else(|| {
                 CharacterizeError::Trend(format!("contact {i} was planned but not characterized"))
@@ -764,6 +771,7 @@ fn characterize_runs(
     conds: &[(ContactConditions, bool)],
     runs: &[usize],
     iteration: usize,
+    floor: LoadFloor,
     progress: &(dyn Fn(Progress) + Sync),
 ) -> Result<Vec<Option<CharacterizedContact>>, CharacterizeError> {
     let results: Vec<Result<CharacterizedContact, crate::Error>> = runs
@@ -776,23 +784,52 @@ fn characterize_runs(
         .collect();
     let mut fresh: Vec<Option<CharacterizedContact>> = vec![None; conds.len()];
     for (&i, r) in runs.iter().zip(results) {
-        fresh[i] = Some(r.map_err(|e| contact_error(conds, i, iteration, e))?);
+        fresh[i] = Some(r.map_err(|e| contact_error(conds, i, iteration, floor, e))?);
     }
     Ok(fresh)
+}
+
+/// The load floor of an iteration: contacts lighter than `fraction` × `largest` (the largest
+/// contact load, N) are characterized at that floor.
+#[derive(Debug, Clone, Copy)]
+struct LoadFloor {
+    fraction: f64,
+    largest: f64,
 }
 
 fn contact_error(
     conds: &[(ContactConditions, bool)],
     i: usize,
     iteration: usize,
+    floor: LoadFloor,
     e: crate::Error,
 ) -> CharacterizeError {
+    let (c, floored) = &conds[i];
+    let hint = match &e {
+        crate::Error::Fit(crate::fit::FitError::HydrodynamicRegime {
+            load, amplitude, ..
+        }) => {
+            let f = floor.fraction;
+            format!(
+                ". Contacts lighter than min_load_fraction × the largest contact load (now {f} \
+                 × {:.4} N = {:.4} N) are characterized at that floor{}: raise min_load_fraction \
+                 (0 < f < 1) until the lowest load of each contact's range, w0·(1 − ε) with \
+                 ε = {amplitude}, stays above the hydrodynamic regime (here it reached {load:.4} \
+                 N), or lower the amplitude",
+                floor.largest,
+                f * floor.largest,
+                if *floored { ", as this one is" } else { "" }
+            )
+        }
+        _ => String::new(),
+    };
     CharacterizeError::Contact {
         ball: i / 2,
-        race: conds[i].0.race,
-        load: conds[i].0.load,
+        race: c.race,
+        load: c.load,
         iteration,
         cause: Box::new(e),
+        hint,
     }
 }
 
@@ -813,6 +850,7 @@ fn assemble_laws(
     conds: &[(ContactConditions, bool)],
     keys: &[[f64; 3]],
     iteration: usize,
+    floor: LoadFloor,
 ) -> Result<Assembled, CharacterizeError> {
     let missing = |i: usize| {
         CharacterizeError::Trend(format!("contact {i} was planned but not characterized"))
@@ -824,7 +862,7 @@ fn assemble_laws(
         max_relative_residual: 0.0,
     };
     for (i, p) in plan.iter().enumerate() {
-        let wrap = |e: crate::Error| contact_error(conds, i, iteration, e);
+        let wrap = |e: crate::Error| contact_error(conds, i, iteration, floor, e);
         let (cc, source, dist) = match *p {
             Plan::Run => (
                 fresh[i].clone().ok_or_else(|| missing(i))?,

@@ -364,12 +364,14 @@ pub fn characterize_quasi_static(
         .map(|(s, &w)| sample(s, w))
         .collect();
     if let Some(bad) = samples.iter().find(|x| x.approach <= 0.0) {
-        return Err(crate::fit::FitError::Invalid(format!(
-            "the EHL approach is {:.3e} m (≤ 0) at load {:.4} N: the contact runs in the \
-             hydrodynamic regime, where Q = K·δ^d + ΔF is not defined; raise the load or lower \
-             the amplitude",
-            bad.approach, bad.load
-        ))
+        return Err(crate::fit::FitError::HydrodynamicRegime {
+            approach: bad.approach,
+            load: bad.load,
+            time: None,
+            centre_load: loads[mid],
+            centre_approach: sols[mid].approach,
+            amplitude: s.amplitude,
+        }
         .into());
     }
     let delta: Vec<f64> = samples.iter().map(|x| x.approach).collect();
@@ -916,12 +918,15 @@ pub fn characterize_harmonic(
     let total = history.len();
     let rec = &history[settling..];
     if let Some(bad) = rec.iter().find(|x| x.approach <= 0.0) {
-        return Err(invalid(format!(
-            "the EHL approach is {:.3e} m (≤ 0) at t = {:.3e} s (load {:.4} N): the contact runs \
-             in the hydrodynamic regime, where Q = K·δ^d + ΔF is not defined; raise the load or \
-             lower the amplitude",
-            bad.approach, bad.time, bad.load
-        )));
+        return Err(crate::fit::FitError::HydrodynamicRegime {
+            approach: bad.approach,
+            load: bad.load,
+            time: Some(bad.time),
+            centre_load: c.load,
+            centre_approach: centre.approach,
+            amplitude: s.amplitude,
+        }
+        .into());
     }
     let delta: Vec<f64> = rec.iter().map(|x| x.approach).collect();
     let rate: Vec<f64> = rec.iter().map(|x| x.velocity).collect();

@@ -71,6 +71,25 @@ pub enum FitError {
         /// The approach, m.
         value: f64,
     },
+    /// The contact runs in the hydrodynamic regime: an EHL approach ≤ 0 at a load of the
+    /// characterization's range w0·(1 ± ε), where δ^d (and so Q = K·δ^d + ΔF) is not defined.
+    /// The message says what helps: a smaller relative load amplitude ε when the approach at w0
+    /// is positive, a larger load in any case.
+    #[error("{}", hydrodynamic_message(*.approach, *.load, *.time, *.centre_load, *.centre_approach, *.amplitude))]
+    HydrodynamicRegime {
+        /// The first approach ≤ 0, m.
+        approach: f64,
+        /// The load at which it occurred, N.
+        load: f64,
+        /// The time at which it occurred (harmonic method), s.
+        time: Option<f64>,
+        /// The load at the centre of the range (w0, or the sample next to it), N.
+        centre_load: f64,
+        /// The (steady) approach at `centre_load`, m.
+        centre_approach: f64,
+        /// The relative load amplitude ε of the characterization (`method_options.amplitude`).
+        amplitude: f64,
+    },
     /// The approaches do not span enough distinct values to determine K, d and ΔF.
     #[error("the approaches take only {distinct} distinct value(s) (from {min} m to {max} m); at least 3 are needed")]
     DegenerateApproach {
@@ -108,4 +127,35 @@ pub enum FitError {
     /// Parameters that do not make a valid contact law.
     #[error("invalid contact law: {0}")]
     InvalidLaw(String),
+}
+
+/// The message of [`FitError::HydrodynamicRegime`]. It names the method option as a case or
+/// study file writes it (`method_options.amplitude`); front ends map it to their own names.
+fn hydrodynamic_message(
+    approach: f64,
+    load: f64,
+    time: Option<f64>,
+    centre_load: f64,
+    centre_approach: f64,
+    amplitude: f64,
+) -> String {
+    let at = time.map_or(String::new(), |t| format!(" at t = {t:.3e} s"));
+    let remedy = if centre_approach > 0.0 {
+        format!(
+            "at the centre of the range, {centre_load:.4} N, the approach is \
+             {centre_approach:.3e} m > 0: lower the relative load amplitude \
+             method_options.amplitude (now {amplitude}; the load spans w0·(1 ± ε), 0 < ε ≤ 0.9) or \
+             raise the load"
+        )
+    } else {
+        format!(
+            "even at the centre of the range, {centre_load:.4} N, the approach is \
+             {centre_approach:.3e} m ≤ 0: raise the load (a smaller method_options.amplitude, now \
+             {amplitude}, cannot help)"
+        )
+    };
+    format!(
+        "the EHL approach is {approach:.3e} m (≤ 0) at load {load:.4} N{at}: the contact runs in \
+         the hydrodynamic regime, where Q = K·δ^d + ΔF is not defined; {remedy}"
+    )
 }

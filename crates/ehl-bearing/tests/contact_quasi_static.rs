@@ -190,3 +190,55 @@ fn film_extrapolation_meets_the_default_accuracy_goal() {
     .to_string();
     assert!(e.contains("grid = 1025") && e.contains("≤ 513"), "{e}");
 }
+
+/// A light contact whose ±ε range reaches into the hydrodynamic regime (approach ≤ 0) is an error
+/// that says what helps: a smaller amplitude when the approach at the centre of the range is
+/// positive, only a larger load when it is not. Grid 33 keeps it fast (the regime is the same
+/// on 129²: docs/study.md).
+#[test]
+fn a_hydrodynamic_range_says_what_helps() {
+    use ehl_bearing::fit::FitError;
+    let coarse = |amplitude: f64| QuasiStaticSettings {
+        amplitude,
+        points: 5,
+        film_extrapolation: false,
+        ehl: EhlSettings {
+            grid: 33,
+            ..EhlSettings::default()
+        },
+    };
+    // 30 N ± 90 %: the centre is in the EHL regime, the lightest sample (3 N) is not.
+    let e = characterize_quasi_static(&inner(30.0, 10.85), &coarse(0.9)).unwrap_err();
+    let ehl_bearing::Error::Fit(FitError::HydrodynamicRegime {
+        approach,
+        load,
+        time,
+        centre_load,
+        centre_approach,
+        amplitude,
+    }) = &e
+    else {
+        panic!("{e}");
+    };
+    assert!(*approach <= 0.0 && *centre_approach > 0.0, "{e}");
+    assert!((load - 3.0).abs() < 1e-9, "{e}");
+    assert!((centre_load - 30.0).abs() < 1e-9 && *amplitude == 0.9 && time.is_none());
+    let msg = e.to_string();
+    assert!(
+        msg.contains("lower the relative load amplitude method_options.amplitude (now 0.9;")
+            && msg.contains("0 < ε ≤ 0.9")
+            && msg.contains("or raise the load"),
+        "{msg}"
+    );
+    // 8 N ± 20 %: hydrodynamic even at the centre; a smaller amplitude cannot help.
+    let msg = characterize_quasi_static(&inner(8.0, 10.85), &coarse(0.2))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        msg.contains("even at the centre of the range, 8.0000 N")
+            && msg.contains(
+                "raise the load (a smaller method_options.amplitude, now 0.2, cannot help)"
+            ),
+        "{msg}"
+    );
+}

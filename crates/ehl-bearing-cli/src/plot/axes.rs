@@ -170,16 +170,19 @@ pub(crate) fn wants_scientific(a: f64) -> bool {
 
 impl Axis {
     /// Tick label of `v`: one notation for the whole of a linear axis (chosen
-    /// from its largest magnitude); on a log axis only 1, 2 and 5 times a power
-    /// of ten are labelled, so the labels never run into each other.
+    /// from its largest magnitude); on a log axis the integer multiples 1–9 of a
+    /// power of ten (the ticks [`Axis::log_ticks`] places), nothing elsewhere.
     pub(crate) fn tick_label(&self, v: f64) -> String {
         if !v.is_finite() {
             return String::new();
         }
         if self.log {
+            if v <= 0.0 {
+                return String::new();
+            }
             let mantissa = v / 10f64.powf(v.log10().floor());
             let m = mantissa.round();
-            if (mantissa - m).abs() > 1e-6 || ![1.0, 2.0, 5.0].contains(&m) {
+            if (mantissa - m).abs() > 1e-6 || !(1.0..=9.0).contains(&m) {
                 return String::new();
             }
             return if wants_scientific(v) {
@@ -199,16 +202,65 @@ impl Axis {
     }
 }
 
+/// `m`·10^`e`, as exact as the literal `me` (10^e is exact up to e = 22).
+fn times_power_of_ten(m: f64, e: i32) -> f64 {
+    if e >= 0 {
+        m * 10f64.powi(e)
+    } else {
+        m / 10f64.powi(-e)
+    }
+}
+
+impl Axis {
+    /// Ticks of a log axis: the labelled ones (at most `max`, at least two where the range
+    /// holds two integer multiples of a power of ten) and the grid-only ones. Labelled: 1, 2, 3
+    /// and 5 times the powers of ten in range, so that a range starting at 27 N is labelled
+    /// from 30 N on (plotters' own ticks start at the first power of ten, 100 N); when more
+    /// than `max` of them fall in range, 1, 2 and 5 times the powers of ten, then the powers
+    /// of ten (every k-th one when still too many); when fewer than two, the integer multiples
+    /// 1–9. Grid-only: the other integer multiples 1–9 over at most 8
+    /// decades, else the unlabelled powers of ten.
+    pub(crate) fn log_ticks(&self, max: usize) -> (Vec<f64>, Vec<f64>) {
+        let max = max.max(2);
+        let (e0, e1) = (
+            self.lo.log10().floor() as i32,
+            (self.hi.log10().ceil() as i32).min(self.lo.log10().floor() as i32 + 700),
+        );
+        let (lo, hi) = (self.lo * (1.0 - 1e-12), self.hi * (1.0 + 1e-12));
+        let with = |ms: &[f64], step: i32| -> Vec<f64> {
+            (e0..=e1)
+                .filter(|e| e.rem_euclid(step) == 0)
+                .flat_map(|e| ms.iter().map(move |&m| times_power_of_ten(m, e)))
+                .filter(|v| *v >= lo && *v <= hi)
+                .collect()
+        };
+        let multiples = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0];
+        let mut labelled = with(&[1.0, 2.0, 3.0, 5.0], 1);
+        if labelled.len() < 2 {
+            labelled = with(&multiples, 1);
+        } else if labelled.len() > max {
+            labelled = with(&[1.0, 2.0, 5.0], 1);
+        }
+        let mut step = 1;
+        while labelled.len() > max {
+            labelled = with(&[1.0], step);
+            step += 1;
+        }
+        let grid = if e1 - e0 <= 8 {
+            with(&multiples, 1)
+        } else {
+            with(&[1.0], 1)
+        };
+        let grid = grid.into_iter().filter(|v| !labelled.contains(v)).collect();
+        (labelled, grid)
+    }
+}
+
 /// Likely tick values of an axis (plotters picks "nice" steps of 1, 2 or 5
-/// times a power of ten; log axes tick at powers of ten and their multiples).
+/// times a power of ten; log axes tick where [`Axis::log_ticks`] says).
 pub(crate) fn likely_ticks(a: &Axis, n: usize) -> Vec<f64> {
     if a.log {
-        let (lo, hi) = (a.lo.log10().floor() as i32, a.hi.log10().ceil() as i32);
-        return (lo..=hi)
-            .take(700)
-            .flat_map(|e| [1.0, 2.0, 5.0].map(|m| m * 10f64.powi(e)))
-            .filter(|v| *v >= a.lo && *v <= a.hi)
-            .collect();
+        return a.log_ticks(n).0;
     }
     let raw = (a.hi - a.lo) / n as f64;
     let mag = 10f64.powf(raw.log10().floor());

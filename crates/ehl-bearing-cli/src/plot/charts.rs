@@ -149,6 +149,7 @@ pub fn stacked_charts_with(
         y_area,
         heights,
         fixed,
+        shared_legend_room: options.shared_legend_room,
     };
     let total: f64 = fig.heights.iter().sum::<f64>() / fig.heights.len() as f64;
     let height = (stacked_height(panels.len()) as f64 * total.max(0.5)).round() as u32;
@@ -164,6 +165,7 @@ struct StackedFig<'a> {
     y_area: u32,
     heights: Vec<f64>,
     fixed: Vec<bool>,
+    shared_legend_room: bool,
 }
 
 impl Figure for StackedFig<'_> {
@@ -184,20 +186,35 @@ impl Figure for StackedFig<'_> {
             .collect();
         let no_x: [i32; 0] = [];
         let areas = area.split_by_breakpoints(no_x, breaks);
-        for (k, ((label, series), sub)) in self.panels.iter().zip(&areas).enumerate() {
+        let panel = |k: usize, y: Axis, fixed: bool| {
             let last = k + 1 == n;
-            let panel = Panel {
+            Panel {
                 x_label: self.x_label,
-                y_label: label,
+                y_label: &self.panels[k].0,
                 show_x: last,
                 x: self.x,
-                y: self.ys[k],
-                series,
+                y,
+                series: &self.panels[k].1,
                 y_area: self.y_area,
                 margin_bottom: if last { MARGIN } else { 8 },
-                y_fixed: self.fixed[k],
+                y_fixed: fixed,
+            }
+        };
+        // The room one legend needs above the data, given to every panel.
+        let room = if self.shared_legend_room {
+            (0..n)
+                .filter_map(|k| legend_room(&areas[k], &panel(k, self.ys[k], false)))
+                .fold(0.0_f64, f64::max)
+        } else {
+            0.0
+        };
+        for (k, sub) in areas.iter().enumerate() {
+            let p = if room > 0.0 {
+                panel(k, self.ys[k].with_top_room(room), true)
+            } else {
+                panel(k, self.ys[k], self.fixed[k])
             };
-            draw_panel(sub, &panel)?;
+            draw_panel(sub, &p)?;
         }
         Ok(())
     }

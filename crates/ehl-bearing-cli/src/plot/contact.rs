@@ -83,7 +83,7 @@ pub fn force_approach(f: &ContactFit, c: &EhlContact, dir: &Path) -> Result<()> 
     let top = vec![
         Series::markers(
             if f.method == "harmonic" {
-                "transient EHL, film force ∬p dA (recorded periods)"
+                "transient EHL, film force ∬p dA (recorded)"
             } else {
                 "EHL steady solutions"
             },
@@ -165,13 +165,22 @@ pub fn time_history(f: &ContactFit, c: &EhlContact, dir: &Path) -> Result<()> {
     stacked_charts_with(
         &dir.join("time_history"),
         &format!(
-            "Harmonic excitation, {} settling steps + {} recorded periods — {}",
-            periods.0,
-            periods.1,
+            "Harmonic excitation, {} + {} — {}",
+            count(periods.0, "settling step"),
+            count(periods.1, "recorded period"),
             case_tag(f, c)
         ),
         "time t (ms)",
         &panels,
         &StackedOptions::default(),
     )
+}
+
+/// `n` and `noun`, plural unless n = 1: "1 recorded period", "24 settling steps".
+pub fn count(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("{n} {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
 }

@@ -53,6 +53,9 @@ const TICK_SIZE: u32 = 16;
 const LEGEND_SIZE: u32 = 16;
 const MARGIN: u32 = 15;
 const X_AREA: u32 = 60;
+/// Most tick labels on an x axis and on a y axis.
+const X_LABELS: usize = 10;
+const Y_LABELS: usize = 8;
 
 /// Tableau-10 palette: distinct colours for successive series.
 const PALETTE: [RGBColor; 10] = [
@@ -155,6 +158,10 @@ pub struct StackedOptions {
     pub y_ranges: Vec<Option<(f64, f64)>>,
     /// Relative heights of the panels (missing or empty: equal).
     pub heights: Vec<f64>,
+    /// When a legend would cover data in some panel, raise the top of every panel's y range
+    /// by the same fraction to make room above the data, explicit ranges included (panels
+    /// given one y range stay on one scale). Without it explicit ranges are never changed.
+    pub shared_legend_room: bool,
 }
 
 /// Options of [`dual_axis_chart_with`].

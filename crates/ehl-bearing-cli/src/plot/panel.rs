@@ -21,32 +21,61 @@ pub(crate) fn wants_legend(series: &[Series]) -> bool {
     series.len() > 1 && series.iter().any(|s| !s.label.is_empty())
 }
 
+/// The fraction of the plot height to add above the data of panel `p` drawn in `area` so that
+/// its legend covers no data (None when a corner of the plot is free of data, or there is no
+/// legend).
+pub(crate) fn legend_room<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    p: &Panel,
+) -> Option<f64> {
+    if !wants_legend(p.series) {
+        return None;
+    }
+    let (aw, ah) = area.dim_in_pixel();
+    let plot = (
+        aw.saturating_sub(p.y_area + 2 * MARGIN + 10),
+        ah.saturating_sub(8 + p.margin_bottom + if p.show_x { X_AREA } else { 0 }),
+    );
+    let items: Vec<(&Series, &Axis)> = p.series.iter().map(|s| (s, &p.y)).collect();
+    let (_, hits, fh) = plan_legend(&items, &p.x, plot);
+    (hits > 0).then_some(fh + 0.03)
+}
+
 pub(crate) fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     p: &Panel,
 ) -> Result<()> {
     let mut p = *p;
-    if wants_legend(p.series) && !p.y_fixed {
+    if !p.y_fixed {
         // If every corner of the plot has data, make room above the data.
-        let (aw, ah) = area.dim_in_pixel();
-        let plot = (
-            aw.saturating_sub(p.y_area + 2 * MARGIN + 10),
-            ah.saturating_sub(8 + p.margin_bottom + if p.show_x { X_AREA } else { 0 }),
-        );
-        let items: Vec<(&Series, &Axis)> = p.series.iter().map(|s| (s, &p.y)).collect();
-        let (_, hits, fh) = plan_legend(&items, &p.x, plot);
-        if hits > 0 {
-            p.y = p.y.with_top_room(fh + 0.03);
+        if let Some(room) = legend_room(area, &p) {
+            p.y = p.y.with_top_room(room);
         }
     }
     let p = &p;
     let xr = p.x.lo..p.x.hi;
     let yr = p.y.lo..p.y.hi;
+    // Log axes tick where log_ticks says: plotters' own log ticks start at the first power of
+    // ten in range, which leaves a range from 27 to 1270 unlabelled below 100.
+    let (xb, xl) = p.x.log_ticks(X_LABELS);
+    let (yb, yl) = p.y.log_ticks(Y_LABELS);
+    let x_log = || {
+        xr.clone()
+            .log_scale()
+            .with_key_points(xb.clone())
+            .with_light_points(xl.clone())
+    };
+    let y_log = || {
+        yr.clone()
+            .log_scale()
+            .with_key_points(yb.clone())
+            .with_light_points(yl.clone())
+    };
     match (p.x.log, p.y.log) {
-        (false, false) => draw_panel_in(area, p, xr, yr),
-        (true, false) => draw_panel_in(area, p, xr.log_scale(), yr),
-        (false, true) => draw_panel_in(area, p, xr, yr.log_scale()),
-        (true, true) => draw_panel_in(area, p, xr.log_scale(), yr.log_scale()),
+        (false, false) => draw_panel_in(area, p, xr.clone(), yr.clone()),
+        (true, false) => draw_panel_in(area, p, x_log(), yr.clone()),
+        (false, true) => draw_panel_in(area, p, xr.clone(), y_log()),
+        (true, true) => draw_panel_in(area, p, x_log(), y_log()),
     }
 }
 
@@ -80,8 +109,8 @@ where
         .y_label_formatter(&y_fmt)
         .label_style((FONT, TICK_SIZE))
         .axis_desc_style((FONT, DESC_SIZE))
-        .x_labels(10)
-        .y_labels(8)
+        .x_labels(X_LABELS)
+        .y_labels(Y_LABELS)
         .set_all_tick_mark_size(5)
         .bold_line_style(RGBColor(215, 215, 215))
         .light_line_style(RGBColor(243, 243, 243))

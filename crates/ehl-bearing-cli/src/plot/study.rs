@@ -226,7 +226,10 @@ pub fn study_figures(dir: &Path, rows: &[ResultRow], trends: Option<&TrendModel>
                 x_log,
                 x_range,
                 y_ranges: vec![y_range, y_range],
-                heights: Vec::new(),
+                // Tall panels with room above the data for the legends (up to 7 rows), so
+                // that no legend covers a marker.
+                heights: vec![1.8, 1.8],
+                shared_legend_room: true,
             },
         )
         .with_context(|| format!("plotting {stem}"))?;

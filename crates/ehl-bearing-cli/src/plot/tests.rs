@@ -321,8 +321,90 @@ fn tick_labels_are_short() {
     let log = Axis::new(50.0, 3000.0, true);
     assert_eq!(log.tick_label(200.0), "200");
     assert_eq!(log.tick_label(1000.0), "1000");
-    assert_eq!(log.tick_label(700.0), "");
+    assert_eq!(log.tick_label(700.0), "700");
+    assert_eq!(log.tick_label(750.0), "");
     assert_eq!(Axis::new(1e-8, 1e-5, true).tick_label(2e-7), "2e-7");
+}
+
+#[test]
+fn log_ticks_label_the_decade_the_data_start_in() {
+    // Contact loads from 27 N to 1100 N (the seed study, 15 % margins): labelled from 30 N on,
+    // where plotters' own ticks start at 100 N.
+    let q = Axis::new(27.0 / 1.15, 1100.0 * 1.15, true);
+    let (labelled, grid) = q.log_ticks(X_LABELS);
+    assert_eq!(
+        labelled,
+        vec![30.0, 50.0, 100.0, 200.0, 300.0, 500.0, 1000.0]
+    );
+    for v in [40.0, 60.0, 400.0, 900.0] {
+        assert!(grid.contains(&v), "{v} not in {grid:?}");
+    }
+    assert!(labelled.iter().all(|v| !grid.contains(v)));
+    assert!(labelled.iter().all(|v| !q.tick_label(*v).is_empty()));
+    assert_eq!(
+        Axis::new(18.0, 1265.0, true).log_ticks(X_LABELS).0,
+        vec![20.0, 30.0, 50.0, 100.0, 200.0, 300.0, 500.0, 1000.0]
+    );
+    // Three decades: 1, 2 and 5 times the powers of ten (1-2-3-5 would be 12 labels).
+    assert_eq!(
+        Axis::new(1.5, 1100.0, true).log_ticks(X_LABELS).0,
+        vec![2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0]
+    );
+    // A narrow range: the integer multiples of the decade.
+    assert_eq!(
+        Axis::new(27.0, 45.0, true).log_ticks(X_LABELS).0,
+        vec![30.0, 40.0]
+    );
+    // Too many 1-2-5 ticks: powers of ten, every other one when still too many.
+    let (wide, _) = Axis::new(1e-12, 1e3, true).log_ticks(Y_LABELS);
+    assert_eq!(wide.len(), 8, "{wide:?}");
+    assert!(wide
+        .iter()
+        .all(|v| (v.log10() - v.log10().round()).abs() < 1e-9));
+    assert_eq!(wide[0], 1e-12);
+    assert_eq!(Axis::new(1e-7, 1e-5, true).log_ticks(Y_LABELS).0[1], 2e-7);
+}
+
+#[test]
+fn shared_legend_room_keeps_a_six_row_legend_off_the_data() {
+    // Markers in every corner of a fixed y range (the study figures' shared scale), six legend
+    // rows: without room every corner of the plot is covered, with it none is.
+    let x = linspace(25.0, 1200.0, 40);
+    let series: Vec<Series> = (0..6)
+        .map(|k| {
+            let y = x
+                .iter()
+                .map(|q| 10.0 + 8.0 * k as f64 + 2.0 * q.ln())
+                .collect();
+            Series::markers(
+                format!("trend ΔF(Q, {k}000 rpm) with a long label"),
+                x.clone(),
+                y,
+            )
+        })
+        .collect();
+    let y_axis = Axis::fit(series.iter().flat_map(|s| s.y.clone()), false, None)
+        .unwrap()
+        .unwrap();
+    let x_axis = Axis::new(20.0, 1300.0, true);
+    let mut buf = vec![0u8; 1000 * 560 * 3];
+    let area = BitMapBackend::with_buffer(&mut buf, (1000, 560)).into_drawing_area();
+    let panel = |y: Axis| Panel {
+        x_label: "Q (N)",
+        y_label: "ΔF (N)",
+        show_x: true,
+        x: x_axis,
+        y,
+        series: &series,
+        y_area: 90,
+        margin_bottom: MARGIN,
+        y_fixed: true,
+    };
+    let room = legend_room(&area, &panel(y_axis)).expect("every corner has data");
+    assert!(room > 0.1 && room < 0.7, "{room}");
+    let raised = y_axis.with_top_room(room);
+    assert_eq!(raised.lo, y_axis.lo);
+    assert!(legend_room(&area, &panel(raised)).is_none());
 }
 
 #[test]

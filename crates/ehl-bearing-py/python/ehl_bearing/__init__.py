@@ -21,8 +21,11 @@ Long computations release the GIL; progress callbacks receive one dict per event
 
 from __future__ import annotations
 
+import math
 import sys
-from typing import Any
+import threading
+import time
+from typing import Any, Callable, Optional, TextIO
 
 from ._native import (
     Case,
@@ -45,6 +48,7 @@ __all__ = [
     "Characterization",
     "EhlBearingError",
     "LawElement",
+    "ProgressPrinter",
     "RotorModel",
     "TrendForceElement",
     "characterize",
@@ -66,33 +70,84 @@ def read_case(path: str) -> Case:
     return Case.from_file(path)
 
 
+class ProgressPrinter:
+    """A progress callback for :func:`characterize`, :func:`coefficients` and :func:`study` that
+    prints one line per iteration or point to ``file`` (default stderr), each starting with the
+    time elapsed since the run began, ``[  12.3 s]`` (contact events are skipped). Finished
+    iterations and points also give their own time: the iteration's wall time with the contacts
+    it characterized and reused, the point's wall time.
+
+    The clock starts when the printer is made and restarts at the event that begins a run: a
+    study's ``planned`` event, or a loop's first iteration (the load prediction, iteration 0, or
+    iteration 1 when it is not preceded by the prediction). ``clock`` (seconds, monotonic) is for
+    tests. Events may arrive from worker threads: lines are printed whole."""
+
+    def __init__(
+        self, file: Optional[TextIO] = None, clock: Callable[[], float] = time.monotonic
+    ) -> None:
+        self._file = file
+        self._clock = clock
+        self._t0 = clock()
+        self._last_iteration: Optional[int] = None
+        self._lock = threading.Lock()
+
+    def _print(self, text: str) -> None:
+        out = self._file if self._file is not None else sys.stderr
+        print(f"[{self._clock() - self._t0:6.1f} s] {text}", file=out, flush=True)
+
+    def __call__(self, event: dict[str, Any]) -> None:
+        with self._lock:
+            self._handle(event)
+
+    def _handle(self, event: dict[str, Any]) -> None:
+        kind = event.get("event")
+        point = ""
+        if kind == "planned":
+            self._t0 = self._clock()
+            self._print(
+                f"study: {event['points']} points, {event['to_compute']} to compute"
+                + (f" ({event['redone']} redone)" if event.get("redone") else "")
+            )
+            return
+        if kind == "loop":
+            # A study's points may run concurrently: name the point of the loop event.
+            if "index" in event:
+                point = f"point {event['index'] + 1}, "
+            event = event.get("progress", {})
+            kind = event.get("event")
+        elif kind == "iteration_started":
+            # A loop of its own (characterize, coefficients): its first iteration starts the clock.
+            it = event["iteration"]
+            if it == 0 or (it == 1 and self._last_iteration != 0):
+                self._t0 = self._clock()
+            self._last_iteration = it
+        if kind == "iteration_started":
+            it = event["iteration"]
+            name = "load prediction" if it == 0 else f"iteration {it}"
+            self._print(f"{point}{name}: {event['contacts']} contacts")
+        elif kind == "iteration_done":
+            r = event.get("record") or {}
+            seconds = r.get("seconds", math.nan)
+            change = r.get("max_load_change", math.nan)
+            self._print(
+                f"{point}iteration {r.get('iteration', '?')} done in {seconds:.1f} s "
+                f"({r.get('characterized', '?')} contacts characterized, {r.get('reused', '?')} "
+                f"reused): largest relative load change {change:.2e}"
+            )
+        elif kind == "point_started":
+            rpm, scale = event["inner_speed_rpm"], event["load_scale"]
+            self._print(f"point {event['index'] + 1}: {rpm} rpm × {scale}")
+        elif kind == "point_done":
+            state = event["error"] or ("converged" if event["converged"] else "NOT converged")
+            self._print(f"point {event['index'] + 1}: {state} in {event['seconds']:.1f} s")
+
+
+_default_printer = ProgressPrinter()
+
+
 def print_progress(event: dict[str, Any]) -> None:
     """A progress callback for :func:`characterize`, :func:`coefficients` and :func:`study` that
-    prints one line per iteration or point to stderr (contact events are skipped)."""
-    kind = event.get("event")
-    point = ""
-    if kind == "loop":
-        # A study's points may run concurrently: name the point of the loop event.
-        if "index" in event:
-            point = f"point {event['index'] + 1}, "
-        event = event.get("progress", {})
-        kind = event.get("event")
-    if kind == "iteration_started":
-        print(
-            f"{point}iteration {event['iteration']}: {event['contacts']} contacts",
-            file=sys.stderr,
-            flush=True,
-        )
-    elif kind == "point_started":
-        print(
-            f"point {event['index'] + 1}: {event['inner_speed_rpm']} rpm × {event['load_scale']}",
-            file=sys.stderr,
-            flush=True,
-        )
-    elif kind == "point_done":
-        state = event["error"] or ("converged" if event["converged"] else "NOT converged")
-        print(
-            f"point {event['index'] + 1}: {state} in {event['seconds']:.1f} s",
-            file=sys.stderr,
-            flush=True,
-        )
+    prints one line per iteration or point to stderr with the time elapsed since the run began
+    and each finished iteration's and point's own time (a shared :class:`ProgressPrinter`; make
+    one per run to choose the file)."""
+    _default_printer(event)

@@ -25,6 +25,7 @@ __all__ = [
     "synchronous_orbit",
     "time_history_csv",
     "waterfall",
+    "whole_periods",
 ]
 
 
@@ -105,13 +106,25 @@ def orbit(
 
 
 def amplitude_spectrum(signal: np.ndarray, step_s: float) -> tuple[np.ndarray, np.ndarray]:
-    """One-sided amplitude spectrum (Hann window, amplitude-corrected) of a uniformly sampled
-    signal with its mean removed: (frequency Hz, amplitude in the signal's unit)."""
+    """One-sided amplitude spectrum (periodic Hann window, amplitude-corrected) of a uniformly
+    sampled signal with its mean removed: (frequency Hz, amplitude in the signal's unit). A
+    component with a whole number of periods in the record (see :func:`whole_periods`) falls on
+    its bin and the two next to it, with no leakage beyond; any other leaks with the window's
+    sidelobes (−31 dB, falling 18 dB per octave)."""
     s = np.asarray(signal, dtype=float)
     s = s - s.mean()
-    w = np.hanning(len(s))
+    n = len(s)
+    w = 0.5 - 0.5 * np.cos(2.0 * np.pi * np.arange(n) / n)
     a = 2.0 * np.abs(np.fft.rfft(s * w)) / w.sum()
-    return np.fft.rfftfreq(len(s), step_s), a
+    return np.fft.rfftfreq(n, step_s), a
+
+
+def whole_periods(n: int, step_s: float, frequency_hz: float) -> int:
+    """The largest number of samples, at most ``n``, that spans a whole number of periods of
+    ``frequency_hz`` (to the nearest sample); ``n`` when not even one period fits."""
+    per = 1.0 / (frequency_hz * step_s)
+    periods = n // per
+    return min(n, round(periods * per)) if periods >= 1 else n
 
 
 def spectrum(
@@ -121,16 +134,32 @@ def spectrum(
     since_s: float = 0.0,
     marks_hz: Optional[dict[str, float]] = None,
     max_hz: Optional[float] = None,
+    periods_of_hz: Optional[float] = None,
+    dynamic_range: float = 1e6,
 ) -> Any:
     """Displacement spectrum (µm, log scale) of global DOF ``dof`` for each labelled response,
-    from ``since_s`` on, with vertical marks at ``marks_hz`` (label → Hz, e.g. 1× and Z·f_cage)."""
+    from ``since_s`` on, with vertical marks at ``marks_hz`` (label → Hz, e.g. 1× and Z·f_cage).
+
+    ``periods_of_hz``: analyse the last whole number of periods of this frequency (e.g. the shaft
+    speed) of the record, so that a steady component at it and its harmonics does not leak.
+    ``dynamic_range``: the amplitude axis spans this ratio below the largest amplitude shown
+    (default 1e6: amplitudes a millionth of the peak are at the level of the integrator's
+    tolerances and the window's leakage, not of the rotor's response)."""
     plt = _plt()
     fig, ax = plt.subplots(figsize=(7, 4))
+    top = 0.0
     for label, r in responses.items():
         t = np.asarray(r["time_s"])
-        keep = t >= since_s
-        f, a = amplitude_spectrum(column(r, dof)[keep], t[1] - t[0])
-        ax.semilogy(f[1:], 1e6 * a[1:] + 1e-12, lw=0.8, label=label)
+        h = t[1] - t[0]
+        x = column(r, dof)[t >= since_s]
+        if periods_of_hz:
+            x = x[len(x) - whole_periods(len(x), h, periods_of_hz) :]
+        f, a = amplitude_spectrum(x, h)
+        shown = (f > 0) & (f <= max_hz) if max_hz else f > 0
+        top = max(top, float((1e6 * a[shown]).max(initial=0.0)))
+        ax.semilogy(f[1:], 1e6 * a[1:], lw=0.8, label=label)
+    if top > 0.0:
+        ax.set_ylim(top / dynamic_range, 3.0 * top)
     for name, fm in (marks_hz or {}).items():
         ax.axvline(fm, color="k", ls=":", lw=0.8)
         ax.text(fm, ax.get_ylim()[1], f" {name}", rotation=90, va="top", fontsize=7)
@@ -152,11 +181,13 @@ def waterfall(
     max_hz: Optional[float] = None,
     orders: Sequence[float] = (1.0,),
     order_labels: Optional[Sequence[str]] = None,
+    dynamic_range: float = 1e6,
 ) -> Any:
     """Waterfall of a run-up: amplitude spectra (µm) of global DOF ``dof`` over consecutive
     windows of ``window_s`` against the mean shaft speed of each window (rpm), as a colour map
-    (frequency × speed), with order lines (multiples of the shaft speed, e.g. 1× and the
-    ball-pass order Z·f_cage/f_shaft)."""
+    (frequency × speed) over ``dynamic_range`` below the largest amplitude, with order lines
+    (multiples of the shaft speed, e.g. 1× and the ball-pass order Z·f_cage/f_shaft) labelled
+    inside the plot."""
     plt = _plt()
     t = np.asarray(response["time_s"])
     h = t[1] - t[0]
@@ -169,15 +200,39 @@ def waterfall(
         rows.append(1e6 * a)
         rpm.append(speed[k : k + n].mean() * 30 / np.pi)
     amp = np.array(rows)
+    # Colours over `dynamic_range` below the largest amplitude (lower ones at the bottom colour).
+    top = float(np.log10(max(amp.max(), 1e-300)))
+    bottom = top - np.log10(dynamic_range)
     fig, ax = plt.subplots(figsize=(7, 4.5))
     mesh = ax.pcolormesh(
-        f, rpm, np.log10(amp + 1e-9), shading="nearest", cmap="viridis", rasterized=True
+        f,
+        rpm,
+        np.log10(np.maximum(amp, 10.0**bottom)),
+        shading="nearest",
+        cmap="viridis",
+        vmin=bottom,
+        vmax=top,
+        rasterized=True,
     )
     fig.colorbar(mesh, ax=ax, label="log10 amplitude, µm")
     labels = order_labels or [f"{o:g}×" for o in orders]
+    right = max_hz or float(f[-1])
     for o, lab in zip(orders, labels):
         ax.plot(np.array(rpm) / 60 * o, rpm, "w--", lw=0.7)
-        ax.text(rpm[-1] / 60 * o, rpm[-1], lab, color="w", fontsize=7, va="bottom")
+        # Inside the plot, just below the top end of the order line (or at the right edge
+        # where the line leaves the plot there), on a dark box so it reads on any colour.
+        x_end = min(rpm[-1] / 60 * o, right)
+        ax.annotate(
+            lab,
+            (x_end, rpm[-1]),
+            xytext=(-3 if x_end >= 0.8 * right else 3, -3),
+            textcoords="offset points",
+            ha="right" if x_end >= 0.8 * right else "left",
+            va="top",
+            color="w",
+            fontsize=7,
+            bbox={"facecolor": "black", "alpha": 0.5, "pad": 1.5, "edgecolor": "none"},
+        )
     if max_hz:
         ax.set_xlim(0, max_hz)
     ax.set_xlabel("frequency, Hz")
