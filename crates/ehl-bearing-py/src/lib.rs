@@ -56,8 +56,10 @@ pub(crate) fn to_py(py: Python<'_>, v: &serde_json::Value) -> PyResult<PyObject>
 
 /// A Python object (dicts with text keys, lists and tuples, bools, ints, floats, strings, numpy
 /// scalars and 0-d arrays) as a JSON value, walked directly: an unsupported value or a number
-/// that is not finite is an error naming its key path (`bearing.ball_diameter_mm = nan`).
-fn from_py(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<serde_json::Value> {
+/// that is not finite is an error naming its key path (`bearing.ball_diameter_mm = NaN`); None is
+/// JSON null where `none_ok` (result dicts read back), an error otherwise (case dicts: TOML has
+/// no null).
+fn from_py(obj: &Bound<'_, PyAny>, path: &str, none_ok: bool) -> PyResult<serde_json::Value> {
     use pyo3::types::{PyBool, PyFloat, PyInt, PyList, PyString, PyTuple};
     let at = |p: &str| {
         if p.is_empty() {
@@ -81,16 +83,25 @@ fn from_py(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<serde_json::Value> {
             } else {
                 format!("{path}.{key}")
             };
-            map.insert(key, from_py(&v, &sub)?);
+            map.insert(key, from_py(&v, &sub, none_ok)?);
         }
         return Ok(serde_json::Value::Object(map));
     }
     if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
         let mut out = Vec::new();
         for (i, v) in obj.iter()?.enumerate() {
-            out.push(from_py(&v?, &format!("{path}[{i}]"))?);
+            out.push(from_py(&v?, &format!("{path}[{i}]"), none_ok)?);
         }
         return Ok(serde_json::Value::Array(out));
+    }
+    if obj.is_none() {
+        if none_ok {
+            return Ok(serde_json::Value::Null);
+        }
+        return Err(err(format!(
+            "{} = None: give a value, or leave the key out for its default",
+            at(path)
+        )));
     }
     if obj.is_instance_of::<PyBool>() {
         return Ok(serde_json::Value::Bool(obj.extract()?));
@@ -114,7 +125,7 @@ fn from_py(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<serde_json::Value> {
     if obj.hasattr("item")? && obj.hasattr("dtype")? {
         let item = obj.call_method0("item")?;
         if !item.hasattr("dtype")? {
-            return from_py(&item, path);
+            return from_py(&item, path, none_ok);
         }
     }
     Err(err(format!(
@@ -195,7 +206,7 @@ impl PyCase {
     #[staticmethod]
     fn from_dict(py: Python<'_>, values: &Bound<'_, PyAny>) -> PyResult<Self> {
         let _ = py;
-        let v = from_py(values, "")?;
+        let v = from_py(values, "", false)?;
         let text = toml::to_string(&v).map_err(|e| err(format!("case dict as TOML: {e}")))?;
         Self::from_toml(&text, "<dict>")
     }
@@ -744,7 +755,7 @@ impl PyLawElement {
     /// `Characterization.report()`) for the bearing of `case`.
     #[staticmethod]
     fn from_report(case: &PyCase, report: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let v = from_py(report, "")?;
+        let v = from_py(report, "", true)?;
         let r: ehl_bearing::characterize::CharacterizationReport =
             serde_json::from_value(v).map_err(|e| err(format!("characterization report: {e}")))?;
         let e = LawElement::from_report(&case.case.bearing, case.case.operating.race_control, &r)
@@ -864,7 +875,7 @@ fn coefficients(
 /// x ← our y, y ← our z, z ← our x).
 #[pyfunction]
 fn ross_table_csv(coefficients: &Bound<'_, PyAny>) -> PyResult<String> {
-    let v = from_py(coefficients, "")?;
+    let v = from_py(coefficients, "", true)?;
     let c: Vec<ehl_bearing::coefficients::SpeedCoefficients> =
         serde_json::from_value(v).map_err(|e| err(format!("coefficients: {e}")))?;
     Ok(ehl_bearing::coefficients::ross_table_csv(&c))
