@@ -577,6 +577,25 @@ impl ElementCore {
                 self.element.evaluate(&input, &mut st)
             })
             .map_err(err)?;
+        if !out.overloaded.is_empty() {
+            let (j, race) = out.overloaded[0];
+            let msg = format!(
+                "{} contact(s) beyond {} % of the ball diameter (first: ball {j} {race:?}, \
+                 approach {:.3e} m, load {:.4e} N) at displacement {q:?}: no bearing survives \
+                 this; the numbers are returned as computed (full=True lists them in \
+                 `overloaded`)",
+                out.overloaded.len(),
+                ehl_bearing::force_element::OVERLOAD_DEFLECTION_RATIO * 100.0,
+                out.approaches[j][race as usize],
+                out.loads[j][race as usize],
+            );
+            PyErr::warn_bound(
+                py,
+                &py.get_type_bound::<pyo3::exceptions::PyRuntimeWarning>(),
+                &msg,
+                1,
+            )?;
+        }
         let r = PyArray1::from_slice_bound(py, &out.reaction);
         let k = mat(py, &out.stiffness);
         let c = mat(py, &out.damping);
@@ -600,6 +619,12 @@ impl ElementCore {
             .map(|(b, r)| (*b, format!("{r:?}").to_lowercase()))
             .collect();
         d.set_item("outside_range", outside)?;
+        let overloaded: Vec<(usize, String)> = out
+            .overloaded
+            .iter()
+            .map(|(b, r)| (*b, format!("{r:?}").to_lowercase()))
+            .collect();
+        d.set_item("overloaded", overloaded)?;
         d.set_item("speed_outside", out.speed_outside)?;
         Ok(d.into_any().unbind())
     }

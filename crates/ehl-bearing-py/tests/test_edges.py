@@ -86,6 +86,19 @@ def test_evaluate_takes_any_real_array_like(case):
         element.evaluate([0.0, 0.0, 0.0])
 
 
+def test_an_absurd_displacement_is_flagged_not_passed_off(case):
+    element = eb.LawElement.hertz(case)
+    q, _, _ = element.equilibrium(case)
+    w = case.inner_speed_rad_s
+    out = element.evaluate(q, inner_speed_rad_s=w, full=True)
+    assert out["overloaded"] == []
+    q_tilted = np.array(q)
+    q_tilted[3] = 1.0  # 1 rad: a 26 MN contact load came back with nothing flagged
+    with pytest.warns(RuntimeWarning, match="no bearing survives"):
+        out = element.evaluate(q_tilted, inner_speed_rad_s=w, full=True)
+    assert out["overloaded"], out
+
+
 def test_a_progress_callback_can_stop_a_run_and_time_is_bounded(case):
     element = eb.LawElement.hertz(case)
     rotor = er.two_disk_rotor(

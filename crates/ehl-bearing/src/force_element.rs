@@ -80,6 +80,29 @@ pub struct ElementOutput {
     /// For a trend element: the speed lies outside the trends' speed range (laws evaluated at the
     /// nearest end). Always false for fixed laws.
     pub speed_outside: bool,
+    /// Contacts whose approach exceeds [`OVERLOAD_DEFLECTION_RATIO`]·D (ball, race): a ring
+    /// displacement no bearing survives (e.g. a 1 rad tilt gave a 26 MN contact load); the
+    /// numbers are returned as computed, flagged here.
+    pub overloaded: Vec<(usize, Race)>,
+}
+
+/// Contact approach, as a fraction of the ball diameter, beyond which an element flags the
+/// contact as overloaded: the equilibrium's own limit (`max_deflection_ratio`, 2 % of D), far
+/// beyond the permanent deformation of ISO 76's static rating (1e-4·D).
+pub const OVERLOAD_DEFLECTION_RATIO: f64 = 0.02;
+
+/// The contacts of `approaches` beyond [`OVERLOAD_DEFLECTION_RATIO`]·D.
+fn overloaded(bearing: &Bearing, approaches: &[[f64; 2]]) -> Vec<(usize, Race)> {
+    let limit = OVERLOAD_DEFLECTION_RATIO * bearing.geometry.ball_diameter;
+    let mut out = Vec::new();
+    for (j, a) in approaches.iter().enumerate() {
+        for (k, race) in [Race::Inner, Race::Outer].into_iter().enumerate() {
+            if a[k].is_nan() || a[k] > limit {
+                out.push((j, race));
+            }
+        }
+    }
+    out
 }
 
 /// Caller-owned state of an element between calls: warm starts of every ball's equilibrium and
@@ -324,6 +347,7 @@ impl ForceElement for LawElement {
             stiffness: f.stiffness,
             damping: f.damping,
             loads: f.loads,
+            overloaded: overloaded(&self.bearing, &f.approaches),
             approaches: f.approaches,
             outside_range,
             speed_outside: false,
@@ -752,6 +776,7 @@ impl TrendForceElement {
                 stiffness: f.stiffness,
                 damping: f.damping,
                 loads: f.loads,
+                overloaded: overloaded(&self.bearing, &f.approaches),
                 approaches: f.approaches,
                 outside_range,
                 speed_outside,

@@ -146,6 +146,19 @@ fn dry_element_has_zero_damping_and_reproduces_the_dry_equilibrium() {
     // ones, both converged to 1e-9 of the ball loads.
     assert!(matrix_error(&out.stiffness, &eq.stiffness) < 1e-9);
     assert!(out.outside_range.is_empty());
+    assert!(out.overloaded.is_empty());
+    // A 1 rad tilt (a 26 MN contact load came back unflagged): the contacts beyond 2 % of D are
+    // flagged, the numbers returned as computed.
+    let mut q = eq.displacement;
+    q[3] = 1.0;
+    let input = ElementInput::at(q, case.operating.inner_speed, case.operating.outer_speed);
+    let out = e.evaluate(&input, &mut ElementState::default()).unwrap();
+    let limit =
+        ehl_bearing::force_element::OVERLOAD_DEFLECTION_RATIO * case.bearing.geometry.ball_diameter;
+    assert!(!out.overloaded.is_empty());
+    for &(j, race) in &out.overloaded {
+        assert!(out.approaches[j][race as usize] > limit, "{out:?}");
+    }
 }
 
 #[test]

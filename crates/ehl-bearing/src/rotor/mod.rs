@@ -32,8 +32,8 @@ pub use model::{
     BearingSite, RotorMatrices, RotorModel, StaticDiagnosis, StaticSolution, Unbalance,
 };
 pub use time::{
-    CageMotion, Coupling, RotorProgress, SpeedProfile, Start, TimeBreakdown, TimeOptions,
-    TimeResponse,
+    CageMotion, Coupling, ProgressCallback, RotorProgress, SpeedProfile, Start, TimeBreakdown,
+    TimeOptions, TimeResponse,
 };
 
 use thiserror::Error;

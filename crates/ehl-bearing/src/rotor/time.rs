@@ -266,6 +266,9 @@ pub struct TimeBreakdown {
     pub factorization_s: f64,
 }
 
+/// The caller's progress callback of [`RotorModel::simulate`]: `Break` stops the run.
+pub type ProgressCallback<'a> = dyn FnMut(&RotorProgress) -> ControlFlow<()> + 'a;
+
 /// Largest time-response record held in memory, bytes (recorded DOFs and time and speed; the
 /// bearing records add to it).
 pub const MAX_RECORD_BYTES: f64 = 1e9;
@@ -389,7 +392,7 @@ impl RotorModel {
         &self,
         profile: &SpeedProfile,
         options: &TimeOptions,
-        mut progress: Option<&mut dyn FnMut(&RotorProgress) -> ControlFlow<()>>,
+        mut progress: Option<&mut ProgressCallback<'_>>,
     ) -> Result<TimeResponse, RotorError> {
         let clock = Instant::now();
         profile.validate()?;
