@@ -33,16 +33,19 @@ pub const NDM_WARN: f64 = 2.5e6;
 /// Speed factor n·d_m (rpm·mm) above which an input is refused.
 pub const NDM_MAX: f64 = 4.0e6;
 
+/// The case file's load keys of the five DOFs (x, y, z, θy, θz), in the `[operating]` table.
+const LOAD_KEYS: [&str; 5] = [
+    "force_axial_n",
+    "force_y_n",
+    "force_z_n",
+    "moment_y_nm",
+    "moment_z_nm",
+];
+
 /// The load keys of a case's operating point that are given as loads, with their values, in
 /// case-file units (for messages).
 fn load_keys(case: &Case) -> (String, String) {
-    let names = [
-        "force_axial_n",
-        "force_y_n",
-        "force_z_n",
-        "moment_y_nm",
-        "moment_z_nm",
-    ];
+    let names = LOAD_KEYS;
     let mut keys = Vec::new();
     let mut values = Vec::new();
     for (k, c) in case.operating.dofs.iter().enumerate() {
@@ -83,13 +86,7 @@ fn check_load_bounds(case: &Case) -> Result<(), InputError> {
     };
     let geo = &case.bearing.geometry;
     let z = geo.ball_count as f64;
-    let names = [
-        "force_axial_n",
-        "force_y_n",
-        "force_z_n",
-        "moment_y_nm",
-        "moment_z_nm",
-    ];
+    let names = LOAD_KEYS;
     for (k, c) in case.operating.dofs.iter().enumerate() {
         let Control::Load(v) = c else { continue };
         let (bound, unit, arm) = if k < 3 {

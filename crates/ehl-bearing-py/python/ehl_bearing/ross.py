@@ -166,6 +166,23 @@ def node_dofs(rotor: Any, node: int) -> list[int]:
     return [base + k for k in range(5)]
 
 
+def _three_dof_terms(k5: np.ndarray, c5: np.ndarray) -> dict[str, Any]:
+    """ROSS's 3-DOF bearing coefficients (kxx … czz, one value per speed) of our 5×5 blocks in
+    ROSS axes, stacked over speeds (S, 5, 5)."""
+    return dict(
+        kxx=k5[:, 0, 0],
+        kxy=k5[:, 0, 1],
+        kyx=k5[:, 1, 0],
+        kyy=k5[:, 1, 1],
+        kzz=k5[:, 2, 2],
+        cxx=c5[:, 0, 0],
+        cxy=c5[:, 0, 1],
+        cyx=c5[:, 1, 0],
+        cyy=c5[:, 1, 1],
+        czz=c5[:, 2, 2],
+    )
+
+
 class EhlBearingElement(rs.BearingElement):
     """A ROSS bearing element from our coefficients at node ``n``, with the full 5×5 block.
 
@@ -234,18 +251,7 @@ class EhlBearingElement(rs.BearingElement):
         self._c5 = np.array(cs)
         self.mounting = mounting
         k5, c5 = self._k5, self._c5
-        kw: dict[str, Any] = dict(
-            kxx=k5[:, 0, 0],
-            kxy=k5[:, 0, 1],
-            kyx=k5[:, 1, 0],
-            kyy=k5[:, 1, 1],
-            kzz=k5[:, 2, 2],
-            cxx=c5[:, 0, 0],
-            cxy=c5[:, 0, 1],
-            cyx=c5[:, 1, 0],
-            cyy=c5[:, 1, 1],
-            czz=c5[:, 2, 2],
-        )
+        kw = _three_dof_terms(k5, c5)
         if len(freq) == 1:
             kw = {k: float(v[0]) for k, v in kw.items()}
             frequency = None
@@ -287,18 +293,7 @@ class EhlBearingElement(rs.BearingElement):
         kyy, kzz, cxx, cxy, cyx, cyy, czz at the same speeds): for a deliberately 3-DOF model in
         a plain ``ross.Rotor`` (no tilt stiffness, no cross terms)."""
         k5, c5 = self._k5, self._c5
-        kw: dict[str, Any] = dict(
-            kxx=k5[:, 0, 0],
-            kxy=k5[:, 0, 1],
-            kyx=k5[:, 1, 0],
-            kyy=k5[:, 1, 1],
-            kzz=k5[:, 2, 2],
-            cxx=c5[:, 0, 0],
-            cxy=c5[:, 0, 1],
-            cyx=c5[:, 1, 0],
-            cyy=c5[:, 1, 1],
-            czz=c5[:, 2, 2],
-        )
+        kw = _three_dof_terms(k5, c5)
         if len(self._freq) == 1:
             return rs.BearingElement(n=self.n, tag=tag, **{k: float(v[0]) for k, v in kw.items()})
         return rs.BearingElement(n=self.n, frequency=self._freq, tag=tag, **kw)
