@@ -202,8 +202,10 @@ impl Axis {
     }
 }
 
-/// `m`·10^`e`, as exact as the literal `me` (10^e is exact up to e = 22).
+/// `m`·10^`e`, as exact as the literal `me` (10^e is exact up to e = 22); exponents beyond
+/// the f64 range give 0 or inf without overflowing the negation.
 fn times_power_of_ten(m: f64, e: i32) -> f64 {
+    let e = e.clamp(-400, 400);
     if e >= 0 {
         m * 10f64.powi(e)
     } else {
@@ -222,6 +224,10 @@ impl Axis {
     /// decades, else the unlabelled powers of ten.
     pub(crate) fn log_ticks(&self, max: usize) -> (Vec<f64>, Vec<f64>) {
         let max = max.max(2);
+        // A log axis needs a positive, finite range (NaN, inf or ≤ 0: no ticks).
+        if !(self.lo > 0.0 && self.hi.is_finite() && self.lo <= self.hi) {
+            return (Vec::new(), Vec::new());
+        }
         let (e0, e1) = (
             self.lo.log10().floor() as i32,
             (self.hi.log10().ceil() as i32).min(self.lo.log10().floor() as i32 + 700),
