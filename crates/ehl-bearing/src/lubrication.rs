@@ -368,17 +368,17 @@ pub fn assess_characterization(
     assess(case, &states)
 }
 
-/// The report as an engineering-units table (films in µm).
+/// The report as an engineering-units table (films in µm; the warnings are not included).
 pub fn table(r: &LubricationReport) -> String {
     use std::fmt::Write;
     let mut s = String::new();
     if let Some(o) = &r.oil {
         let _ = writeln!(
             s,
-            "lubricant: {}{:?} oil, ν40 = {:.2}, ν100 = {:.3} mm²/s, VI {:.1}; at {} °C: ν = {:.3} \
+            "lubricant: {}{} oil, ν40 = {:.2}, ν100 = {:.3} mm²/s, VI {:.1}; at {} °C: ν = {:.3} \
              mm²/s, ρ = {:.1} kg/m³, η0 = {:.5} Pa·s, α = {:.3e} 1/Pa (Z = {:.3}), β = {:.4} 1/K",
             o.iso_vg.map(|g| format!("ISO VG {g} ")).unwrap_or_default(),
-            o.base_oil,
+            o.base_oil.name(),
             o.viscosity_40c_mm2_s,
             o.viscosity_100c_mm2_s,
             o.viscosity_index,
@@ -420,8 +420,34 @@ pub fn table(r: &LubricationReport) -> String {
             opt(c.min_film_thermal_m, &|v| format!("{:.4}", v * 1e6)),
         );
     }
-    for w in &r.warnings {
-        let _ = writeln!(s, "warning: {w}");
+    s
+}
+
+/// The per-contact figures as CSV (SI units, the names carry them; empty fields where a figure is
+/// not computed).
+pub fn contacts_csv(r: &LubricationReport) -> String {
+    let mut s = String::from(
+        "ball,race,load_n,max_pressure_pa,entrainment_velocity_m_s,ellipticity,central_film_m,\
+         min_film_m,lambda,thermal_loading,thermal_reduction,min_film_thermal_m,flags\n",
+    );
+    let o = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:e}"));
+    for c in &r.contacts {
+        s.push_str(&format!(
+            "{},{},{:e},{:e},{:e},{:e},{},{},{},{},{},{},\"{}\"\n",
+            c.ball,
+            c.race,
+            c.load_n,
+            c.max_pressure_pa,
+            c.entrainment_velocity_m_s,
+            c.ellipticity,
+            o(c.central_film_m),
+            o(c.min_film_m),
+            o(c.lambda),
+            o(c.thermal_loading),
+            o(c.thermal_reduction),
+            o(c.min_film_thermal_m),
+            c.flags.join("; ").replace('"', "'")
+        ));
     }
     s
 }

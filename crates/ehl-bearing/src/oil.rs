@@ -358,6 +358,16 @@ impl BaseOil {
     /// The case-file names.
     pub const NAMES: [&'static str; 4] = ["mineral", "pao", "ester", "other"];
 
+    /// Its case-file name.
+    pub fn name(&self) -> &'static str {
+        match self {
+            BaseOil::Mineral => "mineral",
+            BaseOil::Pao => "pao",
+            BaseOil::Ester => "ester",
+            BaseOil::Other => "other",
+        }
+    }
+
     /// From its case-file name.
     pub fn parse(s: &str) -> Option<BaseOil> {
         match s {
@@ -547,9 +557,10 @@ pub fn derive(oil: &OilDescription, t_c: f64) -> Result<OilProperties, OilError>
                 return Err(OilError::Missing {
                     quantity: "lubricant.pressure_viscosity_index_z".into(),
                     hint: format!(
-                        "no verified pressure–viscosity correlation for {other:?} base oils is \
+                        "no verified pressure–viscosity correlation for {} base oils is \
                          built in (only mineral): give Roelands' Z or \
-                         lubricant.pressure_viscosity_1_pa at the operating temperature"
+                         lubricant.pressure_viscosity_1_pa at the operating temperature",
+                        other.name()
                     ),
                 })
             }

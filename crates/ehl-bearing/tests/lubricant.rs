@@ -399,7 +399,10 @@ fn invalid_descriptions_name_key_value_and_range() {
             format!("iso_vg = 32\nviscosity_index = 140.0\nbase_oil = \"ester\"\n{d}"),
             t,
             "",
-            &["lubricant.pressure_viscosity_index_z is missing", "Ester"],
+            &[
+                "lubricant.pressure_viscosity_index_z is missing",
+                "ester base oils",
+            ],
         ),
         (
             format!("iso_vg = 32\nviscosity_index = 100.0\npressure_viscosity_index_z = 3.0\n{d}"),
