@@ -563,3 +563,31 @@ fn assessment_equals_the_formulas_at_the_contact_states() {
         r.warnings
     );
 }
+
+/// The characterization record (CLI JSON, characterization.json, study point files, Python
+/// `report()`) carries the lubrication report for a described oil, reads back into the same value,
+/// and has no `lubrication` key for the seed case given by its constants.
+#[test]
+fn characterization_record_carries_the_report_only_when_wanted() {
+    use ehl_bearing::characterize::{characterize_bearing, CharacterizeSettings};
+    use ehl_bearing::method::Method;
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    let dry = Method::parse("hertz", None).unwrap();
+    let s = CharacterizeSettings::default();
+    let described = ehl_bearing::io::read_case(&root.join("7006_vg46.toml")).unwrap();
+    let c = characterize_bearing(&described, &dry, &s).unwrap();
+    let report = c.report(false);
+    let l = report.lubrication.as_ref().unwrap();
+    assert_eq!(l.contacts.len(), 22);
+    assert_eq!(l.oil.as_ref().unwrap().iso_vg, Some(46));
+    assert!((l.oil.as_ref().unwrap().viscosity_pa_s - 0.04).abs() < 5e-4);
+    assert!(l.min_lambda.unwrap() > 3.0 && l.kappa.unwrap() > 4.0);
+    let text = serde_json::to_string(&report).unwrap();
+    let back: ehl_bearing::characterize::CharacterizationReport =
+        serde_json::from_str(&text).unwrap();
+    assert_eq!(back, report);
+    let seed = ehl_bearing::io::read_case(&root.join("7006.toml")).unwrap();
+    let c = characterize_bearing(&seed, &dry, &s).unwrap();
+    let v = serde_json::to_value(c.report(false)).unwrap();
+    assert!(v.get("lubrication").is_none());
+}
