@@ -240,7 +240,13 @@ pub fn assess(case: &Case, contacts: &[(usize, Race, ContactState)]) -> Lubricat
             (Some((deta, kf)), true) => {
                 let l = thermal_loading(deta, u, kf);
                 let phi = thermal_factor(st.max_pressure, e, l, 0.0);
-                let r = 1.0 - phi;
+                if phi <= 0.0 {
+                    flags.push(format!(
+                        "thermal loading L = {l:.3} beyond the Gupta et al. correlation (φ_T = \
+                         {phi:.3} ≤ 0): the isothermal film does not describe this contact"
+                    ));
+                }
+                let r = (1.0 - phi).min(1.0);
                 if r > THERMAL_WARN {
                     flags.push(format!(
                         "inlet shear heating reduces the film by about {:.0} % (isothermal model)",
