@@ -19,6 +19,38 @@ fn rel(a: f64, b: f64) -> f64 {
 // ---------------------------------------------------------------------------------------------
 // ν(T), VI, ρ(T)
 
+/// ISO 3448's grade table as published (midpoints and the ±10 % limits in mm²/s at 40 °C, grades 2
+/// to 1500; "ISO Viscosity Grade Conversions", Viscosity data pages, idoc.tips/-viscosity-pdf-free):
+/// the built-in midpoints, and ±10 % of them equal the published limits to their printed digits.
+#[test]
+fn iso_3448_table_matches_the_published_grades() {
+    let published: [(u32, f64, f64, f64); 18] = [
+        (2, 2.2, 1.98, 2.42),
+        (3, 3.2, 2.88, 3.52),
+        (5, 4.6, 4.14, 5.06),
+        (7, 6.8, 6.12, 7.48),
+        (10, 10.0, 9.00, 11.0),
+        (15, 15.0, 13.5, 16.5),
+        (22, 22.0, 19.8, 24.2),
+        (32, 32.0, 28.8, 35.2),
+        (46, 46.0, 41.4, 50.6),
+        (68, 68.0, 61.2, 74.8),
+        (100, 100.0, 90.0, 110.0),
+        (150, 150.0, 135.0, 165.0),
+        (220, 220.0, 198.0, 242.0),
+        (320, 320.0, 288.0, 352.0),
+        (460, 460.0, 414.0, 506.0),
+        (680, 680.0, 612.0, 748.0),
+        (1000, 1000.0, 900.0, 1100.0),
+        (1500, 1500.0, 1350.0, 1650.0),
+    ];
+    for (g, mid, lo, hi) in published {
+        let m = iso_vg_midpoint(g).unwrap();
+        assert_eq!(m, mid, "VG {g}");
+        assert!(rel(0.9 * m, lo) < 1e-9 && rel(1.1 * m, hi) < 1e-9, "VG {g}");
+    }
+}
+
 /// ISO 3448: the grade's midpoint is the kinematic viscosity at 40 °C; the ASTM D341 line drawn
 /// through it (and ν100 from VI 100 by ASTM D2270) returns it at 40 °C within 1 % (here to 1e-3 for
 /// VG 7, 1e-4 for VG 10, 1e-6 from VG 15 up: D341's inverse of Z is an approximation, exact to
