@@ -103,8 +103,8 @@ pub fn run(args: &EquilibriumArgs) -> anyhow::Result<()> {
     } else {
         None
     };
-    // Film formula, Λ, κ and thermal reduction at the dry equilibrium (docs/lubricant.md), when the
-    // case describes its oil or gives roughness.
+    // Film, Λ, κ and thermal reduction at the dry equilibrium (docs/lubricant.md), when the case
+    // describes its oil or gives roughness.
     let lubrication = ehl_bearing::lubrication::wanted(&case).then(|| {
         let states: Vec<_> = eq
             .balls
@@ -115,7 +115,16 @@ pub fn run(args: &EquilibriumArgs) -> anyhow::Result<()> {
                 [(i, Race::Inner, b.inner), (i, Race::Outer, b.outer)]
             })
             .collect();
-        ehl_bearing::lubrication::assess(&case, &states)
+        // With --film, the films of the converged EHL solutions (index 2j inner, 2j+1 outer).
+        let solved: Vec<_> = films
+            .iter()
+            .flatten()
+            .map(|f| match f {
+                Film::Solved(Ok(s)) if s.converged => Some((s.h_central, s.h_min)),
+                _ => None,
+            })
+            .collect();
+        ehl_bearing::lubrication::assess_with_films(&case, &states, &solved)
     });
     if args.json {
         let mut v = equilibrium_json(&eq);

@@ -80,3 +80,30 @@ fn an_invalid_description_names_its_key() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("lubricant.iso_vg = 47"), "{stderr}");
 }
+
+/// With `--film` the films (and Λ) are those of the steady EHL solutions.
+#[test]
+fn equilibrium_film_uses_the_ehl_solutions() {
+    let out = bin()
+        .args(["equilibrium", VG46, "--film", "--grid", "65", "--json"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let l = &v["lubrication"];
+    let sigma = l["composite_roughness_m"].as_f64().unwrap();
+    for (j, b) in v["balls"].as_array().unwrap().iter().enumerate() {
+        for (k, race) in ["inner", "outer"].iter().enumerate() {
+            let c = &l["contacts"][2 * j + k];
+            assert_eq!(c["film_source"], "ehl-solution", "ball {j} {race}");
+            let h = b[race]["film"]["h_min"].as_f64().unwrap();
+            assert_eq!(c["min_film_m"].as_f64().unwrap(), h);
+            let lambda = c["lambda"].as_f64().unwrap();
+            assert!((lambda - c["min_film_m"].as_f64().unwrap() / sigma).abs() < 1e-9);
+        }
+    }
+}

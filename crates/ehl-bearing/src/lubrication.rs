@@ -114,6 +114,10 @@ pub struct ContactFilm {
     pub thermal_reduction: Option<f64>,
     /// Minimum film with the thermal reduction applied, m (an estimate beside the isothermal film).
     pub min_film_thermal_m: Option<f64>,
+    /// Where the films come from: `ehl-solution` (a converged steady EHL solution of the contact)
+    /// or `hamrock-dowson-1977` (the formula); empty when unloaded.
+    #[serde(default)]
+    pub film_source: String,
     /// What the figures say about the model at this contact (empty: nothing to flag).
     pub flags: Vec<String>,
 }
@@ -141,7 +145,7 @@ pub struct LubricationReport {
     pub roughness: Option<Roughness>,
     /// Composite roughness σ, m (null: not given).
     pub composite_roughness_m: Option<f64>,
-    /// Film formula used.
+    /// Where the films come from (per contact: `film_source`).
     pub film_formula: String,
     /// Per-contact figures, in the order given.
     pub contacts: Vec<ContactFilm>,
@@ -170,6 +174,17 @@ pub fn wanted(case: &Case) -> bool {
 
 /// The lubrication figures of `case` at the contact states `contacts` (ball index, race, state).
 pub fn assess(case: &Case, contacts: &[(usize, Race, ContactState)]) -> LubricationReport {
+    assess_with_films(case, contacts, &[])
+}
+
+/// As [`assess`], with the central and minimum film (m) of a converged EHL solution where
+/// `solved[i]` gives one for `contacts[i]` (e.g. `equilibrium --film`); the Hamrock–Dowson formula
+/// elsewhere.
+pub fn assess_with_films(
+    case: &Case,
+    contacts: &[(usize, Race, ContactState)],
+    solved: &[Option<(f64, f64)>],
+) -> LubricationReport {
     let lub = &case.lubricant;
     let e = reduced_modulus(&case.bearing.ball_material, &case.bearing.ring_material);
     let rpm = 30.0 / std::f64::consts::PI;
@@ -190,7 +205,8 @@ pub fn assess(case: &Case, contacts: &[(usize, Race, ContactState)]) -> Lubricat
     let mut rows = Vec::new();
     let mut low_lambda = Vec::new();
     let mut hot = Vec::new();
-    for (ball, race, st) in contacts {
+    let mut from_solution = 0;
+    for (i, (ball, race, st)) in contacts.iter().enumerate() {
         let mut flags = Vec::new();
         let u = 0.5 * st.sum_velocity.abs();
         let loaded = st.load > 0.0 && st.semi_minor > 0.0 && st.rx > 0.0 && st.sum_velocity != 0.0;
@@ -199,7 +215,11 @@ pub fn assess(case: &Case, contacts: &[(usize, Race, ContactState)]) -> Lubricat
         } else {
             0.0
         };
-        let (hc, hmin) = if loaded {
+        let solution = solved.get(i).copied().flatten().filter(|_| loaded);
+        let (hc, hmin) = if let Some((c, m)) = solution {
+            from_solution += 1;
+            (Some(c), Some(m))
+        } else if loaded {
             let u_sum = lub.viscosity * st.sum_velocity.abs() / (e * st.rx);
             let w = st.load / (e * st.rx * st.rx);
             if !(1.0..=8.0).contains(&k) {
@@ -274,6 +294,13 @@ pub fn assess(case: &Case, contacts: &[(usize, Race, ContactState)]) -> Lubricat
                 (Some(h), Some(r)) => Some(h * (1.0 - r)),
                 _ => None,
             },
+            film_source: if solution.is_some() {
+                "ehl-solution".into()
+            } else if hmin.is_some() {
+                "hamrock-dowson-1977".into()
+            } else {
+                String::new()
+            },
             flags,
         });
     }
@@ -318,9 +345,16 @@ pub fn assess(case: &Case, contacts: &[(usize, Race, ContactState)]) -> Lubricat
         }
     }
     let mut notes = vec![
-        "film: Hamrock–Dowson (1977) formula at the equilibrium contact states (±10–20 % against \
-         full numerical solutions), not the EHL samples of the law fit"
-            .to_string(),
+        if from_solution > 0 {
+            format!(
+                "film: the steady EHL solution at {from_solution} contacts, the Hamrock–Dowson \
+                 (1977) formula elsewhere (film_source)"
+            )
+        } else {
+            "film: Hamrock–Dowson (1977) formula at the equilibrium contact states (±10–20 % \
+             against full numerical solutions), not the EHL samples of the law fit"
+                .to_string()
+        },
         "starvation: not estimated (no oil supply is described); the model assumes a fully \
          flooded inlet"
             .to_string(),
@@ -352,7 +386,11 @@ pub fn assess(case: &Case, contacts: &[(usize, Race, ContactState)]) -> Lubricat
         kappa,
         roughness: case.roughness,
         composite_roughness_m: sigma,
-        film_formula: "hamrock-dowson-1977".into(),
+        film_formula: if from_solution > 0 {
+            "ehl-solution where solved, hamrock-dowson-1977 elsewhere".into()
+        } else {
+            "hamrock-dowson-1977".into()
+        },
         contacts: rows,
         min_lambda,
         max_thermal_reduction,
