@@ -292,6 +292,10 @@ pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
         let json = serde_json::to_string_pretty(&characterization_json(&c, false))? + "\n";
         write_atomic(&dir.join("characterization.json"), json.as_bytes())?;
         write_atomic(&dir.join("contacts.csv"), contacts_csv(&c).as_bytes())?;
+        if let Some(l) = &c.lubrication {
+            let csv = ehl_bearing::lubrication::contacts_csv(l);
+            write_atomic(&dir.join("lubrication.csv"), csv.as_bytes())?;
+        }
     }
     if args.json {
         println!(
@@ -300,6 +304,12 @@ pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
         );
     } else {
         print!("{}", table(&case, &c));
+        if let Some(l) = &c.lubrication {
+            print!("{}", ehl_bearing::lubrication::table(l));
+        }
+    }
+    for w in c.lubrication.iter().flat_map(|l| &l.warnings) {
+        eprintln!("warning: {}: {w}", args.case.display());
     }
     // One rule for every command with one result (ehl, contact, characterize, coefficients):
     // a result that did not converge is printed and written, marked, and the exit status is 1.

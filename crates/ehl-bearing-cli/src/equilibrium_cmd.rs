@@ -111,6 +111,29 @@ pub fn run(args: &EquilibriumArgs) -> anyhow::Result<()> {
     } else {
         None
     };
+    // Film, Λ, κ and thermal reduction at the dry equilibrium (docs/lubricant.md), when the case
+    // describes its oil or gives roughness.
+    let lubrication = ehl_bearing::lubrication::wanted(&case).then(|| {
+        let states: Vec<_> = eq
+            .balls
+            .iter()
+            .enumerate()
+            .flat_map(|(i, b)| {
+                use ehl_bearing::bearing::Race;
+                [(i, Race::Inner, b.inner), (i, Race::Outer, b.outer)]
+            })
+            .collect();
+        // With --film, the films of the converged EHL solutions (index 2j inner, 2j+1 outer).
+        let solved: Vec<_> = films
+            .iter()
+            .flatten()
+            .map(|f| match f {
+                Film::Solved(Ok(s)) if s.converged => Some((s.h_central, s.h_min)),
+                _ => None,
+            })
+            .collect();
+        ehl_bearing::lubrication::assess_with_films(&case, &states, &solved)
+    });
     if args.json {
         let mut v = equilibrium_json(&eq);
         add_race_control_fields(&mut v, &eq);
@@ -121,12 +144,21 @@ pub fn run(args: &EquilibriumArgs) -> anyhow::Result<()> {
                 }
             }
         }
+        if let Some(l) = &lubrication {
+            v["lubrication"] = serde_json::to_value(l)?;
+        }
         println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         print!("{}", table(&case, &eq));
         if let Some(f) = &films {
             print!("{}", film_table(&case, &eq, f));
         }
+        if let Some(l) = &lubrication {
+            print!("{}", ehl_bearing::lubrication::table(l));
+        }
+    }
+    for w in lubrication.iter().flat_map(|l| &l.warnings) {
+        eprintln!("warning: {}: {w}", args.case.display());
     }
     if let Some(f) = &films {
         let failed = f

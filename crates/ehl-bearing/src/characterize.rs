@@ -360,6 +360,9 @@ pub struct BearingCharacterization {
     pub max_relative_residual: f64,
     /// The load prediction the loop started from (None: started from the dry loads).
     pub prediction: Option<PredictionRecord>,
+    /// Film, Λ, κ and thermal-reduction estimates at the final equilibrium (crate::lubrication);
+    /// present when the case describes its oil or gives roughness.
+    pub lubrication: Option<crate::lubrication::LubricationReport>,
     /// Total wall-clock time, s.
     pub seconds: f64,
 }
@@ -683,6 +686,10 @@ pub fn characterize_bearing_with_progress(
     }
     let max_key_distance = history.last().map_or(0.0, |h| h.max_key_distance);
     let (results, max_load_offset, max_relative_residual) = final_contacts(&eq, contacts);
+    let lubrication = crate::lubrication::wanted(case).then(|| {
+        let states: Vec<_> = results.iter().map(|r| (r.ball, r.race, r.state)).collect();
+        crate::lubrication::assess(case, &states)
+    });
     Ok(BearingCharacterization {
         converged,
         iterations: history.len(),
@@ -697,6 +704,7 @@ pub fn characterize_bearing_with_progress(
         max_load_offset,
         max_relative_residual,
         prediction,
+        lubrication,
         seconds: t0.elapsed().as_secs_f64(),
     })
 }
@@ -1297,6 +1305,10 @@ pub struct CharacterizationReport {
     pub stiffness_ehl: [[f64; 5]; 5],
     /// Per-contact rows, ball 0 inner, ball 0 outer, ball 1 inner, …
     pub contacts: Vec<ContactRow>,
+    /// Film, Λ, κ and thermal-reduction estimates (crate::lubrication); absent unless the case
+    /// describes its oil or gives roughness.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lubrication: Option<crate::lubrication::LubricationReport>,
     /// Total wall-clock time, s (absent in reproducible files).
     #[serde(default, skip_serializing_if = "no_time")]
     pub seconds: Option<f64>,
@@ -1339,6 +1351,7 @@ impl BearingCharacterization {
             stiffness_dry: self.dry.stiffness,
             stiffness_ehl: self.equilibrium.stiffness,
             contacts: self.contacts.iter().map(ContactRow::from_result).collect(),
+            lubrication: self.lubrication.clone(),
             seconds: t(self.seconds),
         }
     }

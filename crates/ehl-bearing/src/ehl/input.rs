@@ -58,6 +58,12 @@ fn positive(field: &str, v: f64) -> Result<f64, EhlError> {
 /// The material and lubricant tables are those of case files, read by the case parser (one
 /// parser, one set of ranges per table).
 fn solid(name: &str, m: &Option<RawSolid>) -> Result<Solid, EhlError> {
+    if let Some(rq) = m.as_ref().and_then(|m| m.roughness_rq_um) {
+        return Err(EhlError::File(format!(
+            "{name}.roughness_rq_um = {rq}: expected no roughness in a contact file (the film \
+             parameter is reported for bearing cases)"
+        )));
+    }
     case::solid(m.as_ref(), name).map_err(|e| EhlError::File(e.to_string()))
 }
 

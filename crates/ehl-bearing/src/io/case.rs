@@ -26,6 +26,18 @@
 //! viscosity_model = "roelands"   # or "barus"
 //! density_model = "dowson-higginson"  # or "incompressible"
 //!
+//! # or described (crate::oil; docs/lubricant.md), with operating.temperature_c:
+//! # iso_vg = 32                  # or viscosity_40c_mm2_s = 32.0
+//! # viscosity_index = 100.0      # or viscosity_100c_mm2_s = 5.4
+//! # base_oil = "mineral"         # default; "pao", "ester", "other" need Z or α below
+//! # density_15c_kg_m3 = 870.0
+//! # pressure_viscosity_index_z = 0.72     # optional: Roelands' Z (default for mineral oils)
+//! # pressure_viscosity_1_pa = 2.0e-8      # optional: α at the operating temperature
+//! # thermal_conductivity_w_m_k = 0.1      # optional (inlet shear heating estimate)
+//!
+//! # ball_material and ring_material also take roughness_rq_um (RMS roughness, µm; both or
+//! # neither): the film parameter Λ (crate::lubrication).
+//!
 //! [operating]
 //! inner_speed_rpm = 5000.0       # default 0
 //! outer_speed_rpm = 0.0          # default 0
@@ -35,6 +47,7 @@
 //! tilt_y_deg = 0.001             # or moment_y_nm; default moment 0
 //! tilt_z_deg = 0.001             # or moment_z_nm
 //! race_control = "outer"         # "inner", "none", "no-gyroscopic"; default "outer"
+//! temperature_c = 60.0           # operating oil temperature, °C (described lubricant only)
 //!
 //! [equilibrium]                  # optional solver settings
 //! tolerance = 1e-11              # relative force tolerance
@@ -50,7 +63,9 @@ use super::InputError;
 use crate::bearing::{
     Bearing, BearingGeometry, Control, EquilibriumSettings, Kinematics, OperatingPoint, RaceControl,
 };
+use crate::lubrication::Roughness;
 use crate::material::{DensityModel, Lubricant, Solid, ViscosityModel};
+use crate::oil::{BaseOil, OilDescription, OilProperties};
 use serde::Deserialize;
 use std::f64::consts::PI;
 use std::path::Path;
@@ -66,6 +81,11 @@ pub struct Case {
     pub lubricant: Lubricant,
     /// Whether the lubricant was given in the file (false: the default was used).
     pub lubricant_given: bool,
+    /// The described lubricant's derived constants at the operating temperature, with their
+    /// sources (None: the lubricant is given by its constants or not at all).
+    pub oil: Option<OilProperties>,
+    /// Surface roughness of balls and rings (None: not given).
+    pub roughness: Option<Roughness>,
     /// Speeds, loads and race control.
     pub operating: OperatingPoint,
     /// Equilibrium solver settings.
@@ -149,6 +169,8 @@ pub(crate) struct RawSolid {
     youngs_modulus_gpa: Option<f64>,
     poisson_ratio: Option<f64>,
     density_kg_m3: Option<f64>,
+    /// RMS surface roughness Rq, µm (case files only).
+    pub(crate) roughness_rq_um: Option<f64>,
 }
 
 /// A lubricant in case-file units.
@@ -160,6 +182,40 @@ pub(crate) struct RawLubricant {
     density_kg_m3: Option<f64>,
     viscosity_model: Option<ViscosityModel>,
     density_model: Option<DensityModel>,
+    iso_vg: Option<i64>,
+    viscosity_40c_mm2_s: Option<f64>,
+    viscosity_100c_mm2_s: Option<f64>,
+    viscosity_index: Option<f64>,
+    base_oil: Option<String>,
+    density_15c_kg_m3: Option<f64>,
+    pressure_viscosity_index_z: Option<f64>,
+    thermal_conductivity_w_m_k: Option<f64>,
+}
+
+impl RawLubricant {
+    /// The first description key given (the lubricant is described rather than given by its
+    /// constants), if any.
+    fn description_key(&self) -> Option<&'static str> {
+        [
+            ("iso_vg", self.iso_vg.is_some()),
+            ("viscosity_40c_mm2_s", self.viscosity_40c_mm2_s.is_some()),
+            ("viscosity_100c_mm2_s", self.viscosity_100c_mm2_s.is_some()),
+            ("viscosity_index", self.viscosity_index.is_some()),
+            ("base_oil", self.base_oil.is_some()),
+            ("density_15c_kg_m3", self.density_15c_kg_m3.is_some()),
+            (
+                "pressure_viscosity_index_z",
+                self.pressure_viscosity_index_z.is_some(),
+            ),
+            (
+                "thermal_conductivity_w_m_k",
+                self.thermal_conductivity_w_m_k.is_some(),
+            ),
+        ]
+        .into_iter()
+        .find(|(_, given)| *given)
+        .map(|(k, _)| k)
+    }
 }
 
 #[derive(Debug, Deserialize)]
@@ -178,6 +234,7 @@ struct RawOperating {
     moment_z_nm: Option<f64>,
     tilt_z_deg: Option<f64>,
     race_control: Option<RaceControl>,
+    temperature_c: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -316,10 +373,31 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
         .map_err(|e| InputError::field("bearing", "", e.to_string()))?;
     let ball_material = solid(raw.ball_material.as_ref(), "ball_material")?;
     let ring_material = solid(raw.ring_material.as_ref(), "ring_material")?;
-    let (lubricant, lubricant_given) = match raw.lubricant.as_ref() {
-        Some(l) => (lubricant(l, "lubricant")?, true),
-        None => (Lubricant::DEFAULT_MINERAL_OIL, false),
+    let temperature = raw.operating.as_ref().and_then(|o| o.temperature_c);
+    let (lubricant, lubricant_given, oil) = match raw.lubricant.as_ref() {
+        Some(l) if l.description_key().is_some() => {
+            let t = temperature.ok_or_else(|| InputError::Missing {
+                field: "operating.temperature_c".into(),
+                hint: "the lubricant is described (by grade or viscosities): give the operating \
+                       oil temperature in °C"
+                    .into(),
+            })?;
+            let (lub, oil) = described_lubricant(l, t)?;
+            (lub, true, Some(oil))
+        }
+        Some(l) => (lubricant(l, "lubricant")?, true, None),
+        None => (Lubricant::DEFAULT_MINERAL_OIL, false, None),
     };
+    if let (Some(t), None) = (temperature, &oil) {
+        return Err(InputError::field(
+            "operating.temperature_c",
+            t,
+            "no temperature with a lubricant given by its constants (or the default): describe \
+             the lubricant (lubricant.iso_vg or lubricant.viscosity_40c_mm2_s, …; \
+             docs/lubricant.md) for the temperature to matter",
+        ));
+    }
+    let roughness = roughness(raw.ball_material.as_ref(), raw.ring_material.as_ref())?;
     let operating = operating(raw.operating.as_ref())?;
     let mut settings = EquilibriumSettings::default();
     if b.diametral_clearance_mm.is_some() {
@@ -380,6 +458,8 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
         },
         lubricant,
         lubricant_given,
+        oil,
+        roughness,
         operating,
         settings,
         method,
@@ -485,8 +565,238 @@ pub(crate) fn solid(raw: Option<&RawSolid>, table: &str) -> Result<Solid, InputE
     Ok(s)
 }
 
+/// Ball and ring roughness from the material tables (both or neither).
+fn roughness(
+    ball: Option<&RawSolid>,
+    ring: Option<&RawSolid>,
+) -> Result<Option<Roughness>, InputError> {
+    let rq = |r: Option<&RawSolid>, key: &str| -> Result<Option<f64>, InputError> {
+        match r.and_then(|r| r.roughness_rq_um) {
+            None => Ok(None),
+            Some(v) if v.is_finite() && v > 0.0 && v <= 10.0 => Ok(Some(v * 1e-6)),
+            Some(v) => Err(InputError::field(
+                key,
+                v,
+                "an RMS roughness Rq from 0 (exclusive) to 10 µm (bearing balls about 0.01–0.05, \
+                 ground or honed raceways 0.05–0.3)",
+            )),
+        }
+    };
+    let b = rq(ball, "ball_material.roughness_rq_um")?;
+    let r = rq(ring, "ring_material.roughness_rq_um")?;
+    match (b, r) {
+        (Some(b), Some(r)) => Ok(Some(Roughness {
+            ball_rq_m: b,
+            ring_rq_m: r,
+        })),
+        (None, None) => Ok(None),
+        (Some(_), None) => Err(InputError::Missing {
+            field: "ring_material.roughness_rq_um".into(),
+            hint: "ball_material.roughness_rq_um is given: give the raceways' RMS roughness too \
+                   (the film parameter uses both)"
+                .into(),
+        }),
+        (None, Some(_)) => Err(InputError::Missing {
+            field: "ball_material.roughness_rq_um".into(),
+            hint: "ring_material.roughness_rq_um is given: give the balls' RMS roughness too (the \
+                   film parameter uses both)"
+                .into(),
+        }),
+    }
+}
+
+/// A described lubricant (grade or viscosities, base oil, density at 15 °C) at `t_c` °C: the
+/// constants for the models and their derivation.
+fn described_lubricant(
+    r: &RawLubricant,
+    t_c: f64,
+) -> Result<(Lubricant, OilProperties), InputError> {
+    let key = |k: &str| format!("lubricant.{k}");
+    let first = r.description_key().unwrap_or("iso_vg");
+    if r.viscosity_pa_s.is_some() {
+        return Err(InputError::Conflict {
+            first: key("viscosity_pa_s"),
+            second: key(first),
+        });
+    }
+    if r.density_kg_m3.is_some() {
+        return Err(InputError::Conflict {
+            first: key("density_kg_m3"),
+            second: key(first),
+        });
+    }
+    let nu40 = match (r.iso_vg, r.viscosity_40c_mm2_s) {
+        (Some(_), Some(_)) => {
+            return Err(InputError::Conflict {
+                first: key("iso_vg"),
+                second: key("viscosity_40c_mm2_s"),
+            })
+        }
+        (None, None) => {
+            return Err(InputError::Missing {
+                field: key("iso_vg"),
+                hint: "give the ISO 3448 viscosity grade or lubricant.viscosity_40c_mm2_s".into(),
+            })
+        }
+        (Some(g), None) => u32::try_from(g)
+            .ok()
+            .and_then(crate::oil::iso_vg_midpoint)
+            .ok_or_else(|| {
+                InputError::field(
+                    &key("iso_vg"),
+                    g,
+                    format!(
+                        "an ISO 3448 grade: {}",
+                        crate::oil::ISO_VG
+                            .iter()
+                            .map(|(g, _)| g.to_string())
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                )
+            })?,
+        (None, Some(v)) => {
+            if !(v.is_finite() && v > 2.0 && v <= 10_000.0) {
+                return Err(InputError::field(
+                    &key("viscosity_40c_mm2_s"),
+                    v,
+                    "more than 2 and at most 10000 mm²/s (ISO VG 3 to beyond VG 3200)",
+                ));
+            }
+            v
+        }
+    };
+    let oil_err = |e: crate::oil::OilError, k: &str| match e {
+        crate::oil::OilError::Range {
+            value, expected, ..
+        } => InputError::field(&key(k), value, expected),
+        crate::oil::OilError::Missing { quantity, hint } => InputError::Missing {
+            field: quantity,
+            hint,
+        },
+    };
+    let nu100 = match (r.viscosity_100c_mm2_s, r.viscosity_index) {
+        (Some(_), Some(_)) => {
+            return Err(InputError::Conflict {
+                first: key("viscosity_100c_mm2_s"),
+                second: key("viscosity_index"),
+            })
+        }
+        (None, None) => {
+            return Err(InputError::Missing {
+                field: key("viscosity_index"),
+                hint: "give the viscosity index (e.g. 95–105 for a solvent-refined mineral oil) \
+                       or lubricant.viscosity_100c_mm2_s: the temperature dependence needs one"
+                    .into(),
+            })
+        }
+        (Some(v), None) => {
+            if !(v.is_finite() && v >= 2.0 && v < nu40) {
+                return Err(InputError::field(
+                    &key("viscosity_100c_mm2_s"),
+                    v,
+                    format!("at least 2 mm²/s (ASTM D2270) and less than ν40 = {nu40} mm²/s"),
+                ));
+            }
+            v
+        }
+        (None, Some(vi)) => {
+            crate::oil::nu100_from_vi(nu40, vi).map_err(|e| oil_err(e, "viscosity_index"))?
+        }
+    };
+    let base_oil = match &r.base_oil {
+        None => BaseOil::Mineral,
+        Some(b) => BaseOil::parse(b).ok_or_else(|| {
+            InputError::field(
+                &key("base_oil"),
+                format!("\"{b}\""),
+                format!("one of {}", BaseOil::NAMES.join(", ")),
+            )
+        })?,
+    };
+    let rho15 = require(
+        r.density_15c_kg_m3,
+        &key("density_15c_kg_m3"),
+        "the oil's density at 15 °C in kg/m³ (data sheet; mineral oils about 850–900)",
+    )?;
+    if !(rho15.is_finite() && (700.0..=2000.0).contains(&rho15)) {
+        return Err(InputError::field(
+            &key("density_15c_kg_m3"),
+            rho15,
+            "700 to 2000 kg/m³ (lubricating oils: PAO about 820, mineral 850–900, esters \
+             900–1000, perfluoropolyethers up to 1900)",
+        ));
+    }
+    if let Some(z) = r.pressure_viscosity_index_z {
+        if !(z.is_finite() && z > 0.0 && z <= 2.0) {
+            return Err(InputError::field(
+                &key("pressure_viscosity_index_z"),
+                z,
+                "Roelands' pressure–viscosity index, more than 0 and at most 2 (mineral oils \
+                 about 0.6–0.8)",
+            ));
+        }
+    }
+    if let Some(a) = r.pressure_viscosity_1_pa {
+        if !(a.is_finite() && a > 0.0 && a < 1e-6) {
+            return Err(InputError::field(
+                &key("pressure_viscosity_1_pa"),
+                a,
+                "0 < α < 1e-6 1/Pa at the operating temperature (mineral oils: about 1e-8 to 3e-8)",
+            ));
+        }
+    }
+    let k_f = match r.thermal_conductivity_w_m_k {
+        None => crate::oil::DEFAULT_THERMAL_CONDUCTIVITY,
+        Some(k) if k.is_finite() && k > 0.01 && k <= 1.0 => k,
+        Some(k) => {
+            return Err(InputError::field(
+                &key("thermal_conductivity_w_m_k"),
+                k,
+                "more than 0.01 and at most 1 W/(m·K) (oils about 0.1–0.15)",
+            ))
+        }
+    };
+    let desc = OilDescription {
+        iso_vg: r.iso_vg.and_then(|g| u32::try_from(g).ok()),
+        viscosity_40c_mm2_s: nu40,
+        viscosity_100c_mm2_s: nu100,
+        base_oil,
+        density_15c_kg_m3: rho15,
+        pressure_viscosity_index_z: r.pressure_viscosity_index_z,
+        pressure_viscosity_1_pa: r.pressure_viscosity_1_pa,
+        thermal_conductivity_w_m_k: k_f,
+    };
+    let props = crate::oil::derive(&desc, t_c).map_err(|e| match e {
+        crate::oil::OilError::Range {
+            quantity,
+            value,
+            expected,
+        } if quantity.starts_with("operating.") => InputError::field(&quantity, value, expected),
+        e => oil_err(e, "viscosity_40c_mm2_s"),
+    })?;
+    let lub = Lubricant {
+        viscosity: props.viscosity_pa_s,
+        pressure_viscosity: props.pressure_viscosity_1_pa,
+        density: props.density_kg_m3,
+        viscosity_model: r.viscosity_model.unwrap_or_default(),
+        density_model: r.density_model.unwrap_or_default(),
+    };
+    Ok((lub, props))
+}
+
 /// A lubricant from its case-file table (default mineral oil for absent keys).
 pub(crate) fn lubricant(r: &RawLubricant, table: &str) -> Result<Lubricant, InputError> {
+    if let Some(k) = r.description_key() {
+        return Err(InputError::Field {
+            field: format!("{table}.{k}"),
+            value: "(given)".into(),
+            expected: "a lubricant given by its constants (viscosity_pa_s, \
+                       pressure_viscosity_1_pa, density_kg_m3) in contact files, which have no \
+                       operating temperature; a described lubricant belongs in a bearing case"
+                .into(),
+        });
+    }
     let mut l = Lubricant::DEFAULT_MINERAL_OIL;
     if let Some(v) = r.viscosity_pa_s {
         let key = format!("{table}.viscosity_pa_s");
@@ -533,6 +843,7 @@ fn operating(raw: Option<&RawOperating>) -> Result<OperatingPoint, InputError> {
         moment_z_nm: None,
         tilt_z_deg: None,
         race_control: None,
+        temperature_c: None,
     };
     let o = raw.unwrap_or(&empty);
     let rpm = PI / 30.0;

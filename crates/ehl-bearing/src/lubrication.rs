@@ -1,0 +1,517 @@
+//! Where the smooth-surface, isothermal, fully flooded EHL model stands: per contact the central
+//! and minimum film, the film parameter Λ, the estimated film reduction by inlet shear heating,
+//! and the bearing's viscosity ratio κ of ISO 281. Estimates of the model's error, reported beside
+//! its results; they change no force law.
+//!
+//! The formulas (docs/lubricant.md):
+//! - film: Hamrock & Dowson (1977) central and minimum film for elliptical contacts
+//!   ([`crate::ehl::formulas`]), at each contact's equilibrium load, curvature radii, sum velocity
+//!   and Hertz ellipticity k = a/b; scatter against full numerical solutions ±10–20 %.
+//! - Λ = h_min/σ with the composite roughness σ = √(Rq_ball² + Rq_race²): Λ < 1.5 is reported
+//!   as mixed lubrication (the smooth-surface model overestimates the film and the law's ΔF), Λ <
+//!   1 as a contact where asperities carry load and the smooth-surface model does not hold.
+//! - κ = ν/ν1, ν the operating kinematic viscosity, ν1 the rated viscosity of ISO 281 (mm²/s, n
+//!   the relative ring speed in rpm, d_m the pitch diameter in mm):
+//!   ν1 = 45000·n^(−0.83)·d_m^(−0.5) for n < 1000 rpm, ν1 = 4500·n^(−0.5)·d_m^(−0.5) otherwise.
+//! - inlet shear heating: the thermal reduction factor of Gupta, Cheng, Zhu, Forster & Schrand
+//!   (1992, "Viscoelastic effects in MIL-L-7808-type lubricant, Part I", Tribology Transactions
+//!   35:269), in the form reproduced by Kiekbusch et al. (Lubricants 2023, 11, 369, eqs. 12–14,
+//!   where it is credited to Aramaki, Cheng & Zhu 1992):
+//!   φ_T = [1 − 13.2·(p_h/E′)·L^0.42] / [1 + 0.213·(1 + 2.23·s^0.83)·L^0.64],
+//!   L = (−∂η/∂T)·u²/k_f, u the mean entrainment velocity (u1 + u2)/2, k_f the oil's thermal
+//!   conductivity, s the slide-to-roll ratio (0 here: the bearing model's contacts roll without
+//!   slip), p_h the maximum Hertz pressure. A curve fit to thermal EHL solutions; its source gives
+//!   no accuracy we could read. The reduction reported is 1 − φ_T; above
+//!   [`THERMAL_WARN`] it is a warning.
+//! - starvation: not estimated (the case files describe no oil supply).
+
+use crate::bearing::{ContactState, Race};
+use crate::ehl::formulas::{hamrock_dowson_central, hamrock_dowson_min};
+use crate::io::Case;
+use crate::material::reduced_modulus;
+use serde::{Deserialize, Serialize};
+
+/// Λ below which a contact is reported as in mixed lubrication (warning).
+pub const LAMBDA_WARN: f64 = 1.5;
+/// Λ below which the smooth-surface model is flagged as not holding.
+pub const LAMBDA_INVALID: f64 = 1.0;
+/// Thermal film reduction above which a warning is given (fraction).
+pub const THERMAL_WARN: f64 = 0.10;
+
+/// Surface roughness of balls and rings, m (RMS, Rq).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Roughness {
+    /// Ball roughness Rq, m.
+    pub ball_rq_m: f64,
+    /// Raceway roughness Rq, m.
+    pub ring_rq_m: f64,
+}
+
+impl Roughness {
+    /// Composite roughness σ = √(Rq_ball² + Rq_race²), m.
+    pub fn composite(&self) -> f64 {
+        composite_roughness(self.ball_rq_m, self.ring_rq_m)
+    }
+}
+
+/// Composite roughness σ = √(Rq1² + Rq2²), in the unit of its arguments.
+pub fn composite_roughness(rq1: f64, rq2: f64) -> f64 {
+    (rq1 * rq1 + rq2 * rq2).sqrt()
+}
+
+/// ISO 281 rated viscosity ν1, mm²/s, for a relative speed `n_rpm` > 0 rpm and pitch diameter
+/// `dm_mm` mm (None for n ≤ 0, where it is undefined).
+pub fn rated_viscosity_mm2_s(n_rpm: f64, dm_mm: f64) -> Option<f64> {
+    if !(n_rpm > 0.0 && dm_mm > 0.0) {
+        return None;
+    }
+    Some(if n_rpm < 1000.0 {
+        45000.0 * n_rpm.powf(-0.83) * dm_mm.powf(-0.5)
+    } else {
+        4500.0 * n_rpm.powf(-0.5) * dm_mm.powf(-0.5)
+    })
+}
+
+/// Thermal loading parameter L = (−∂η/∂T)·u²/k_f (dimensionless): `deta_dt` = −∂η/∂T in
+/// Pa·s/K, `u` the mean entrainment velocity in m/s, `k_f` the oil's thermal conductivity in
+/// W/(m·K).
+pub fn thermal_loading(deta_dt: f64, u: f64, k_f: f64) -> f64 {
+    deta_dt * u * u / k_f
+}
+
+/// Gupta et al. (1992) thermal reduction factor φ_T (dimensionless, ≤ 1) for maximum Hertz
+/// pressure `p_h` Pa, reduced modulus `e_reduced` Pa (E′), thermal loading `l` and slide-to-roll
+/// ratio `s`.
+pub fn thermal_factor(p_h: f64, e_reduced: f64, l: f64, s: f64) -> f64 {
+    (1.0 - 13.2 * (p_h / e_reduced) * l.powf(0.42))
+        / (1.0 + 0.213 * (1.0 + 2.23 * s.abs().powf(0.83)) * l.powf(0.64))
+}
+
+/// One contact's film and validity figures.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ContactFilm {
+    /// Ball index.
+    pub ball: usize,
+    /// `inner` or `outer`.
+    pub race: String,
+    /// Equilibrium load Q, N.
+    pub load_n: f64,
+    /// Maximum Hertz pressure, Pa.
+    pub max_pressure_pa: f64,
+    /// Mean entrainment velocity (u1 + u2)/2, m/s.
+    pub entrainment_velocity_m_s: f64,
+    /// Hertz ellipticity k = a/b (transverse over rolling semi-axis).
+    pub ellipticity: f64,
+    /// Isothermal central film (Hamrock–Dowson), m (null: unloaded).
+    pub central_film_m: Option<f64>,
+    /// Isothermal minimum film (Hamrock–Dowson), m (null: unloaded).
+    pub min_film_m: Option<f64>,
+    /// Film parameter Λ = h_min/σ (null: no roughness given or unloaded).
+    pub lambda: Option<f64>,
+    /// Thermal loading parameter L (null: the oil's temperature–viscosity coefficient is unknown).
+    pub thermal_loading: Option<f64>,
+    /// Estimated film reduction by inlet shear heating, 1 − φ_T (fraction).
+    pub thermal_reduction: Option<f64>,
+    /// Minimum film with the thermal reduction applied, m (an estimate beside the isothermal film).
+    pub min_film_thermal_m: Option<f64>,
+    /// Where the films come from: `ehl-solution` (a converged steady EHL solution of the contact)
+    /// or `hamrock-dowson-1977` (the formula); empty when unloaded.
+    #[serde(default)]
+    pub film_source: String,
+    /// What the figures say about the model at this contact (empty: nothing to flag).
+    pub flags: Vec<String>,
+}
+
+/// The bearing's lubrication figures.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LubricationReport {
+    /// The described oil's derived constants and their sources (null: given as constants).
+    pub oil: Option<crate::oil::OilProperties>,
+    /// η0 used, Pa·s.
+    pub viscosity_pa_s: f64,
+    /// α used, 1/Pa.
+    pub pressure_viscosity_1_pa: f64,
+    /// ρ0 used, kg/m³.
+    pub density_kg_m3: f64,
+    /// Operating kinematic viscosity ν = η0/ρ0, mm²/s.
+    pub kinematic_viscosity_mm2_s: f64,
+    /// Relative ring speed n, rpm.
+    pub relative_speed_rpm: f64,
+    /// ISO 281 rated viscosity ν1, mm²/s (null at rest).
+    pub rated_viscosity_mm2_s: Option<f64>,
+    /// Viscosity ratio κ = ν/ν1 (null at rest).
+    pub kappa: Option<f64>,
+    /// Surface roughness (null: not given).
+    pub roughness: Option<Roughness>,
+    /// Composite roughness σ, m (null: not given).
+    pub composite_roughness_m: Option<f64>,
+    /// Where the films come from (per contact: `film_source`).
+    pub film_formula: String,
+    /// Per-contact figures, in the order given.
+    pub contacts: Vec<ContactFilm>,
+    /// Smallest Λ of the loaded contacts.
+    pub min_lambda: Option<f64>,
+    /// Largest thermal film reduction of the loaded contacts (fraction).
+    pub max_thermal_reduction: Option<f64>,
+    /// Warnings (Λ < 1.5, thermal reduction above 10 %, κ < 1), each naming its contacts.
+    pub warnings: Vec<String>,
+    /// What is not estimated, and why.
+    pub notes: Vec<String>,
+}
+
+fn race_name(r: Race) -> &'static str {
+    match r {
+        Race::Inner => "inner",
+        Race::Outer => "outer",
+    }
+}
+
+/// Whether the case gives any of the inputs this report is about (a described oil or roughness):
+/// the outputs carry the report only then, so that results of cases without them are unchanged.
+pub fn wanted(case: &Case) -> bool {
+    case.oil.is_some() || case.roughness.is_some()
+}
+
+/// The lubrication figures of `case` at the contact states `contacts` (ball index, race, state).
+pub fn assess(case: &Case, contacts: &[(usize, Race, ContactState)]) -> LubricationReport {
+    assess_with_films(case, contacts, &[])
+}
+
+/// As [`assess`], with the central and minimum film (m) of a converged EHL solution where
+/// `solved[i]` gives one for `contacts[i]` (e.g. `equilibrium --film`); the Hamrock–Dowson formula
+/// elsewhere.
+pub fn assess_with_films(
+    case: &Case,
+    contacts: &[(usize, Race, ContactState)],
+    solved: &[Option<(f64, f64)>],
+) -> LubricationReport {
+    let lub = &case.lubricant;
+    let e = reduced_modulus(&case.bearing.ball_material, &case.bearing.ring_material);
+    let rpm = 30.0 / std::f64::consts::PI;
+    let n = (case.operating.inner_speed - case.operating.outer_speed).abs() * rpm;
+    let dm_mm = case.bearing.geometry.pitch_diameter * 1e3;
+    let nu = lub.viscosity / lub.density * 1e6;
+    let nu1 = rated_viscosity_mm2_s(n, dm_mm);
+    let kappa = nu1.map(|v| nu / v);
+    let sigma = case.roughness.map(|r| r.composite());
+    // −∂η/∂T, Pa·s/K, and k_f, W/(m·K), where the oil is described.
+    let thermal = case.oil.as_ref().map(|o| {
+        (
+            o.temperature_viscosity_1_k * o.viscosity_pa_s,
+            o.thermal_conductivity_w_m_k,
+        )
+    });
+    let g = lub.pressure_viscosity * e;
+    let mut rows = Vec::new();
+    let mut low_lambda = Vec::new();
+    let mut hot = Vec::new();
+    let mut from_solution = 0;
+    for (i, (ball, race, st)) in contacts.iter().enumerate() {
+        let mut flags = Vec::new();
+        let u = 0.5 * st.sum_velocity.abs();
+        let loaded = st.load > 0.0 && st.semi_minor > 0.0 && st.rx > 0.0 && st.sum_velocity != 0.0;
+        let k = if st.semi_minor > 0.0 {
+            st.semi_major / st.semi_minor
+        } else {
+            0.0
+        };
+        let solution = solved.get(i).copied().flatten().filter(|_| loaded);
+        let (hc, hmin) = if let Some((c, m)) = solution {
+            from_solution += 1;
+            (Some(c), Some(m))
+        } else if loaded {
+            let u_sum = lub.viscosity * st.sum_velocity.abs() / (e * st.rx);
+            let w = st.load / (e * st.rx * st.rx);
+            if !(1.0..=8.0).contains(&k) {
+                flags.push(format!(
+                    "ellipticity k = {k:.2} outside Hamrock–Dowson's 1–8: the film is extrapolated"
+                ));
+            }
+            (
+                Some(st.rx * hamrock_dowson_central(u_sum, g, w, k)),
+                Some(st.rx * hamrock_dowson_min(u_sum, g, w, k)),
+            )
+        } else {
+            flags.push("unloaded or not rolling: no film estimate".into());
+            (None, None)
+        };
+        let lambda = match (hmin, sigma) {
+            (Some(h), Some(s)) if s > 0.0 => Some(h / s),
+            _ => None,
+        };
+        let name = format!("ball {ball} {}", race_name(*race));
+        if let Some(l) = lambda {
+            if l < LAMBDA_INVALID {
+                flags.push(format!(
+                    "Λ = {l:.2} < {LAMBDA_INVALID}: asperities carry load; the smooth-surface EHL \
+                     model (film, law, ΔF) does not hold here"
+                ));
+            } else if l < LAMBDA_WARN {
+                flags.push(format!(
+                    "Λ = {l:.2} < {LAMBDA_WARN}: mixed lubrication; the smooth-surface model \
+                     overestimates the film and the law's ΔF"
+                ));
+            }
+            if l < LAMBDA_WARN {
+                low_lambda.push(format!("{name} ({l:.2})"));
+            }
+        }
+        let (tl, red) = match (thermal, loaded) {
+            (Some((deta, kf)), true) => {
+                let l = thermal_loading(deta, u, kf);
+                let phi = thermal_factor(st.max_pressure, e, l, 0.0);
+                if phi <= 0.0 {
+                    flags.push(format!(
+                        "thermal loading L = {l:.3} beyond the Gupta et al. correlation (φ_T = \
+                         {phi:.3} ≤ 0): the isothermal film does not describe this contact"
+                    ));
+                }
+                let r = (1.0 - phi).min(1.0);
+                if r > THERMAL_WARN {
+                    flags.push(format!(
+                        "inlet shear heating reduces the film by about {:.0} % (isothermal model)",
+                        100.0 * r
+                    ));
+                    hot.push(format!("{name} ({:.0} %)", 100.0 * r));
+                }
+                (Some(l), Some(r))
+            }
+            _ => (None, None),
+        };
+        rows.push(ContactFilm {
+            ball: *ball,
+            race: race_name(*race).into(),
+            load_n: st.load,
+            max_pressure_pa: st.max_pressure,
+            entrainment_velocity_m_s: u,
+            ellipticity: k,
+            central_film_m: hc,
+            min_film_m: hmin,
+            lambda,
+            thermal_loading: tl,
+            thermal_reduction: red,
+            min_film_thermal_m: match (hmin, red) {
+                (Some(h), Some(r)) => Some(h * (1.0 - r)),
+                _ => None,
+            },
+            film_source: if solution.is_some() {
+                "ehl-solution".into()
+            } else if hmin.is_some() {
+                "hamrock-dowson-1977".into()
+            } else {
+                String::new()
+            },
+            flags,
+        });
+    }
+    let min_of = |f: &dyn Fn(&ContactFilm) -> Option<f64>| {
+        rows.iter()
+            .filter_map(f)
+            .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.min(v))))
+    };
+    let min_lambda = min_of(&|c| c.lambda);
+    let max_thermal_reduction = rows
+        .iter()
+        .filter_map(|c| c.thermal_reduction)
+        .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.max(v))));
+    let mut warnings = Vec::new();
+    if !low_lambda.is_empty() {
+        warnings.push(format!(
+            "film parameter Λ = h_min/σ < {LAMBDA_WARN} (mixed lubrication; the smooth-surface \
+             model overestimates the film and the law's ΔF{}) at {}",
+            if min_lambda.is_some_and(|l| l < LAMBDA_INVALID) {
+                "; below 1 it does not hold"
+            } else {
+                ""
+            },
+            low_lambda.join(", ")
+        ));
+    }
+    if !hot.is_empty() {
+        warnings.push(format!(
+            "inlet shear heating reduces the isothermal film by more than {:.0} % (Gupta et al. \
+             1992) at {}",
+            100.0 * THERMAL_WARN,
+            hot.join(", ")
+        ));
+    }
+    if let Some(k) = kappa {
+        if k < 1.0 {
+            warnings.push(format!(
+                "viscosity ratio κ = ν/ν1 = {nu:.2}/{:.2} = {k:.2} < 1 (ISO 281): the oil is \
+                 thinner than the rated viscosity at {n:.0} rpm",
+                nu1.unwrap_or(f64::NAN)
+            ));
+        }
+    }
+    let mut notes = vec![
+        if from_solution > 0 {
+            format!(
+                "film: the steady EHL solution at {from_solution} contacts, the Hamrock–Dowson \
+                 (1977) formula elsewhere (film_source)"
+            )
+        } else {
+            "film: Hamrock–Dowson (1977) formula at the equilibrium contact states (±10–20 % \
+             against full numerical solutions), not the EHL samples of the law fit"
+                .to_string()
+        },
+        "starvation: not estimated (no oil supply is described); the model assumes a fully \
+         flooded inlet"
+            .to_string(),
+    ];
+    if case.roughness.is_none() {
+        notes.push(
+            "Λ: not computed (give ball_material.roughness_rq_um and ring_material.roughness_rq_um)"
+                .into(),
+        );
+    }
+    if case.oil.is_none() {
+        notes.push(
+            "thermal reduction: not computed (needs the oil's temperature–viscosity coefficient: \
+             describe the lubricant by grade and operating.temperature_c)"
+                .into(),
+        );
+    }
+    if nu1.is_none() {
+        notes.push("κ: undefined with the rings at the same speed".into());
+    }
+    LubricationReport {
+        oil: case.oil.clone(),
+        viscosity_pa_s: lub.viscosity,
+        pressure_viscosity_1_pa: lub.pressure_viscosity,
+        density_kg_m3: lub.density,
+        kinematic_viscosity_mm2_s: nu,
+        relative_speed_rpm: n,
+        rated_viscosity_mm2_s: nu1,
+        kappa,
+        roughness: case.roughness,
+        composite_roughness_m: sigma,
+        film_formula: if from_solution > 0 {
+            "ehl-solution where solved, hamrock-dowson-1977 elsewhere".into()
+        } else {
+            "hamrock-dowson-1977".into()
+        },
+        contacts: rows,
+        min_lambda,
+        max_thermal_reduction,
+        warnings,
+        notes,
+    }
+}
+
+/// The lubrication figures at the final equilibrium of a characterization.
+pub fn assess_characterization(
+    case: &Case,
+    c: &crate::characterize::BearingCharacterization,
+) -> LubricationReport {
+    let states: Vec<_> = c
+        .contacts
+        .iter()
+        .map(|r| (r.ball, r.race, r.state))
+        .collect();
+    assess(case, &states)
+}
+
+/// The report as an engineering-units table (films in µm; the warnings are not included).
+pub fn table(r: &LubricationReport) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    if let Some(o) = &r.oil {
+        let _ = writeln!(
+            s,
+            "lubricant: {}{} oil, ν40 = {:.2}, ν100 = {:.3} mm²/s, VI {:.1}; at {} °C: ν = {:.3} \
+             mm²/s, ρ = {:.1} kg/m³, η0 = {:.5} Pa·s, α = {:.3e} 1/Pa (Z = {:.3}), β = {:.4} 1/K",
+            o.iso_vg.map(|g| format!("ISO VG {g} ")).unwrap_or_default(),
+            o.base_oil.name(),
+            o.viscosity_40c_mm2_s,
+            o.viscosity_100c_mm2_s,
+            o.viscosity_index,
+            o.temperature_c,
+            o.kinematic_viscosity_mm2_s,
+            o.density_kg_m3,
+            o.viscosity_pa_s,
+            o.pressure_viscosity_1_pa,
+            o.roelands_z,
+            o.temperature_viscosity_1_k
+        );
+    }
+    let _ = writeln!(
+        s,
+        "lubrication: ν = {:.3} mm²/s, ν1 (ISO 281) = {}, κ = {}; σ = {}",
+        r.kinematic_viscosity_mm2_s,
+        r.rated_viscosity_mm2_s
+            .map_or("-".into(), |v| format!("{v:.3} mm²/s")),
+        r.kappa.map_or("-".into(), |v| format!("{v:.3}")),
+        r.composite_roughness_m
+            .map_or("not given".into(), |v| format!("{:.4} µm", v * 1e6))
+    );
+    let _ = writeln!(
+        s,
+        "{:>4} {:>5} {:>9} {:>9} {:>9} {:>7} {:>8}",
+        "ball", "race", "h_c µm", "h_min µm", "Λ", "thermal", "h_min,T"
+    );
+    let opt = |v: Option<f64>, f: &dyn Fn(f64) -> String| v.map_or("-".to_string(), f);
+    for c in &r.contacts {
+        let _ = writeln!(
+            s,
+            "{:>4} {:>5} {:>9} {:>9} {:>9} {:>7} {:>8}",
+            c.ball,
+            c.race,
+            opt(c.central_film_m, &|v| format!("{:.4}", v * 1e6)),
+            opt(c.min_film_m, &|v| format!("{:.4}", v * 1e6)),
+            opt(c.lambda, &|v| format!("{v:.3}")),
+            opt(c.thermal_reduction, &|v| format!("{:.1}%", 100.0 * v)),
+            opt(c.min_film_thermal_m, &|v| format!("{:.4}", v * 1e6)),
+        );
+    }
+    s
+}
+
+/// The per-contact figures as CSV (SI units, the names carry them; empty fields where a figure is
+/// not computed).
+pub fn contacts_csv(r: &LubricationReport) -> String {
+    let mut s = String::from(
+        "ball,race,load_n,max_pressure_pa,entrainment_velocity_m_s,ellipticity,central_film_m,\
+         min_film_m,lambda,thermal_loading,thermal_reduction,min_film_thermal_m,flags\n",
+    );
+    let o = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:e}"));
+    for c in &r.contacts {
+        s.push_str(&format!(
+            "{},{},{:e},{:e},{:e},{:e},{},{},{},{},{},{},\"{}\"\n",
+            c.ball,
+            c.race,
+            c.load_n,
+            c.max_pressure_pa,
+            c.entrainment_velocity_m_s,
+            c.ellipticity,
+            o(c.central_film_m),
+            o(c.min_film_m),
+            o(c.lambda),
+            o(c.thermal_loading),
+            o(c.thermal_reduction),
+            o(c.min_film_thermal_m),
+            c.flags.join("; ").replace('"', "'")
+        ));
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rated_viscosity_branches() {
+        assert_eq!(rated_viscosity_mm2_s(0.0, 42.5), None);
+        let lo = rated_viscosity_mm2_s(999.0, 42.5).unwrap();
+        let hi = rated_viscosity_mm2_s(1000.0, 42.5).unwrap();
+        assert!((lo - 45000.0 * 999f64.powf(-0.83) / 42.5f64.sqrt()).abs() < 1e-9);
+        assert!((hi - 4500.0 / (1000f64 * 42.5).sqrt()).abs() < 1e-9);
+    }
+
+    #[test]
+    fn thermal_factor_is_one_without_heating() {
+        assert_eq!(thermal_factor(1e9, 2.3e11, 0.0, 0.0), 1.0);
+        assert!(thermal_factor(1e9, 2.3e11, 1.0, 0.0) < 1.0);
+    }
+}
