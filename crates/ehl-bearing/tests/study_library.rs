@@ -321,3 +321,24 @@ fn point_files_that_are_not_regular_files_are_refused_at_once() {
     assert_eq!(store.load_point("ok").unwrap().as_deref(), Some("{}"));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Finishing (merging) a study over another study's point files names them as another study's,
+/// not as missing ("first missing: …n3000rpm_s0.5.json" although the file was there, computed
+/// by another method).
+#[test]
+fn finishing_over_another_studys_points_names_them() {
+    let hertz = study("hertz", "");
+    let store = MemoryStore::default();
+    run(&hertz, &store, Shard::ALL);
+    let other = study("quasi-static", "");
+    match finish_study(&other, &store) {
+        Err(StudyError::ForeignPoints {
+            count, difference, ..
+        }) => {
+            assert_eq!(count, 9);
+            assert!(difference.contains("method"), "{difference}");
+        }
+        Err(e) => panic!("expected ForeignPoints, got {e}"),
+        Ok(_) => panic!("expected ForeignPoints, got outputs"),
+    }
+}

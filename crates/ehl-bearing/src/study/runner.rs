@@ -441,11 +441,26 @@ pub fn finish_study(study: &Study, store: &dyn PointStore) -> Result<StudyOutput
     let points = study.points();
     let mut records = Vec::with_capacity(points.len());
     let mut missing = Vec::new();
+    let mut foreign = Vec::new();
     for p in &points {
+        let location = store.point_location(&p.file_stem());
         match stored(study, store, p)? {
             Stored::Done(r) => records.push(*r),
-            _ => missing.push(store.point_location(&p.file_stem())),
+            Stored::Missing => missing.push(location),
+            Stored::Unreadable => missing.push(format!(
+                "{location} (unreadable: truncated or not a point file)"
+            )),
+            // A file computed by another study (e.g. another method) is there but is not this
+            // study's point: say so, not "missing".
+            Stored::Foreign(why) => foreign.push((location, why)),
         }
+    }
+    if let Some((first, difference)) = foreign.first() {
+        return Err(StudyError::ForeignPoints {
+            count: foreign.len(),
+            first: first.clone(),
+            difference: difference.clone(),
+        });
     }
     if !missing.is_empty() {
         return Err(StudyError::Incomplete {
