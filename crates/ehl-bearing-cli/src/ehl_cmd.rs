@@ -106,7 +106,7 @@ fn settings(args: &EhlArgs) -> EhlSettings {
 }
 
 /// Grids of 513² and more cost seconds per solve and more per characterization: say so at once,
-/// with the way to bound it (issue 15: `ehl --grid 1025` gave up after 293 s; measured since on
+/// with the way to bound it (`ehl --grid 1025` once gave up after 293 s; measured since on
 /// the 2-core machine, 2026-11-25: circular M 20 L 10 0.4 s at 513², 1.9 s at 1025²; the seed's
 /// inner contact 0.4 s and 12 s, five starts, at 1025²; a quasi-static family of 7 solutions at
 /// 513², 9–90 s in docs/contact.md, "Default accuracy").

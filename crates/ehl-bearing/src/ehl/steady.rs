@@ -1309,7 +1309,7 @@ fn solve_warm(
     // conservative ones (`conservative_first`): those are for the first cycles from a Hertzian
     // pressure, and from a neighbouring solution they only slow the convergence (the seed's light
     // inner contacts: 15–16 cycles per family member with them, 7 without; the seed study
-    // 33.6 → 28.5 s, no warm start failed — BENCHMARKS.md, issue 16). A warm start that fails
+    // 33.6 → 28.5 s, no warm start failed — BENCHMARKS.md). A warm start that fails
     // falls back to the cold starts in their order.
     let order = order_for(&pr, &sc);
     let spent = match iterate(

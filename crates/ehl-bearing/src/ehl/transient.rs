@@ -360,7 +360,7 @@ impl TransientSolver {
         // film tolerance); the cubic H0 cuts the H0 error ≈ 10× (1.4e-4 → 1.3e-5 of H0), and with
         // it the systematic lag of the unconverged remainder: at `step_tol_film` 7e-5 the law of
         // the 22 seed contacts at 3000 rpm is as close to that of tight steps as with the
-        // quadratic H0 at 3e-5, in 15 % fewer cycles (issue 16, docs/contact.md). A cubic P
+        // quadratic H0 at 3e-5, in 15 % fewer cycles (docs/contact.md). A cubic P
         // amplifies the iteration noise of the pressure (4.0 cycles per step).
         let quad = self.steps >= 2;
         for ((p, q), q2) in self.hier.levels[top]

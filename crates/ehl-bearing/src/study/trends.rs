@@ -626,7 +626,7 @@ fn fit_race(
     let d_curve = if d.iter().all(|v| *v < 1.5 - 1e-9) {
         let p = fit_hertz_limit(&lnq, None, d).ok_or_else(|| trend_err(race, "d"))?;
         let one = quality("hertz_limit", "d = 1.5 − p0·Q^(−p1) (Q in N)", p, qc, n, d);
-        // The speed term where the data separate by speed (issue 17: at light load d is 1.19 at
+        // The speed term where the data separate by speed (at light load d is 1.19 at
         // 3000 rpm and 1.05 at 5000 rpm on the seed's inner race).
         let lnn: Vec<f64> = n.iter().map(|v| v.ln()).collect();
         let two = (distinct(n) >= 2 && lnn.iter().all(|v| v.is_finite()))
