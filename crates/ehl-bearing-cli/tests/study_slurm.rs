@@ -221,26 +221,29 @@ fn fake_sbatch(dir: &Path) -> (PathBuf, PathBuf) {
     (path, log)
 }
 
+/// `study sbatch STUDY -o OUT --shards 3 --submit --sbatch SB`: its output.
+fn submit_3_shards(study: &Path, out: &Path, sb: &Path) -> String {
+    ok(run(&[
+        "study",
+        "sbatch",
+        s(study),
+        "-o",
+        s(out),
+        "--shards",
+        "3",
+        "--submit",
+        "--sbatch",
+        s(sb),
+    ]))
+}
+
 #[test]
 fn submit_chains_the_merge_and_resubmits_only_unfinished_shards() {
     let tmp = tempfile::tempdir().unwrap();
     let study = hertz_study(tmp.path());
     let out = tmp.path().join("o");
     let (sb, log) = fake_sbatch(tmp.path());
-    let submit = || {
-        ok(run(&[
-            "study",
-            "sbatch",
-            s(&study),
-            "-o",
-            s(&out),
-            "--shards",
-            "3",
-            "--submit",
-            "--sbatch",
-            s(&sb),
-        ]))
-    };
+    let submit = || submit_3_shards(&study, &out, &sb);
     let o = submit();
     assert!(
         o.contains("submitted array job 41 (tasks 1-3) and merge job 42"),
@@ -386,20 +389,7 @@ fn resubmission_skips_tasks_slurm_still_holds() {
         .arg(&squeue)
         .status()
         .unwrap();
-    let submit = || {
-        ok(run(&[
-            "study",
-            "sbatch",
-            s(&study),
-            "-o",
-            s(&out),
-            "--shards",
-            "3",
-            "--submit",
-            "--sbatch",
-            s(&sb),
-        ]))
-    };
+    let submit = || submit_3_shards(&study, &out, &sb);
     let o = submit();
     assert!(o.contains("submitted array job 41 (tasks 1-3)"), "{o}");
     let o = submit();
