@@ -69,7 +69,10 @@ pub fn run(args: &CoefficientsArgs) -> anyhow::Result<()> {
                     &speeds,
                     &m,
                     &CharacterizeSettings::default(),
-                    &|_, p| callback(p),
+                    &|_, p| {
+                        callback(p);
+                        std::ops::ControlFlow::Continue(())
+                    },
                 )
                 .map_err(anyhow::Error::from)
             });

@@ -83,7 +83,7 @@ fn write_json(path: &Path, v: &Value) -> anyhow::Result<()> {
 }
 
 fn read_json(path: &Path) -> Option<Value> {
-    let text = std::fs::read_to_string(path).ok()?;
+    let text = ehl_bearing::io::read_own_file(path).ok()??;
     serde_json::from_str(&text).ok()
 }
 
@@ -91,9 +91,9 @@ fn read_json(path: &Path) -> Option<Value> {
 /// naming the file if it cannot be read or is not a JSON object (a garbage plan or shard marker
 /// showed as "0 points, pending").
 fn read_marker(path: &Path) -> anyhow::Result<Option<Value>> {
-    let text = match std::fs::read_to_string(path) {
-        Ok(t) => t,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+    let text = match ehl_bearing::io::read_own_file(path) {
+        Ok(Some(t)) => t,
+        Ok(None) => return Ok(None),
         Err(e) => anyhow::bail!("{}: unreadable ({e})", path.display()),
     };
     match serde_json::from_str::<Value>(&text) {
@@ -464,7 +464,8 @@ pub struct StudyStatus {
 }
 
 fn point_file_state(out: &Path, stem: &str) -> Option<PointState> {
-    let text = std::fs::read_to_string(out.join("points").join(format!("{stem}.json"))).ok()?;
+    let text =
+        ehl_bearing::io::read_own_file(&out.join("points").join(format!("{stem}.json"))).ok()??;
     let r = PointRecord::from_json(&text).ok()?;
     Some(if r.error.is_some() {
         PointState::Failed

@@ -199,6 +199,12 @@ fn every_door_applies_the_plausibility_rules() {
         ],
         &["speeds[1] = 100000", "n·d_m ≤ 4.0e6"],
     );
+    // 200 000 speeds ran out of memory (found by the Python API fuzzer).
+    let many = vec!["3000"; 1001].join(",");
+    refused_at_once(
+        &["coefficients", case, "--method", "hertz", "--speeds", &many],
+        &["speeds = 1001 values", "at most 1000 speeds"],
+    );
     refused_at_once(
         &[
             "ehl", "--moes-m", "20", "--moes-l", "1e6", "--grid", "33", "--json",

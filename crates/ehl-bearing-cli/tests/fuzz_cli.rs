@@ -317,3 +317,218 @@ fn fuzz_cli_slice() {
 fn fuzz_cli_many() {
     fuzz(env_u64("FUZZ_SEED", 15), env_u64("FUZZ_CLI_CASES", 3000));
 }
+
+// ---------------------------------------------------------------------------------------------
+// Faults planted in a study's output folder
+// ---------------------------------------------------------------------------------------------
+
+/// What a planted fault replaces a file of the output folder with.
+const FAULTS: [&str; 10] = [
+    "link to /dev/zero",
+    "FIFO",
+    "folder",
+    "huge (64 MiB, sparse)",
+    "truncated",
+    "random bytes",
+    "empty",
+    "dangling link",
+    "another point's file",
+    "removed",
+];
+
+fn copy_dir(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).expect("mkdir");
+    for e in std::fs::read_dir(from).expect("read_dir") {
+        let e = e.expect("entry");
+        let target = to.join(e.file_name());
+        if e.file_type().expect("type").is_dir() {
+            copy_dir(&e.path(), &target);
+        } else {
+            std::fs::copy(e.path(), &target).expect("copy");
+        }
+    }
+}
+
+/// Replace `path` (a file of the folder) by fault `kind`.
+fn plant(path: &Path, kind: &str, other: &Path, r: &mut Rng) {
+    // Only regular files are read (an earlier fault may have made this one a FIFO).
+    let text = match std::fs::symlink_metadata(path) {
+        Ok(m) if m.is_file() && m.len() < 1 << 20 => std::fs::read(path).unwrap_or_default(),
+        _ => Vec::new(),
+    };
+    let _ = std::fs::remove_file(path);
+    let _ = std::fs::remove_dir_all(path);
+    match kind {
+        "link to /dev/zero" => std::os::unix::fs::symlink("/dev/zero", path).expect("symlink"),
+        "FIFO" => {
+            let c = std::ffi::CString::new(path.as_os_str().as_encoded_bytes()).expect("path");
+            // SAFETY: a valid NUL-terminated path; mkfifo only creates a file system node.
+            assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o644) }, 0, "mkfifo");
+        }
+        "folder" => std::fs::create_dir(path).expect("mkdir"),
+        "huge (64 MiB, sparse)" => std::fs::File::create(path)
+            .and_then(|f| f.set_len(64 << 20))
+            .expect("sparse file"),
+        "truncated" => std::fs::write(path, &text[..r.below(text.len().max(1))]).expect("write"),
+        "random bytes" => {
+            let n = r.below(400);
+            let bytes: Vec<u8> = (0..n).map(|_| r.below(256) as u8).collect();
+            std::fs::write(path, bytes).expect("write")
+        }
+        "empty" => std::fs::write(path, "").expect("write"),
+        "dangling link" => std::os::unix::fs::symlink("/nonexistent/x.json", path).expect("link"),
+        "another point's file" => std::fs::copy(other, path).map(|_| ()).expect("copy"),
+        _ => {} // removed
+    }
+}
+
+/// One planted-fault case: the folder, the command and its expected output (the reference
+/// results.csv when a `study` or `study merge` run ends with status 0).
+fn folder_case(
+    seed: u64,
+    index: u64,
+    study: &Path,
+    bases: &[(PathBuf, bool)],
+    work: &Path,
+) -> (Vec<String>, String) {
+    let mut r = Rng::new(seed, index);
+    let (base, sharded) = r.pick(bases).clone();
+    let dir = work.join(format!("case{index}"));
+    copy_dir(&base, &dir);
+    let points: Vec<PathBuf> = std::fs::read_dir(dir.join("points"))
+        .expect("points")
+        .map(|e| e.expect("entry").path())
+        .collect();
+    let mut targets: Vec<PathBuf> = points.clone();
+    if sharded {
+        for m in ["plan.json", "shard-1of2.json", "running"] {
+            targets.push(dir.join(".progress").join(m));
+        }
+    } else {
+        for f in ["results.csv", "trends.json", "points.csv"] {
+            targets.push(dir.join(f));
+        }
+    }
+    let mut planted = Vec::new();
+    for _ in 0..1 + r.below(3) {
+        let t = r.pick(&targets).clone();
+        let kind = *r.pick(&FAULTS);
+        // Another point's file from the untouched base folder (a planted FIFO would block).
+        let other = base
+            .join("points")
+            .join(r.pick(&points).file_name().expect("name"));
+        plant(&t, kind, &other, &mut r);
+        planted.push(format!(
+            "{} → {kind}",
+            t.strip_prefix(&dir).unwrap_or(&t).display()
+        ));
+    }
+    let d = dir.display().to_string();
+    let s = study.display().to_string();
+    let args: Vec<&str> = match r.below(5) {
+        0 | 1 => vec![
+            "study",
+            &s,
+            "--method",
+            "hertz",
+            "-o",
+            &d,
+            "--time-limit",
+            "20",
+        ],
+        2 => vec!["study", "status", &d],
+        3 => vec!["study", "status", &d, "--json"],
+        _ => vec!["study", "merge", &s, "--method", "hertz", "-o", &d],
+    };
+    (
+        args.into_iter().map(String::from).collect(),
+        planted.join(", "),
+    )
+}
+
+/// Faults planted in finished and half-finished (one shard of two) study folders: point files,
+/// progress markers and outputs replaced by links to /dev/zero, FIFOs, folders, huge sparse
+/// files, truncated or random contents, empty files, dangling links, another point's file, or
+/// removed; then `study` (resume), `study status [--json]` or `study merge`. Every run ends with
+/// status 0, or 1 with a message, within 60 s; a run with status 0 that wrote results.csv wrote
+/// the undisturbed run's bytes.
+fn fuzz_folders(seed: u64, cases: u64) -> BTreeMap<String, usize> {
+    let tmp = tempfile::tempdir().expect("tempdir");
+    let study = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/study_7006.toml");
+    let bin = env!("CARGO_BIN_EXE_ehl-bearing");
+    let s = study.display().to_string();
+    let clean = tmp.path().join("clean");
+    let half = tmp.path().join("half");
+    for (dir, shard) in [(&clean, None), (&half, Some("1/2"))] {
+        let mut c = Command::new(bin);
+        c.args(["study", &s, "--method", "hertz", "-o"])
+            .arg(dir)
+            .current_dir(tmp.path());
+        if let Some(sh) = shard {
+            c.args(["--shard", sh]);
+        }
+        let out = c.output().expect("run");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let reference = std::fs::read(clean.join("results.csv")).expect("results");
+    let bases = vec![(clean, false), (half, true)];
+    let mut counts = BTreeMap::new();
+    let mut findings = Vec::new();
+    let t0 = Instant::now();
+    for i in 0..cases {
+        let (args, planted) = folder_case(seed, i, &study, &bases, tmp.path());
+        let what = if args[1] == "status" || args[1] == "merge" {
+            format!("study {}", args[1])
+        } else {
+            "study (resume)".into()
+        };
+        let key = match run(&args, Some(60.0), tmp.path()) {
+            Ok(0) => {
+                let dir =
+                    Path::new(&args[args.iter().position(|a| a == "-o").map_or(2, |p| p + 1)]);
+                if args[1] != "status"
+                    && std::fs::read(dir.join("results.csv")).ok() != Some(reference.clone())
+                {
+                    findings.push(format!(
+                        "case {i} ({planted}): {args:?}: status 0, results.csv differs"
+                    ));
+                }
+                format!("{what} ok")
+            }
+            Ok(c) => format!("{what} error (status {c})"),
+            Err(e) => {
+                findings.push(format!("case {i} ({planted}): {args:?}: {e}"));
+                format!("{what} FINDING")
+            }
+        };
+        *counts.entry(key).or_insert(0) += 1;
+    }
+    println!(
+        "fuzz_folders: seed {seed}, {cases} folders in {:.1} s",
+        t0.elapsed().as_secs_f64()
+    );
+    for (k, n) in &counts {
+        println!("  {k}: {n}");
+    }
+    assert!(findings.is_empty(), "findings:\n{}", findings.join("\n"));
+    counts
+}
+
+/// CI's slice: fixed seed, 24 folders.
+#[test]
+fn fuzz_folders_slice() {
+    let counts = fuzz_folders(15, 24);
+    assert!(counts.keys().any(|k| k.contains("error")), "{counts:?}");
+}
+
+/// More folders: `FUZZ_FOLDER_CASES=1000 cargo test -p ehl-bearing-cli --test fuzz_cli --
+/// --ignored --nocapture fuzz_folders_many`.
+#[test]
+#[ignore]
+fn fuzz_folders_many() {
+    fuzz_folders(env_u64("FUZZ_SEED", 15), env_u64("FUZZ_FOLDER_CASES", 1000));
+}

@@ -9,7 +9,7 @@
 
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws};
 use ehl_bearing::characterize::{
-    characterization_json, characterize_bearing_with_progress, BearingCharacterization,
+    characterization_json, characterize_bearing_with_control, BearingCharacterization,
     CharacterizeSettings, Progress,
 };
 use ehl_bearing::force_element::{
@@ -24,7 +24,7 @@ use numpy::{
     PyUntypedArrayMethods,
 };
 use pyo3::create_exception;
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::f64::consts::PI;
@@ -427,36 +427,110 @@ fn method_of(case: &Case, method: Option<&str>) -> PyResult<ehl_bearing::method:
 /// quasi-static; "harmonic" also fits each contact's damping): the coupled loop of EHL contact
 /// characterizations and bearing equilibrium. `progress`, if given, is called with a dict per
 /// event (`{"event": "iteration_started" | "contact_done" | "iteration_done", ...}`), from worker
-/// threads. Releases the GIL. About 15 s for the seed case on 2 cores.
+/// threads. An exception raised in it, or Ctrl-C, stops the run: no further contact starts, and
+/// the exception is raised once those running finish (seconds). `time_limit_s` bounds the wall
+/// time (the error gives the iterations done). Releases the GIL. About 15 s for the seed case on
+/// 2 cores.
 #[pyfunction]
-#[pyo3(signature = (case, method = None, progress = None))]
+#[pyo3(signature = (case, method = None, progress = None, time_limit_s = None))]
 fn characterize(
     py: Python<'_>,
     case: &PyCase,
     method: Option<&str>,
     progress: Option<PyObject>,
+    time_limit_s: Option<f64>,
 ) -> PyResult<Characterization> {
+    let progress = callable(py, progress, "progress")?;
     let c = case.case.clone();
     let m = method_of(&c, method)?;
-    let settings = CharacterizeSettings::default();
-    let ch = py
-        .allow_threads(|| {
-            characterize_bearing_with_progress(&c, &m, &settings, &|p| {
-                report(&progress, progress_json(&p))
-            })
-        })
-        .map_err(err)?;
+    let mut settings = CharacterizeSettings::default();
+    if let Some(t) = time_limit_s {
+        settings.deadline = Some(ehl_bearing::budget::Deadline::after_seconds(t).ok_or_else(
+            || {
+                err(format!(
+                    "time_limit_s = {t}: expected a finite number of seconds > 0 (at most a year)"
+                ))
+            },
+        )?);
+    }
+    let m = m.with_deadline(settings.deadline);
+    let control = Control::new(progress);
+    let r = py.allow_threads(|| {
+        characterize_bearing_with_control(&c, &m, &settings, &|p| control.event(progress_json(&p)))
+    });
+    control.finish()?;
     Ok(Characterization {
         case: c,
-        inner: Arc::new(ch),
+        inner: Arc::new(r.map_err(err)?),
     })
+}
+
+/// A progress callback that can stop a run: Ctrl-C or an exception raised in the callback asks
+/// the library to stop ([`std::ops::ControlFlow::Break`]); [`Control::finish`] then raises it.
+struct Control {
+    progress: Option<PyObject>,
+    raised: Mutex<Option<PyErr>>,
+}
+
+impl Control {
+    fn new(progress: Option<PyObject>) -> Self {
+        Control {
+            progress,
+            raised: Mutex::new(None),
+        }
+    }
+
+    /// Check Ctrl-C and call the callback with `event` (from any thread).
+    fn event(&self, event: serde_json::Value) -> std::ops::ControlFlow<()> {
+        let r = Python::with_gil(|py| {
+            py.check_signals()?;
+            if let Some(cb) = &self.progress {
+                cb.call1(py, (to_py(py, &event)?,))?;
+            }
+            Ok::<(), PyErr>(())
+        });
+        match r {
+            Ok(()) => std::ops::ControlFlow::Continue(()),
+            Err(e) => {
+                self.raised
+                    .lock()
+                    .unwrap_or_else(|p| p.into_inner())
+                    .get_or_insert(e);
+                std::ops::ControlFlow::Break(())
+            }
+        }
+    }
+
+    /// The first exception the callback raised (or KeyboardInterrupt), if any.
+    fn finish(self) -> PyResult<()> {
+        match self.raised.into_inner().unwrap_or_else(|p| p.into_inner()) {
+            Some(e) => Err(e),
+            None => Ok(()),
+        }
+    }
+}
+
+/// `value` if it is None or callable; otherwise a TypeError naming the argument.
+fn callable(py: Python<'_>, value: Option<PyObject>, what: &str) -> PyResult<Option<PyObject>> {
+    match value {
+        Some(v) if !v.bind(py).is_callable() => Err(PyTypeError::new_err(format!(
+            "{what}: expected a function called with one dict per event, or None; got {}",
+            v.bind(py)
+                .get_type()
+                .name()
+                .map_or_else(|_| "?".into(), |n| n.to_string())
+        ))),
+        v => Ok(v),
+    }
 }
 
 /// Run a load × speed study file into `output_dir` (resumable point files, `results.csv`,
 /// `points.csv`, `trends.json` when the trends fit): all points, with `method` overriding the
 /// file's. `progress` is called with a dict per event (`planned`, `point_started`, `loop`,
-/// `point_done`). Returns a summary dict with the paths written and the trend model's JSON path
-/// (None if the trends could not be fitted, with the reason). Releases the GIL.
+/// `point_done`); an exception raised in it is printed and the study goes on (finished points
+/// are kept on disk, so a study stopped by other means resumes where it stopped). Returns a
+/// summary dict with the paths written and the trend model's JSON path (None if the trends could
+/// not be fitted, with the reason). Releases the GIL.
 #[pyfunction]
 #[pyo3(signature = (study_file, output_dir, method = None, progress = None))]
 fn study(
@@ -466,6 +540,7 @@ fn study(
     method: Option<&str>,
     progress: Option<PyObject>,
 ) -> PyResult<PyObject> {
+    let progress = callable(py, progress, "progress")?;
     let mut s = read_study(&study_file).map_err(err)?;
     if let Some(m) = method {
         s.set_method(m).map_err(err)?;
@@ -823,8 +898,7 @@ impl PyTrendElement {
     /// From a trend file (a study's `trends.json`).
     #[staticmethod]
     fn from_file(path: std::path::PathBuf) -> PyResult<Self> {
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| err(format!("reading {}: {e}", path.display())))?;
+        let text = ehl_bearing::io::read_text(&path).map_err(err)?;
         Self::from_json(&text)
     }
 
@@ -855,6 +929,8 @@ pub(crate) fn element_of(obj: &Bound<'_, PyAny>) -> PyResult<Arc<dyn ForceElemen
 /// equilibrium (e.g. a `TrendForceElement`: no EHL run). Returns a list of dicts (SI):
 /// `inner_speed_rpm`, `inner_speed_rad_s`, `displacement`, `stiffness`, `damping`,
 /// `dry_stiffness`, `converged`, `source`; matrices as nested lists in the order x, y, z, θy, θz.
+/// `progress` as in `characterize` (its events carry `speed_index`); an exception raised in it, or
+/// Ctrl-C, stops the run and is raised.
 #[pyfunction]
 #[pyo3(signature = (case, speeds_rpm, method = None, element = None, progress = None))]
 fn coefficients(
@@ -865,6 +941,7 @@ fn coefficients(
     element: Option<&Bound<'_, PyAny>>,
     progress: Option<PyObject>,
 ) -> PyResult<PyObject> {
+    let progress = callable(py, progress, "progress")?;
     let c = case.case.clone();
     let out = match element {
         Some(e) => {
@@ -876,7 +953,8 @@ fn coefficients(
         }
         None => {
             let m = method_of(&c, method)?;
-            py.allow_threads(|| {
+            let control = Control::new(progress);
+            let r = py.allow_threads(|| {
                 ehl_bearing::coefficients::from_characterization(
                     &c,
                     &speeds_rpm,
@@ -885,11 +963,12 @@ fn coefficients(
                     &|i, p| {
                         let mut v = progress_json(&p);
                         v["speed_index"] = i.into();
-                        report(&progress, v)
+                        control.event(v)
                     },
                 )
-            })
-            .map_err(err)?
+            });
+            control.finish()?;
+            r.map_err(err)?
         }
     };
     to_py(py, &serde_json::to_value(&out).map_err(err)?)

@@ -140,3 +140,33 @@ def test_a_progress_callback_can_stop_a_run_and_time_is_bounded(case):
     # A record that cannot fit in memory is refused before any step (1e9 steps were accepted).
     with pytest.raises(eb.EhlBearingError, match="recorded samples"):
         model.simulate(1e-9, 1.0, speed_rad_s=w)
+
+
+def test_a_characterization_can_be_stopped_from_its_callback(case):
+    class Stop(Exception):
+        pass
+
+    events = []
+
+    def progress(e):
+        events.append(e["event"])
+        if e["event"] == "contact_done":
+            raise Stop("user cancel")
+
+    # The callback's exception stops the loop (no further contact starts) and is raised (it was
+    # printed and ignored before, once per event).
+    with pytest.raises(Stop, match="user cancel"):
+        eb.characterize(case, method="hertz", progress=progress)
+    assert events.count("contact_done") <= 2, events  # at most the contacts in flight
+    with pytest.raises(Stop):
+        eb.coefficients(case, [3000.0], method="hertz", progress=progress)
+    # A progress that is not a function is refused at the door (it failed at every event).
+    for call in (
+        lambda: eb.characterize(case, method="hertz", progress=3),
+        lambda: eb.coefficients(case, [3000.0], method="hertz", progress="x"),
+    ):
+        with pytest.raises(TypeError, match="progress: expected a function"):
+            call()
+    with pytest.raises(eb.EhlBearingError, match="time_limit_s = 0"):
+        eb.characterize(case, method="hertz", time_limit_s=0.0)
+    assert eb.characterize(case, method="hertz", time_limit_s=60.0).converged

@@ -42,6 +42,8 @@ pub use crate::method::{
     HarmonicCharacterizer, HertzCharacterizer, LoadPredictor, MoesParameters, PredictedLaw,
     QuasiStaticCharacterizer, SyntheticCharacterizer, PREDICTOR_TOLERANCE,
 };
+use std::ops::ControlFlow;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::Instant;
 use thiserror::Error;
@@ -94,6 +96,19 @@ pub enum CharacterizeError {
         iterations: usize,
         /// Largest relative load change after each finished iteration.
         load_change_history: Vec<f64>,
+    },
+    /// The progress callback of [`characterize_bearing_with_control`] asked to stop.
+    #[error(
+        "characterization cancelled by its caller in iteration {iteration} after {seconds:.1} s \
+         ({iterations} finished iterations)"
+    )]
+    Cancelled {
+        /// The iteration running when the stop was seen (0: the load prediction).
+        iteration: usize,
+        /// Finished iterations.
+        iterations: usize,
+        /// Time spent, s.
+        seconds: f64,
     },
     /// The equilibrium with the fitted laws failed.
     #[error("equilibrium with the fitted laws failed in iteration {iteration}: {cause}")]
@@ -599,6 +614,31 @@ pub fn characterize_bearing_with_progress(
     settings: &CharacterizeSettings,
     progress: &(dyn Fn(Progress) + Sync),
 ) -> Result<BearingCharacterization, CharacterizeError> {
+    characterize_bearing_with_control(case, ch, settings, &|p| {
+        progress(p);
+        ControlFlow::Continue(())
+    })
+}
+
+/// As [`characterize_bearing_with_progress`], with a callback that can stop the run: once it
+/// returns [`ControlFlow::Break`], no further contact characterization starts and the call
+/// returns [`CharacterizeError::Cancelled`] as soon as those already running finish (a contact
+/// takes up to seconds by the quasi-static method, tens of seconds by the harmonic one; bound
+/// them with [`CharacterizeSettings::deadline`]). Callers use it for a cancel button, Ctrl-C, or
+/// an exception raised in a Python or C callback.
+pub fn characterize_bearing_with_control(
+    case: &Case,
+    ch: &dyn ContactCharacterizer,
+    settings: &CharacterizeSettings,
+    control: &(dyn Fn(Progress) -> ControlFlow<()> + Sync),
+) -> Result<BearingCharacterization, CharacterizeError> {
+    let stop = AtomicBool::new(false);
+    let progress = &|p: Progress| {
+        if control(p).is_break() {
+            stop.store(true, Ordering::Relaxed);
+        }
+    };
+    let cancelled = Cancel { stop: &stop };
     settings.validate()?;
     let t0 = Instant::now();
     let dry_laws = ContactLaws::hertz(&case.bearing).map_err(CharacterizeError::DryEquilibrium)?;
@@ -609,6 +649,7 @@ pub fn characterize_bearing_with_progress(
     } else {
         (None, None)
     };
+    cancelled.check(0, 0, t0)?;
     // The cache lives for one call: method, settings, E′, lubricant and ball mass (the exact part
     // of the key) are the same for every entry, so only (M, L, Ry/Rx) are compared.
     let mut cache: Vec<CacheEntry> = Vec::new();
@@ -618,6 +659,7 @@ pub fn characterize_bearing_with_progress(
     let mut change = f64::INFINITY;
     let mut contacts: Vec<LoopContact> = Vec::new();
     for iteration in 1..=settings.max_iterations {
+        cancelled.check(iteration, history.len(), t0)?;
         if let Some(d) = settings.deadline.filter(|d| d.expired()) {
             return Err(CharacterizeError::TimeLimit {
                 limit_s: d.limit_seconds(),
@@ -641,7 +683,9 @@ pub fn characterize_bearing_with_progress(
             fraction: settings.min_load_fraction,
             largest: contact_loads(&eq).into_iter().fold(0.0_f64, f64::max),
         };
-        let mut fresh = characterize_runs(ch, &conds, &runs, iteration, floor, progress)?;
+        let fresh = characterize_runs(ch, &conds, &runs, (iteration, floor), progress, &stop);
+        cancelled.check(iteration, history.len(), t0)?;
+        let mut fresh = fresh.into_iter().collect::<Result<Vec<_>, _>>()?;
         let assembled = assemble_laws(&plan, &fresh, &cache, &conds, &keys, iteration, floor)?;
         for &i in &runs {
             let result = fresh[i].take().ok_or_else(|| {
@@ -773,28 +817,60 @@ fn plan_iteration(
     (plan, runs)
 }
 
-/// Characterize the contacts `runs` in parallel, collected in index order (None elsewhere).
+/// A stop asked for by the caller's progress callback.
+struct Cancel<'a> {
+    stop: &'a AtomicBool,
+}
+
+impl Cancel<'_> {
+    fn check(
+        &self,
+        iteration: usize,
+        iterations: usize,
+        t0: Instant,
+    ) -> Result<(), CharacterizeError> {
+        if self.stop.load(Ordering::Relaxed) {
+            return Err(CharacterizeError::Cancelled {
+                iteration,
+                iterations,
+                seconds: t0.elapsed().as_secs_f64(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Characterize the contacts `runs` in parallel, collected in index order (None elsewhere);
+/// contacts not yet started when `stop` is set are skipped (None: the caller checks `stop`).
 fn characterize_runs(
     ch: &dyn ContactCharacterizer,
     conds: &[(ContactConditions, bool)],
     runs: &[usize],
-    iteration: usize,
-    floor: LoadFloor,
+    (iteration, floor): (usize, LoadFloor),
     progress: &(dyn Fn(Progress) + Sync),
-) -> Result<Vec<Option<CharacterizedContact>>, CharacterizeError> {
-    let results: Vec<Result<CharacterizedContact, crate::Error>> = runs
+    stop: &AtomicBool,
+) -> Vec<Result<Option<CharacterizedContact>, CharacterizeError>> {
+    let results: Vec<Option<Result<CharacterizedContact, crate::Error>>> = runs
         .par_iter()
         .map(|&i| {
+            if stop.load(Ordering::Relaxed) {
+                return None;
+            }
             let r = ch.characterize(&conds[i].0);
             progress(Progress::ContactDone { iteration });
-            r
+            Some(r)
         })
         .collect();
-    let mut fresh: Vec<Option<CharacterizedContact>> = vec![None; conds.len()];
+    let mut fresh: Vec<Result<Option<CharacterizedContact>, CharacterizeError>> =
+        (0..conds.len()).map(|_| Ok(None)).collect();
     for (&i, r) in runs.iter().zip(results) {
-        fresh[i] = Some(r.map_err(|e| contact_error(conds, i, iteration, floor, e))?);
+        fresh[i] = match r {
+            Some(Ok(c)) => Ok(Some(c)),
+            Some(Err(e)) => Err(contact_error(conds, i, iteration, floor, e)),
+            None => Ok(None),
+        };
     }
-    Ok(fresh)
+    fresh
 }
 
 /// The load floor of an iteration: contacts lighter than `fraction` × `largest` (the largest

@@ -15,12 +15,13 @@
 
 use crate::bearing::{solve_equilibrium, ContactLaws, Control};
 use crate::characterize::{
-    characterize_bearing_with_progress, CharacterizeSettings, ContactCharacterizer, Progress,
+    characterize_bearing_with_control, CharacterizeSettings, ContactCharacterizer, Progress,
 };
 use crate::force_element::{ElementInput, ElementState, ForceElement, LawElement};
 use crate::io::Case;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
+use std::ops::ControlFlow;
 
 /// The coefficients at one speed (SI).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -55,14 +56,26 @@ fn dry_stiffness(case: &Case) -> Result<[[f64; 5]; 5], crate::Error> {
     Ok(solve_equilibrium(&case.bearing, &laws, &case.operating, &case.settings)?.stiffness)
 }
 
+/// Most speeds one call takes: each is a characterization (seconds to a minute with an EHL
+/// method), and a coefficient table over speed needs tens; 200 000 speeds ran out of memory.
+pub const MAX_SPEEDS: usize = 1000;
+
 /// Each speed must be a finite number of rpm and, like the case's own speed, pass the
 /// plausibility rules ([`check_case`](crate::plausibility::check_case)) at the case's loads: a
-/// speed they refuse is named by its index in the list.
+/// speed they refuse is named by its index in the list. At most [`MAX_SPEEDS`] speeds.
 fn check_speeds(case: &Case, speeds_rpm: &[f64]) -> Result<(), crate::Error> {
     if speeds_rpm.is_empty() {
         return Err(
             crate::io::InputError::field("speeds", "[]", "at least one speed in rpm").into(),
         );
+    }
+    if speeds_rpm.len() > MAX_SPEEDS {
+        return Err(crate::io::InputError::field(
+            "speeds",
+            format!("{} values", speeds_rpm.len()),
+            &format!("at most {MAX_SPEEDS} speeds (each is a characterization)"),
+        )
+        .into());
     }
     for (i, &n) in speeds_rpm.iter().enumerate() {
         if !(n.is_finite() && n.abs() <= 1e6) {
@@ -91,19 +104,21 @@ fn check_speeds(case: &Case, speeds_rpm: &[f64]) -> Result<(), crate::Error> {
 /// Coefficients at each inner-ring speed in `speeds_rpm` from the coupled characterization of
 /// `case` at that speed with `method`: the fitted-law element ([`LawElement`]) linearized at the
 /// final equilibrium (cage angle 0: the case's ball positions). `progress` receives the loop's
-/// events (speed index, event).
+/// events (speed index, event); returning [`ControlFlow::Break`] stops the run
+/// ([`crate::characterize::CharacterizeError::Cancelled`], as
+/// [`crate::characterize::characterize_bearing_with_control`]).
 pub fn from_characterization(
     case: &Case,
     speeds_rpm: &[f64],
     method: &dyn ContactCharacterizer,
     settings: &CharacterizeSettings,
-    progress: &(dyn Fn(usize, Progress) + Sync),
+    progress: &(dyn Fn(usize, Progress) -> ControlFlow<()> + Sync),
 ) -> Result<Vec<SpeedCoefficients>, crate::Error> {
     check_speeds(case, speeds_rpm)?;
     let mut out = Vec::with_capacity(speeds_rpm.len());
     for (i, &rpm) in speeds_rpm.iter().enumerate() {
         let c = at_speed(case, rpm);
-        let ch = characterize_bearing_with_progress(&c, method, settings, &|p| progress(i, p))?;
+        let ch = characterize_bearing_with_control(&c, method, settings, &|p| progress(i, p))?;
         let element = LawElement::from_characterization(&c, &ch)?;
         let input = ElementInput::at(
             ch.equilibrium.displacement,

@@ -717,3 +717,52 @@ fn seed_case_converges_at_all_three_speeds() {
         );
     }
 }
+
+#[test]
+fn a_progress_callback_can_stop_the_loop() {
+    use ehl_bearing::characterize::{characterize_bearing_with_control, Progress};
+    use std::ops::ControlFlow;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let case = seed();
+    let s = CharacterizeSettings::default();
+    let hertz = HertzCharacterizer::default();
+    // Stop at the first contact of iteration 1: the contacts not yet started are skipped (one
+    // pool of 2 threads: at most the two in flight finish), and the loop returns Cancelled.
+    let done = AtomicUsize::new(0);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    let r = pool.install(|| {
+        characterize_bearing_with_control(&case, &hertz, &s, &|p| match p {
+            Progress::ContactDone { iteration: 1 } => {
+                done.fetch_add(1, Ordering::Relaxed);
+                ControlFlow::Break(())
+            }
+            _ => ControlFlow::Continue(()),
+        })
+    });
+    match r {
+        Err(CharacterizeError::Cancelled {
+            iteration: 1,
+            iterations: 0,
+            seconds,
+        }) => assert!(seconds >= 0.0),
+        other => panic!("expected Cancelled in iteration 1, got {other:?}"),
+    }
+    let n = done.load(Ordering::Relaxed);
+    assert!(
+        (1..=2).contains(&n),
+        "{n} contacts finished after the stop (22 planned)"
+    );
+    let msg = characterize_bearing_with_control(&case, &hertz, &s, &|_| ControlFlow::Break(()))
+        .unwrap_err()
+        .to_string();
+    assert!(msg.contains("cancelled by its caller"), "{msg}");
+    // Continue all the way gives the plain result.
+    let plain = characterization_json(&run(&hertz, &s), false).to_string();
+    let controlled =
+        characterize_bearing_with_control(&case, &hertz, &s, &|_| ControlFlow::Continue(()))
+            .unwrap();
+    assert_eq!(plain, characterization_json(&controlled, false).to_string());
+}

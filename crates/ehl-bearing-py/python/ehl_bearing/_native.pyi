@@ -142,7 +142,10 @@ def contact(
     contact_toml: str, method: str = "quasi-static", film_extrapolation: bool = True
 ) -> dict[str, Any]: ...
 def characterize(
-    case: Case, method: Optional[str] = None, progress: _Progress = None
+    case: Case,
+    method: Optional[str] = None,
+    progress: _Progress = None,
+    time_limit_s: Optional[float] = None,
 ) -> Characterization: ...
 def study(
     study_file: _Path, output_dir: _Path, method: Optional[str] = None, progress: _Progress = None

@@ -10,6 +10,7 @@ All functions take the dict of :meth:`ehl_bearing.RotorModel.simulate` (or
 from __future__ import annotations
 
 import csv
+import math
 import pathlib
 from collections.abc import Sequence
 from typing import Any, Optional
@@ -29,8 +30,40 @@ __all__ = [
 ]
 
 
+def _positive(name: str, value: Any) -> float:
+    """``value`` as a finite float > 0, or a ValueError naming ``name``, the value and the range."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} = {value!r}: expected a finite number > 0") from None
+    if not (math.isfinite(v) and v > 0.0):
+        raise ValueError(f"{name} = {value!r}: expected a finite number > 0")
+    return v
+
+
+def _dof(value: Any) -> int:
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"dof = {value!r}: expected a global DOF index (an integer ≥ 0)")
+    return int(value)
+
+
+def _response(response: Any, *keys: str) -> dict:
+    if not isinstance(response, dict):
+        kind = type(response).__name__
+        raise TypeError(f"response: expected the dict RotorModel.simulate returns, got {kind}")
+    missing = [k for k in keys if k not in response]
+    if missing:
+        raise ValueError(
+            f"response: no {missing[0]!r} (expected the dict RotorModel.simulate returns; "
+            f"keys: {sorted(response)[:8]})"
+        )
+    return response
+
+
 def column(response: dict, dof: int) -> np.ndarray:
     """The recorded displacement history of global DOF ``dof`` (m or rad)."""
+    dof = _dof(dof)
+    _response(response, "record_dofs", "displacement")
     dofs = list(response["record_dofs"])
     if dof not in dofs:
         raise ValueError(f"DOF {dof} was not recorded (recorded: {dofs[:8]}…)")
@@ -111,7 +144,15 @@ def amplitude_spectrum(signal: np.ndarray, step_s: float) -> tuple[np.ndarray, n
     component with a whole number of periods in the record (see :func:`whole_periods`) falls on
     its bin and the two next to it, with no leakage beyond; any other leaks with the window's
     sidelobes (−31 dB, falling 18 dB per octave)."""
-    s = np.asarray(signal, dtype=float)
+    step_s = _positive("step_s", step_s)
+    try:
+        s = np.asarray(signal, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError("signal: expected a 1-D array of real numbers") from None
+    if s.ndim != 1 or s.size < 2:
+        raise ValueError(f"signal: expected a 1-D array of at least 2 samples, got shape {s.shape}")
+    if not np.all(np.isfinite(s)):
+        raise ValueError(f"signal[{int(np.argmin(np.isfinite(s)))}] is not finite")
     s = s - s.mean()
     n = len(s)
     w = 0.5 - 0.5 * np.cos(2.0 * np.pi * np.arange(n) / n)
@@ -122,7 +163,14 @@ def amplitude_spectrum(signal: np.ndarray, step_s: float) -> tuple[np.ndarray, n
 def whole_periods(n: int, step_s: float, frequency_hz: float) -> int:
     """The largest number of samples, at most ``n``, that spans a whole number of periods of
     ``frequency_hz`` (to the nearest sample); ``n`` when not even one period fits."""
-    per = 1.0 / (frequency_hz * step_s)
+    if isinstance(n, (bool, np.bool_)) or not isinstance(n, (int, np.integer)) or n < 0:
+        raise ValueError(f"n = {n!r}: expected a number of samples (an integer ≥ 0)")
+    step_s = _positive("step_s", step_s)
+    frequency_hz = _positive("frequency_hz", frequency_hz)
+    cycles_per_sample = frequency_hz * step_s
+    if cycles_per_sample == 0.0 or not math.isfinite(1.0 / cycles_per_sample):
+        return n  # not even one period fits (the product underflowed)
+    per = 1.0 / cycles_per_sample  # samples per period
     periods = n // per
     return min(n, round(periods * per)) if periods >= 1 else n
 

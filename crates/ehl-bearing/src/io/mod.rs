@@ -8,7 +8,7 @@ pub mod json;
 pub mod store;
 
 pub use case::{parse_case, read_case, Case};
-pub use store::{write_atomic, FsStore};
+pub use store::{read_own_file, write_atomic, FsStore, OwnFileError};
 
 use thiserror::Error;
 

@@ -128,50 +128,76 @@ fn file_kind(t: &std::fs::FileType) -> &'static str {
     }
 }
 
+/// Why [`read_own_file`] did not return a file's text.
+#[derive(Debug)]
+pub enum OwnFileError {
+    /// The file could not be read (permissions, I/O).
+    Io(std::io::Error),
+    /// The path is not a file this program could have written: what it is instead.
+    Foreign(String),
+}
+
+impl std::fmt::Display for OwnFileError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            OwnFileError::Io(e) => write!(f, "{e}"),
+            OwnFileError::Foreign(what) => write!(f, "{what}: not a file of this program"),
+        }
+    }
+}
+
+/// The text of a file this program writes into its output folders (point files, progress
+/// markers, trend files; a few kB to MB); `None` when there is none. A folder, FIFO, device or a
+/// link to one (reading a FIFO would block forever, `/dev/zero` would fill the memory) or a file
+/// above [`MAX_INPUT_BYTES`](super::MAX_INPUT_BYTES) is refused before any read; invalid UTF-8
+/// is replaced (the JSON parser then names the fault).
+pub fn read_own_file(path: &Path) -> Result<Option<String>, OwnFileError> {
+    use std::io::Read;
+    let meta = match std::fs::metadata(path) {
+        Ok(m) => m,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(OwnFileError::Io(e)),
+    };
+    if !meta.is_file() {
+        return Err(OwnFileError::Foreign(format!(
+            "not a regular file ({})",
+            file_kind(&meta.file_type())
+        )));
+    }
+    let limit = super::MAX_INPUT_BYTES;
+    let too_large =
+        |n: u64| OwnFileError::Foreign(format!("{n} bytes, larger than {} MiB", limit >> 20));
+    if meta.len() > limit {
+        return Err(too_large(meta.len()));
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(limit + 1).read_to_end(&mut bytes))
+        .map_err(OwnFileError::Io)?;
+    if bytes.len() as u64 > limit {
+        return Err(too_large(bytes.len() as u64));
+    }
+    Ok(Some(String::from_utf8_lossy(&bytes).into_owned()))
+}
+
 impl PointStore for FsStore {
     /// The point file's text; `None` when there is none. A point file is a regular file this
     /// program wrote (a few kB): a folder, FIFO, device or a link to one (reading a FIFO would
     /// block forever, `/dev/zero` would fill the memory) or a file above
     /// [`MAX_INPUT_BYTES`](super::MAX_INPUT_BYTES) is an error naming it, before any read.
     fn load_point(&self, stem: &str) -> Result<Option<String>, StoreError> {
-        use std::io::Read;
         let path = self.point_path(stem);
-        let meta = match std::fs::metadata(&path) {
-            Ok(m) => m,
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
-            Err(e) => return Err(err("reading", &path, e)),
-        };
-        let foreign = |what: String| {
-            err(
+        match read_own_file(&path) {
+            Ok(text) => Ok(text),
+            Err(OwnFileError::Io(e)) => Err(err("reading", &path, e)),
+            Err(OwnFileError::Foreign(what)) => Err(err(
                 "reading",
                 &path,
                 format!(
                     "{what}: not a point file of this program; remove it to recompute the point"
                 ),
-            )
-        };
-        if !meta.is_file() {
-            return Err(foreign(format!(
-                "not a regular file ({})",
-                file_kind(&meta.file_type())
-            )));
+            )),
         }
-        let limit = super::MAX_INPUT_BYTES;
-        if meta.len() > limit {
-            return Err(foreign(format!(
-                "{} bytes, larger than {} MiB",
-                meta.len(),
-                limit >> 20
-            )));
-        }
-        let mut bytes = Vec::new();
-        std::fs::File::open(&path)
-            .and_then(|f| f.take(limit + 1).read_to_end(&mut bytes))
-            .map_err(|e| err("reading", &path, e))?;
-        if bytes.len() as u64 > limit {
-            return Err(foreign(format!("larger than {} MiB", limit >> 20)));
-        }
-        Ok(Some(String::from_utf8_lossy(&bytes).into_owned()))
     }
 
     fn save_point(&self, stem: &str, text: &str) -> Result<(), StoreError> {
