@@ -73,7 +73,7 @@ fn check_speeds(case: &Case, speeds_rpm: &[f64]) -> Result<(), crate::Error> {
         return Err(crate::io::InputError::field(
             "speeds",
             format!("{} values", speeds_rpm.len()),
-            &format!("at most {MAX_SPEEDS} speeds (each is a characterization)"),
+            format!("at most {MAX_SPEEDS} speeds (each is a characterization)"),
         )
         .into());
     }
