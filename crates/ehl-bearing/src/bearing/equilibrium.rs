@@ -174,7 +174,30 @@ fn blend(alpha: D4, theta: D4, delta: D4, band: f64) -> D4 {
 /// traction limit).
 pub const MU_MAX: f64 = 0.1;
 
-/// Smooth saturation of a friction force `f` at `limit` ≥ 0: f/(1 + (|f|/limit)^8)^(1/8).
+/// Fraction of the friction limit μ_max·Q up to which the friction force the gyroscopic moment
+/// needs is transmitted in full ([`saturate`]).
+pub const FRICTION_FULL_CONTROL: f64 = 0.95;
+
+/// The friction limit's shape: G(r) for r = F^H/(μ_max·Q) ≥ 0 and its derivative dG/dr.
+/// G(r) = r up to r0 = [`FRICTION_FULL_CONTROL`] (full race control, exact), then
+/// G = 1 − (1 − r0)/(1 + t + t²), t = (r − r0)/(1 − r0): continuous with its first and second
+/// derivatives at r0 (G′ = 1, G″ = 0 on both sides), increasing, below 1 and tending to 1 (the
+/// limit μ_max·Q) as r grows. Public for the table of docs/bearing.md §2.5.
+pub fn friction_limit_shape(r: f64) -> (f64, f64) {
+    let r0 = FRICTION_FULL_CONTROL;
+    if r <= r0 {
+        return (r, 1.0);
+    }
+    let w = 1.0 - r0;
+    let t = (r - r0) / w;
+    let p = 1.0 + t + t * t;
+    (1.0 - w / p, (1.0 + 2.0 * t) / (p * p))
+}
+
+/// The friction force transmitted when `f` is needed at a contact with limit `limit` ≥ 0:
+/// F = μQ·G(|F^H|/μQ)·sign(F^H) with G of [`friction_limit_shape`]: exactly `f` while
+/// |f| ≤ [`FRICTION_FULL_CONTROL`]·limit (the textbook's full race control), a C² approach to
+/// ±limit above.
 fn saturate(f: D4, limit: D4) -> D4 {
     if f.v == 0.0 {
         return f;
@@ -182,12 +205,12 @@ fn saturate(f: D4, limit: D4) -> D4 {
     if limit.v <= 0.0 {
         return D4::cst(0.0);
     }
+    if f.v.abs() <= FRICTION_FULL_CONTROL * limit.v {
+        return f;
+    }
     let r = f / limit;
-    let r8 = r.v.powi(8);
-    // g(r) = (1 + r⁸)^(−1/8); f·g(f/limit)
-    let g = 1.0 / (1.0 + r8).powf(0.125);
-    let dg = -r.v.powi(7) * g / (1.0 + r8);
-    f * r.chain(g, dg)
+    let (g, dg) = friction_limit_shape(r.v.abs());
+    limit * r.chain(g.copysign(r.v), dg)
 }
 
 /// Convergence settings of the equilibrium solver.
@@ -638,7 +661,8 @@ impl BearingModel {
         // Friction forces that carry the gyroscopic moment: F_i = λ_i·G/D at the inner contact and
         // F_o = −λ_o·G/D at the outer (along τ̂ = (cos α, −sin α)), each limited smoothly to
         // μ_max·Q: where a contact cannot hold its share the ball pivots (Harris) and the moment is
-        // not fully resisted. The limit is inactive (< 1e-6 relative) wherever |F| < μ_max·Q/6.
+        // not fully resisted. The limit is inactive (F = F^H exactly) wherever |F^H| is at most
+        // FRICTION_FULL_CONTROL·μ_max·Q.
         let (lam_i, lam_o) = self.race_control.lambdas();
         let fi = saturate(gyro * (lam_i / d), qi * MU_MAX);
         let fo = saturate(gyro * (-lam_o / d), qo * MU_MAX);
@@ -1451,19 +1475,28 @@ fn kinematic_angle_warning(balls: &[BallState], out: &mut Vec<String>) {
     }
 }
 
-/// Gyroscopic friction near its limit μ_max·Q (the ball pivots).
+/// Gyroscopic friction near its limit μ_max·Q: a warning from 80 % of the limit needed, saying
+/// whether the contact still transmits it in full (up to [`FRICTION_FULL_CONTROL`]) or the
+/// moment is partly unresisted (the ball pivots).
 fn friction_warnings(balls: &[BallState], out: &mut Vec<String>) {
     for (j, b) in balls.iter().enumerate() {
-        for (race, f, q) in [
-            ("inner", b.inner_friction, b.inner.load),
-            ("outer", b.outer_friction, b.outer.load),
+        for (race, f, c) in [
+            ("inner", b.inner_friction, &b.inner),
+            ("outer", b.outer_friction, &b.outer),
         ] {
-            if q > 0.0 && f.abs() > 0.8 * MU_MAX * q {
+            let limit = MU_MAX * c.load;
+            if c.load > 0.0 && c.friction_needed > 0.8 * limit {
+                let consequence = if c.friction_needed > FRICTION_FULL_CONTROL * limit {
+                    "the moment is partly unresisted (the ball pivots)"
+                } else {
+                    "still transmitted in full (race control holds)"
+                };
                 out.push(format!(
-                    "ball {j}: the gyroscopic friction at the {race} contact, {:.3} N, is at {:.0} % of its limit μ_max·Q = {:.3} N: the moment is partly unresisted (the ball pivots)",
+                    "ball {j}: the gyroscopic friction needed at the {race} contact, {:.3} N, is {:.0} % of its limit μ_max·Q = {:.3} N (transmitted {:.3} N): {consequence}",
+                    c.friction_needed,
+                    100.0 * c.friction_needed / limit,
+                    limit,
                     f.abs(),
-                    100.0 * f.abs() / (MU_MAX * q),
-                    MU_MAX * q
                 ));
             }
         }
