@@ -626,6 +626,11 @@ impl ElementCore {
             .collect();
         d.set_item("overloaded", overloaded)?;
         d.set_item("speed_outside", out.speed_outside)?;
+        d.set_item(
+            "orbital_speeds",
+            PyArray1::from_slice_bound(py, &out.orbital_speeds),
+        )?;
+        d.set_item("cage_speed", out.cage_speed)?;
         Ok(d.into_any().unbind())
     }
 }
@@ -666,8 +671,10 @@ macro_rules! element_methods {
                 )
             }
 
-            /// Cage speed under pure rolling at ring speeds `inner_speed_rad_s`,
-            /// `outer_speed_rad_s`, rad/s: ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)], γ = D·cos α0/d_m.
+            /// No-load cage speed at ring speeds `inner_speed_rad_s`, `outer_speed_rad_s`, rad/s:
+            /// pure rolling at the free contact angle, ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)],
+            /// γ = D·cos α0/d_m. At an operating point the balls orbit faster (their operating
+            /// contact angles): use `cage_speed_at`.
             #[pyo3(signature = (inner_speed_rad_s, outer_speed_rad_s = 0.0))]
             fn cage_speed(&self, inner_speed_rad_s: f64, outer_speed_rad_s: f64) -> PyResult<f64> {
                 for (name, v) in [
@@ -682,6 +689,34 @@ macro_rules! element_methods {
                     .core
                     .element
                     .cage_speed(inner_speed_rad_s, outer_speed_rad_s))
+            }
+
+            /// Cage speed at the operating state (ring displacement `displacement` in m and rad,
+            /// ring speeds in rad/s, cage angle in rad), rad/s: the load-weighted mean orbital
+            /// speed of the balls in the bearing model (the `cage_speed` of
+            /// `evaluate(..., full=True)`; its `orbital_speeds` are the balls' own). The ball-pass
+            /// frequency is Z times it over 2π.
+            #[pyo3(signature = (displacement, inner_speed_rad_s, outer_speed_rad_s = 0.0, cage_angle_rad = 0.0))]
+            fn cage_speed_at(
+                &self,
+                py: Python<'_>,
+                displacement: PyArrayLike1<'_, f64, AllowTypeChange>,
+                inner_speed_rad_s: f64,
+                outer_speed_rad_s: f64,
+                cage_angle_rad: f64,
+            ) -> PyResult<f64> {
+                let input = ElementInput {
+                    displacement: vec5(&displacement, "displacement")?,
+                    velocity: [0.0; 5],
+                    inner_speed: inner_speed_rad_s,
+                    outer_speed: outer_speed_rad_s,
+                    cage_angle: cage_angle_rad,
+                };
+                py.allow_threads(|| {
+                    let mut st = self.core.state.lock().unwrap_or_else(|p| p.into_inner());
+                    self.core.element.cage_speed_at(&input, &mut st)
+                })
+                .map_err(err)
             }
 
             /// Number of balls Z.

@@ -17,7 +17,7 @@
 //! (m, rad, m/s, rad/s, N, N·m, N/m, N·s/m). The reaction is the load on the inner ring in
 //! equilibrium with the balls: the bearing acts on the shaft with the opposite.
 
-use crate::bearing::{Bearing, ForceResult};
+use crate::bearing::{cage_speed_of, Bearing, ForceResult};
 use crate::bearing::{
     BearingError, BearingModel, ContactLaws, DynamicForce, Kinematics, Race, RaceControl,
 };
@@ -41,9 +41,9 @@ pub struct ElementInput {
     pub inner_speed: f64,
     /// Outer-ring speed about +x, rad/s.
     pub outer_speed: f64,
-    /// Cage angle, rad: ball j sits at azimuth 2πj/Z + cage angle. Advance it at the cage speed
-    /// ([`ForceElement::cage_speed`]) for the varying-compliance excitation at Z·f_cage; hold it
-    /// fixed for a time-invariant bearing.
+    /// Cage angle, rad: ball j sits at azimuth 2πj/Z + cage angle. Advance it at the operating
+    /// cage speed ([`ElementOutput::cage_speed`], [`ForceElement::cage_speed_at`]) for the
+    /// varying-compliance excitation at Z·f_cage; hold it fixed for a time-invariant bearing.
     pub cage_angle: f64,
 }
 
@@ -84,6 +84,12 @@ pub struct ElementOutput {
     /// displacement no bearing survives (e.g. a 1 rad tilt gave a 26 MN contact load); the
     /// numbers are returned as computed, flagged here.
     pub overloaded: Vec<(usize, Race)>,
+    /// Per ball: orbital speed ω_m of the bearing model at this state (the textbook kinematics
+    /// at its operating contact angles by default), rad/s.
+    pub orbital_speeds: Vec<f64>,
+    /// The cage speed at this state, rad/s: the load-weighted mean of `orbital_speeds`
+    /// ([`crate::bearing::cage_speed_of`]); the plain mean when no ball is loaded.
+    pub cage_speed: f64,
 }
 
 /// Contact approach, as a fraction of the ball diameter, beyond which an element flags the
@@ -133,12 +139,28 @@ pub trait ForceElement: Send + Sync {
     /// The bearing (geometry and materials).
     fn bearing(&self) -> &Bearing;
 
-    /// Cage speed at ring speeds `inner_speed` and `outer_speed` (rad/s) under pure rolling at
-    /// the free contact angle, rad/s: ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)], γ = D·cos α0/d_m.
+    /// The no-load cage speed at ring speeds `inner_speed` and `outer_speed` (rad/s): pure
+    /// rolling at the free contact angle, ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)], γ = D·cos α0/d_m,
+    /// rad/s. A fallback for an unloaded bearing or a speed ratio before any evaluation: at an
+    /// operating point the balls orbit at the speeds of their operating contact angles
+    /// ([`ForceElement::cage_speed_at`]; 0.5 % faster for the seed 7006, 11 % for the 218 at
+    /// 15000 rpm).
     fn cage_speed(&self, inner_speed: f64, outer_speed: f64) -> f64 {
         let g = &self.bearing().geometry;
         let gamma = g.ball_diameter * g.free_contact_angle.cos() / g.pitch_diameter;
         0.5 * (inner_speed * (1.0 - gamma) + outer_speed * (1.0 + gamma))
+    }
+
+    /// The cage speed at the operating state `input` (displacement, speeds, cage angle), rad/s:
+    /// the load-weighted mean of the bearing model's ball orbital speeds there
+    /// ([`ElementOutput::cage_speed`]), warm-started from and updating `state`. A rotor
+    /// integrator reads it from each evaluation's output instead.
+    fn cage_speed_at(
+        &self,
+        input: &ElementInput,
+        state: &mut ElementState,
+    ) -> Result<f64, crate::Error> {
+        Ok(self.evaluate(input, state)?.cage_speed)
     }
 
     /// The reactions at `input` alone (a convenience over [`ForceElement::evaluate`] with a cold
@@ -342,6 +364,7 @@ impl ForceElement for LawElement {
             }
         }
         state.loads.clone_from(&f.loads);
+        let cage_speed = cage_speed_of(&f.orbital_speeds, &f.loads);
         Ok(ElementOutput {
             reaction: f.reaction,
             stiffness: f.stiffness,
@@ -351,6 +374,8 @@ impl ForceElement for LawElement {
             approaches: f.approaches,
             outside_range,
             speed_outside: false,
+            cage_speed,
+            orbital_speeds: f.orbital_speeds,
         })
     }
 
@@ -770,6 +795,7 @@ impl TrendForceElement {
             !(n >= lo * (1.0 - 1e-12) && n <= hi * (1.0 + 1e-12))
         });
         state.loads.clone_from(&f.loads);
+        let cage_speed = cage_speed_of(&f.orbital_speeds, &f.loads);
         Ok((
             ElementOutput {
                 reaction: f.reaction,
@@ -780,6 +806,8 @@ impl TrendForceElement {
                 approaches: f.approaches,
                 outside_range,
                 speed_outside,
+                cage_speed,
+                orbital_speeds: f.orbital_speeds,
             },
             residual,
         ))
