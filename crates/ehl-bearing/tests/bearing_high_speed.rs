@@ -584,6 +584,46 @@ fn harris_218_at_15000_rpm_has_full_race_control_below_the_friction_limit() {
     );
 }
 
+/// The friction limit's shape G(r), r = F^H/(μ_max·Q): the identity up to r0 = 0.95, then
+/// increasing, below 1 and tending to 1; continuous with its first and second derivatives at r0
+/// (one-sided differences of the value and of the returned slope, step 1e-6),
+/// and the returned slope is the derivative everywhere (central differences, 1e-7).
+#[test]
+fn friction_limit_is_exact_below_and_c2_smooth_into_the_limit() {
+    use ehl_bearing::bearing::equilibrium::{friction_limit_shape as g, FRICTION_FULL_CONTROL};
+    let r0 = FRICTION_FULL_CONTROL;
+    assert_eq!(r0, 0.95);
+    for r in [0.0, 0.1, 0.5, 0.88, 0.94, 0.95] {
+        assert_eq!(g(r), (r, 1.0));
+    }
+    let e = 1e-6;
+    // Value, slope and curvature from both sides of r0.
+    let (below, above) = (g(r0 - e), g(r0 + e));
+    assert!((above.0 - below.0 - 2.0 * e).abs() < 1e-12);
+    // Above r0, G' = 1 − 3(Δr/0.05)² + … and G'' = −6·Δr/0.05² + …: at Δr = 1e-6 the slope is 1
+    // to 1.2e-9 and the curvature 3.6e-3 (a C¹-only blend would curve by ~1/0.05 = 20 there).
+    assert!((above.1 - 1.0).abs() < 1e-8 && below.1 == 1.0);
+    let curvature_above = (g(r0 + 2.0 * e).1 - g(r0 + e).1) / e;
+    assert!(
+        curvature_above.abs() < 1e-2,
+        "G'' above r0: {curvature_above}"
+    );
+    let mut prev = g(r0).0;
+    let mut r = r0 + 1e-3;
+    while r < 50.0 {
+        let (v, dv) = g(r);
+        assert!(
+            v > prev && v < 1.0 && dv > 0.0,
+            "r = {r}: G = {v}, G' = {dv}"
+        );
+        let fd = (g(r + 1e-6).0 - g(r - 1e-6).0) / 2e-6;
+        assert!((fd - dv).abs() < 1e-7, "r = {r}: {fd} vs {dv}");
+        prev = v;
+        r *= 1.01;
+    }
+    assert!(1.0 - g(50.0).0 < 1e-4);
+}
+
 /// The groove-line model departs from the textbook model by degrees and many percent at
 /// 15000 rpm (the motivation of issue 14), and agrees with it at rest.
 #[test]
