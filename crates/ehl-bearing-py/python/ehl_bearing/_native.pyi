@@ -52,6 +52,13 @@ class _Element:
     ) -> Any:
         """(reaction (5,), stiffness (5, 5), damping (5, 5)), or a dict with ``full=True``."""
     def cage_speed(self, inner_speed_rad_s: float, outer_speed_rad_s: float = 0.0) -> float: ...
+    def cage_speed_at(
+        self,
+        displacement: npt.ArrayLike,
+        inner_speed_rad_s: float,
+        outer_speed_rad_s: float = 0.0,
+        cage_angle_rad: float = 0.0,
+    ) -> float: ...
     @property
     def ball_count(self) -> int: ...
     @property
