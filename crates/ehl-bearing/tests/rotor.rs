@@ -4,7 +4,7 @@
 //! at Z·f_cage, the run-up, mirrored bearings, and implicit against lagged bearing forces.
 
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws, Control};
-use ehl_bearing::force_element::{ForceElement, LawElement};
+use ehl_bearing::force_element::{ForceElement, LawElement, LoadInterpolatedLaw};
 use ehl_bearing::io::{read_case, Case};
 use ehl_bearing::rotor::{
     BearingSite, CageMotion, Coupling, RotorError, RotorMatrices, RotorModel, SpeedProfile, Start,
@@ -583,22 +583,7 @@ fn static_failure_says_which_direction_nothing_holds() {
 /// below, 0.1 % of the ball-pass frequency is 0.08 to 0.2 of a bin.
 fn line_frequency(x: &[f64], dt: f64, f0: f64, span: f64) -> f64 {
     let n = x.len() as f64;
-    let mean = x.iter().sum::<f64>() / n;
-    let y: Vec<f64> = x
-        .iter()
-        .enumerate()
-        .map(|(i, v)| (v - mean) * (0.5 - 0.5 * (2.0 * PI * i as f64 / n).cos()))
-        .collect();
-    let mag = |f: f64| {
-        let w = 2.0 * PI * f * dt;
-        let (mut re, mut im) = (0.0, 0.0);
-        for (i, v) in y.iter().enumerate() {
-            let (s, c) = (w * i as f64).sin_cos();
-            re += v * c;
-            im -= v * s;
-        }
-        re.hypot(im)
-    };
+    let mag = |f: f64| line_amplitude(x, dt, f);
     let bin = 1.0 / (n * dt);
     let (lo, hi) = (f0 * (1.0 - span), f0 * (1.0 + span));
     let steps = ((hi - lo) / (0.05 * bin)).ceil() as usize;
@@ -617,6 +602,24 @@ fn line_frequency(x: &[f64], dt: f64, f0: f64, span: f64) -> f64 {
         }
     }
     0.5 * (a + b)
+}
+
+/// Amplitude of the line at frequency `f` (Hz) in `x` sampled every `dt` s: the Hann-windowed
+/// discrete-time Fourier transform of x − x̄, |Σ w_i·(x_i − x̄)·e^(−2πi·f·i·dt)|·2/Σ w_i (a pure
+/// sine of amplitude A on a bin gives A).
+fn line_amplitude(x: &[f64], dt: f64, f: f64) -> f64 {
+    let n = x.len() as f64;
+    let mean = x.iter().sum::<f64>() / n;
+    let w = 2.0 * PI * f * dt;
+    let (mut re, mut im, mut sw) = (0.0, 0.0, 0.0);
+    for (i, v) in x.iter().enumerate() {
+        let hann = 0.5 - 0.5 * (2.0 * PI * i as f64 / n).cos();
+        let (s, c) = (w * i as f64).sin_cos();
+        re += hann * (v - mean) * c;
+        im -= hann * (v - mean) * s;
+        sw += hann;
+    }
+    2.0 * re.hypot(im) / sw
 }
 
 /// Z·f_cage (Hz) of the bearing model itself: the load-weighted mean of the balls' orbital speeds
@@ -648,16 +651,30 @@ fn model_ball_pass(case: &Case, laws: &ContactLaws, [fx, fy, fz]: [f64; 3]) -> (
     )
 }
 
-/// The rigid ring on `site` under forces (`fx`, `fy`, `fz`) N at the case speed, cages rolling: the
-/// ball-pass line of the radial reaction F_y (Hz), the run's mean recorded cage speed (rad/s),
-/// and the spectrum's bin (Hz).
+/// The ball-pass line of the radial reaction F_y (Hz) of `rotor_reaction`, the run's mean
+/// recorded cage speed (rad/s), and the spectrum's bin (Hz).
 fn rotor_ball_pass(
+    case: &Case,
+    site: BearingSite,
+    load: [f64; 3],
+    (h, skip_s, record_s): (f64, f64, f64),
+    guess_hz: f64,
+) -> (f64, f64, f64) {
+    let (fy_rec, cage) = rotor_reaction(case, site, load, (h, skip_s, record_s));
+    let mean_cage = cage.iter().sum::<f64>() / cage.len() as f64;
+    let f = line_frequency(&fy_rec, h, guess_hz, 0.03);
+    (f, mean_cage, 1.0 / (fy_rec.len() as f64 * h))
+}
+
+/// The rigid ring on `site` under forces (`fx`, `fy`, `fz`) N at the case speed, cages rolling,
+/// start transient of `skip_s` dropped: the radial reaction F_y (N) and the operating cage speed
+/// (rad/s) at every step of the record.
+fn rotor_reaction(
     case: &Case,
     site: BearingSite,
     [fx, fy, fz]: [f64; 3],
     (h, skip_s, record_s): (f64, f64, f64),
-    guess_hz: f64,
-) -> (f64, f64, f64) {
+) -> (Vec<f64>, Vec<f64>) {
     let model = RotorModel::new(
         rigid_ring(1000.0),
         vec![site],
@@ -681,11 +698,10 @@ fn rotor_ball_pass(
         )
         .unwrap();
     let skip = (skip_s / h).round() as usize;
-    let fy_rec: Vec<f64> = r.bearing_reaction[skip..].iter().map(|b| b[0][1]).collect();
-    let cage: Vec<f64> = r.cage_speed_rad_s[skip..].iter().map(|c| c[0]).collect();
-    let mean_cage = cage.iter().sum::<f64>() / cage.len() as f64;
-    let f = line_frequency(&fy_rec, h, guess_hz, 0.03);
-    (f, mean_cage, 1.0 / (fy_rec.len() as f64 * h))
+    (
+        r.bearing_reaction[skip..].iter().map(|b| b[0][1]).collect(),
+        r.cage_speed_rad_s[skip..].iter().map(|c| c[0]).collect(),
+    )
 }
 
 fn case_218() -> Case {
@@ -789,4 +805,86 @@ fn ehl_contact_laws(laws: &[ehl_bearing::fit::FittedLaw]) -> ContactLaws {
         inner: pick(0),
         outer: pick(1),
     }
+}
+
+/// The golden characterization's laws with their characterization loads, per raceway.
+fn golden_laws_by_load() -> [Vec<(f64, ehl_bearing::fit::FittedLaw)>; 2] {
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden/seed_characterization.json"),
+    )
+    .unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let laws = golden_laws();
+    let mut out = [Vec::new(), Vec::new()];
+    for (c, law) in v["contacts"].as_array().unwrap().iter().zip(laws) {
+        let k = usize::from(c["race"] == "outer");
+        out[k].push((c["characterized_load_n"].as_f64().unwrap(), law));
+    }
+    out
+}
+
+/// Rolling cages on characterized EHL laws. With the laws fixed per contact (each ball's law at
+/// its position in the case, `LawElement::from_fitted`), the cage carries the laws around: the
+/// reaction repeats only once per cage revolution and its spectrum has a line at f_cage. With
+/// the laws by load (`LawElement::by_load`: every ball takes the law of the load it carries,
+/// interpolated over the characterization's per-contact laws) the balls are alike: the reaction
+/// repeats every ball pass, the ball-pass line sits at Z·f_cage of the bearing model with these
+/// laws within 0.1 %, and the f_cage line is gone (below 1e-3 of the ball-pass line, where the
+/// per-contact laws give more than 1e-2). Seed 7006 at 5000 rpm under its 1000 N in x, y and z
+/// (the loads the laws were characterized at), record 0.2 s (bin 5 Hz; f_cage ≈ 35 Hz is 7 bins
+/// from the mean and 70 from the ball-pass line).
+#[test]
+fn rolling_cages_on_ehl_laws_by_load_show_the_ball_pass_line_and_no_cage_line() {
+    let case = seed();
+    let [inner, outer] = golden_laws_by_load();
+    let by_load = LawElement::by_load(&case.bearing, case.operating.race_control, &inner, &outer)
+        .unwrap()
+        .with_kinematics(case.settings.kinematics);
+    let [li, lo] = by_load.laws_by_load().unwrap();
+    assert_eq!((li.knots(), lo.knots()), (11, 11));
+    assert_eq!((li.limited_knots(), lo.limited_knots()), (0, 0));
+    let fixed = LawElement::from_fitted(&case.bearing, case.operating.race_control, &golden_laws())
+        .unwrap()
+        .with_kinematics(case.settings.kinematics);
+    let load = [1000.0; 3];
+    let timing = (2e-5, 0.01, 0.2);
+    let z = case.bearing.geometry.ball_count as f64;
+    // The same laws for the bearing model's own equilibrium (its orbital speeds give Z·f_cage).
+    let shared = |pts: &[(f64, ehl_bearing::fit::FittedLaw)]| {
+        let l: Arc<dyn ehl_bearing::contact_law::ContactLaw> =
+            Arc::new(LoadInterpolatedLaw::new(pts).unwrap());
+        vec![l; case.bearing.geometry.ball_count]
+    };
+    let by_load_laws = ContactLaws {
+        inner: shared(&inner),
+        outer: shared(&outer),
+    };
+    let mut ratios = Vec::new();
+    for (name, element, laws) in [
+        ("by load", by_load, by_load_laws),
+        ("per contact", fixed, ehl_contact_laws(&golden_laws())),
+    ] {
+        let (bpf, _) = model_ball_pass(&case, &laws, load);
+        let site = BearingSite::new(
+            Arc::new(element) as Arc<dyn ForceElement>,
+            [Some(0), Some(1), Some(2), Some(3), Some(4)],
+        );
+        let (fy, cage) = rotor_reaction(&case, site, load, timing);
+        let w_cage = cage.iter().sum::<f64>() / cage.len() as f64;
+        let f_cage = w_cage / (2.0 * PI);
+        let line = line_frequency(&fy, timing.0, bpf, 0.03);
+        let a_bpf = line_amplitude(&fy, timing.0, line);
+        let a_cage = (-2..=2)
+            .map(|k| line_amplitude(&fy, timing.0, f_cage + 0.5 * k as f64))
+            .fold(0.0, f64::max);
+        println!(
+            "{name}: ball-pass line {line:.4} Hz (Z·f_cage of the bearing model {bpf:.4} Hz, of the run {:.4} Hz), amplitude {a_bpf:.4e} N; f_cage {f_cage:.4} Hz line {a_cage:.4e} N (ratio {:.2e})",
+            z * f_cage,
+            a_cage / a_bpf
+        );
+        assert!((line / bpf - 1.0).abs() < 1e-3, "{name}: {line} vs {bpf}");
+        ratios.push(a_cage / a_bpf);
+    }
+    assert!(ratios[0] < 1e-3, "by load: f_cage line {:e}", ratios[0]);
+    assert!(ratios[1] > 1e-2, "per contact: f_cage line {:e}", ratios[1]);
 }
