@@ -412,9 +412,18 @@ impl Characterization {
         mat(py, &self.inner.dry_stiffness())
     }
 
-    /// The bearing with the fitted laws as a force element (`LawElement`).
-    fn law_element(&self) -> PyResult<PyLawElement> {
-        let e = LawElement::from_characterization(&self.case, &self.inner).map_err(err)?;
+    /// The bearing with the fitted laws as a force element (`LawElement`): each contact's law
+    /// fixed at its position in the case, or with `by_load=True` every ball taking, at any cage
+    /// angle, the law of the load it carries (interpolated over the characterized laws of its
+    /// raceway): the form for rolling cages and ball-pass studies.
+    #[pyo3(signature = (by_load = false))]
+    fn law_element(&self, by_load: bool) -> PyResult<PyLawElement> {
+        let e = if by_load {
+            LawElement::by_load_from_characterization(&self.case, &self.inner)
+        } else {
+            LawElement::from_characterization(&self.case, &self.inner)
+        }
+        .map_err(err)?;
         Ok(PyLawElement::new(Arc::new(e), false, &self.case))
     }
 }
@@ -812,14 +821,21 @@ impl PyLawElement {
     }
 
     /// The fitted laws of a characterization report dict (a study point's `result` or
-    /// `Characterization.report()`) for the bearing of `case`.
+    /// `Characterization.report()`) for the bearing of `case`; `by_load=True` as in
+    /// `Characterization.law_element` (laws by load, for rolling cages).
     #[staticmethod]
-    fn from_report(case: &PyCase, report: &Bound<'_, PyAny>) -> PyResult<Self> {
+    #[pyo3(signature = (case, report, by_load = false))]
+    fn from_report(case: &PyCase, report: &Bound<'_, PyAny>, by_load: bool) -> PyResult<Self> {
         let v = from_py(report, "", true)?;
         let r: ehl_bearing::characterize::CharacterizationReport =
             serde_json::from_value(v).map_err(|e| err(format!("characterization report: {e}")))?;
-        let e = LawElement::from_report(&case.case.bearing, case.case.operating.race_control, &r)
-            .map_err(err)?;
+        let (bearing, rc) = (&case.case.bearing, case.case.operating.race_control);
+        let e = if by_load {
+            LawElement::by_load_from_report(bearing, rc, &r)
+        } else {
+            LawElement::from_report(bearing, rc, &r)
+        }
+        .map_err(err)?;
         Ok(Self::new(
             Arc::new(e.with_kinematics(case.case.settings.kinematics)),
             false,
