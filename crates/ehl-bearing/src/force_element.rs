@@ -143,8 +143,8 @@ pub trait ForceElement: Send + Sync {
     /// rolling at the free contact angle, ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)], γ = D·cos α0/d_m,
     /// rad/s. A fallback for an unloaded bearing or a speed ratio before any evaluation: at an
     /// operating point the balls orbit at the speeds of their operating contact angles
-    /// ([`ForceElement::cage_speed_at`]; 0.5 % faster for the seed 7006, 11 % for the 218 at
-    /// 15000 rpm).
+    /// ([`ForceElement::cage_speed_at`]; 0.2–0.3 % faster for the seed 7006 at 5000 rpm, 11–12 %
+    /// for the 218 at 15000 rpm).
     fn cage_speed(&self, inner_speed: f64, outer_speed: f64) -> f64 {
         let g = &self.bearing().geometry;
         let gamma = g.ball_diameter * g.free_contact_angle.cos() / g.pitch_diameter;
@@ -945,14 +945,19 @@ impl ForceElement for TrendForceElement {
 ///
 /// A characterization fits one law Q = K·δ^d + ΔF (+ c·δ̇) per contact at the load w_k that
 /// contact carries in the case. Each law gives a knot (w_k, δ_k = law_k⁻¹(w_k)) with the law's
-/// own compliance dδ/dQ = 1/law_k′(δ_k) there. Between the knots the approach is the monotone
-/// cubic Hermite interpolant δ(Q) through the knots with these slopes (Fritsch–Carlson limited if
-/// a pair of slopes would let it turn back; the number of limited knots is reported by
+/// own compliance dδ/dQ = 1/law_k′(δ_k) there. Where the knots' approaches do not grow with the
+/// load (contacts at other contact angles or speeds carry nearly the same load at a different
+/// approach: the 218 at 15000 rpm under combined load), adjacent knots are pooled into their mean
+/// load, approach, damping and compliance until they do (pool-adjacent-violators, the isotonic
+/// regression of δ over Q; [`LoadInterpolatedLaw::pooled_knots`] counts the knots merged).
+/// Between the knots the approach is the monotone cubic Hermite interpolant δ(Q) through the
+/// knots with these slopes (Fritsch–Carlson limited if a pair of slopes would let it turn back;
 /// [`LoadInterpolatedLaw::limited_knots`]), and a contact at approach δ carries the load Q(δ) that
-/// solves δ(Q) = δ, with dQ/dδ = 1/δ′(Q): at each knot the force and stiffness of that contact's
-/// own fitted law, in between a smooth blend. Below the lowest knot the lowest-load law applies
-/// as fitted (with its extension towards separation), above the highest the highest-load law: the
-/// force is continuous there and so is its slope unless that end knot was limited. The damping
+/// solves δ(Q) = δ, with dQ/dδ = 1/δ′(Q): at each unpooled knot the force and stiffness of that
+/// contact's own fitted law, in between a smooth blend. Below the lowest knot the lowest-load law
+/// applies as fitted (with its extension towards separation), above the highest the highest-load
+/// law, each shifted in approach to pass through its end knot if that knot was pooled: the force
+/// is continuous there and so is its slope unless that end knot was limited. The damping
 /// coefficient c is interpolated linearly in the load between the knots (the end laws' own c,
 /// fading below their fitted range, outside).
 #[derive(Debug, Clone)]
@@ -963,15 +968,27 @@ pub struct LoadInterpolatedLaw {
     damping: Vec<f64>,
     low: FittedLaw,
     high: FittedLaw,
+    /// Approach offsets of the end laws: the law below the first knot is low(δ − shift[0]).
+    shift: [f64; 2],
     limited: usize,
+    pooled: usize,
+}
+
+/// A knot of [`LoadInterpolatedLaw`] while pooling: sums over its members.
+struct Pool {
+    n: f64,
+    load: f64,
+    approach: f64,
+    damping: f64,
+    members: Vec<FittedLaw>,
 }
 
 impl LoadInterpolatedLaw {
     /// The law from `(characterization load w in N, fitted law)` pairs of one raceway. Loads
     /// that are not finite and positive are skipped (a floored or unloaded contact adds nothing);
-    /// of knots closer than 1e-9 relative in load the first is kept. Errors when no knot is left,
-    /// when a law does not reach its own load, or when the knots' approaches do not increase with
-    /// the load (naming both knots).
+    /// of knots closer than 1e-9 relative in load the first is kept (mirror-image contacts).
+    /// Errors when no knot is left or when a law does not reach its own load or has no positive
+    /// stiffness there (naming the load).
     pub fn new(points: &[(f64, FittedLaw)]) -> Result<Self, crate::Error> {
         let mut pts: Vec<(f64, FittedLaw)> = points
             .iter()
@@ -986,42 +1003,74 @@ impl LoadInterpolatedLaw {
             )
             .into());
         };
-        let mut loads = Vec::with_capacity(pts.len());
-        let mut approaches = Vec::with_capacity(pts.len());
-        let mut slopes = Vec::with_capacity(pts.len());
-        let mut damping = Vec::with_capacity(pts.len());
-        for (w, law) in &pts {
-            let delta = law.approach_at(*w).ok_or_else(|| {
+        // Compliance dδ/dQ of `law` at load `w`, and its approach there.
+        let compliance = |law: &FittedLaw, w: f64| -> Result<(f64, f64), crate::Error> {
+            let delta = law.approach_at(w).ok_or_else(|| {
                 BearingError::Invalid(format!(
-                    "laws by load: the law fitted at w = {w} N does not reach that load"
+                    "laws by load: a law does not reach the load w = {w} N"
                 ))
             })?;
             let stiffness = law.force(delta).1;
             if !(stiffness.is_finite() && stiffness > 0.0) {
-                return Err(BearingError::invalid(
-                    "dQ/dδ of the law fitted at w (N/m)",
-                    stiffness,
-                    "a finite, positive contact stiffness",
-                )
+                return Err(BearingError::Invalid(format!(
+                    "laws by load: dQ/dδ = {stiffness} N/m at w = {w} N; expected a finite, positive contact stiffness"
+                ))
                 .into());
             }
-            if let Some(&prev) = approaches.last() {
-                if delta <= prev {
-                    return Err(BearingError::Invalid(format!(
-                        "laws by load: the approach {delta:e} m of the law fitted at w = {w} N is not above {prev:e} m at the lower load {} N: the characterized laws do not order by load",
-                        loads.last().copied().unwrap_or(f64::NAN)
-                    ))
-                    .into());
+            Ok((delta, 1.0 / stiffness))
+        };
+        // Pool adjacent violators until the approaches grow with the load.
+        let mut pools: Vec<Pool> = Vec::with_capacity(pts.len());
+        for (w, law) in &pts {
+            let (delta, _) = compliance(law, *w)?;
+            pools.push(Pool {
+                n: 1.0,
+                load: *w,
+                approach: delta,
+                damping: law.c().unwrap_or(0.0),
+                members: vec![*law],
+            });
+            while pools.len() >= 2 {
+                let m = pools.len();
+                let (a, b) = (&pools[m - 2], &pools[m - 1]);
+                if b.approach / b.n > a.approach / a.n {
+                    break;
                 }
+                let b = pools.pop().expect("two pools");
+                let a = pools.last_mut().expect("two pools");
+                a.n += b.n;
+                a.load += b.load;
+                a.approach += b.approach;
+                a.damping += b.damping;
+                a.members.extend(b.members);
             }
-            loads.push(*w);
-            approaches.push(delta);
-            slopes.push(1.0 / stiffness);
-            damping.push(law.c().unwrap_or(0.0));
         }
+        let pooled = pts.len() - pools.len();
+        let mut loads = Vec::with_capacity(pools.len());
+        let mut approaches = Vec::with_capacity(pools.len());
+        let mut slopes = Vec::with_capacity(pools.len());
+        let mut damping = Vec::with_capacity(pools.len());
+        for p in &pools {
+            let w = p.load / p.n;
+            let mut slope = 0.0;
+            for law in &p.members {
+                slope += compliance(law, w)?.1;
+            }
+            loads.push(w);
+            approaches.push(p.approach / p.n);
+            slopes.push(slope / p.members.len() as f64);
+            damping.push(p.damping / p.n);
+        }
+        // The end laws pass through the end knots with their own slopes there.
+        let last = loads.len() - 1;
+        let (d_low, s_low) = compliance(&low, loads[0])?;
+        let (d_high, s_high) = compliance(&high, loads[last])?;
+        let shift = [approaches[0] - d_low, approaches[last] - d_high];
+        slopes[0] = s_low;
+        slopes[last] = s_high;
         // Fritsch–Carlson: a cubic Hermite piece is monotone if (m_k/Δ)² + (m_k+1/Δ)² ≤ 9.
         let mut limited = vec![false; loads.len()];
-        for k in 0..loads.len().saturating_sub(1) {
+        for k in 0..last {
             let secant = (approaches[k + 1] - approaches[k]) / (loads[k + 1] - loads[k]);
             let (a, b) = (slopes[k] / secant, slopes[k + 1] / secant);
             let r2 = a * a + b * b;
@@ -1040,8 +1089,16 @@ impl LoadInterpolatedLaw {
             damping,
             low,
             high,
+            shift,
             limited: limited.iter().filter(|l| **l).count(),
+            pooled,
         })
+    }
+
+    /// Knots merged into their neighbours because their approaches did not grow with the load
+    /// (0: every knot is its own contact's law).
+    pub fn pooled_knots(&self) -> usize {
+        self.pooled
     }
 
     /// The knots' load range [w_min, w_max], N.
@@ -1065,9 +1122,9 @@ impl LoadInterpolatedLaw {
     /// (between the knots, inside).
     pub fn outside_range(&self, approach: f64) -> bool {
         if approach < self.approaches[0] {
-            self.low.outside_fit_range(approach)
+            self.low.outside_fit_range(approach - self.shift[0])
         } else if approach > self.approaches[self.approaches.len() - 1] {
-            self.high.outside_fit_range(approach)
+            self.high.outside_fit_range(approach - self.shift[1])
         } else {
             approach.is_nan()
         }
@@ -1139,9 +1196,9 @@ impl ContactLaw for LoadInterpolatedLaw {
     fn force(&self, approach: f64) -> (f64, f64) {
         let n = self.approaches.len();
         if n == 1 || approach <= self.approaches[0] {
-            self.low.force(approach)
+            self.low.force(approach - self.shift[0])
         } else if approach >= self.approaches[n - 1] {
-            self.high.force(approach)
+            self.high.force(approach - self.shift[1])
         } else {
             self.load_between(approach)
         }
@@ -1153,9 +1210,9 @@ impl ContactLaw for LoadInterpolatedLaw {
         }
         let n = self.loads.len();
         if n == 1 || load <= self.loads[0] {
-            self.low.approach_at(load)
+            self.low.approach_at(load).map(|d| d + self.shift[0])
         } else if load >= self.loads[n - 1] {
-            self.high.approach_at(load)
+            self.high.approach_at(load).map(|d| d + self.shift[1])
         } else {
             let k = self.loads.partition_point(|w| *w <= load).clamp(1, n - 1) - 1;
             Some(self.piece(k, load).0)
@@ -1165,9 +1222,9 @@ impl ContactLaw for LoadInterpolatedLaw {
     fn damping(&self, approach: f64) -> f64 {
         let n = self.approaches.len();
         if n == 1 || approach <= self.approaches[0] {
-            self.low.damping(approach)
+            self.low.damping(approach - self.shift[0])
         } else if approach >= self.approaches[n - 1] {
-            self.high.damping(approach)
+            self.high.damping(approach - self.shift[1])
         } else {
             let q = self.load_between(approach).0;
             let k = self.loads.partition_point(|w| *w <= q).clamp(1, n - 1) - 1;
