@@ -412,9 +412,18 @@ impl Characterization {
         mat(py, &self.inner.dry_stiffness())
     }
 
-    /// The bearing with the fitted laws as a force element (`LawElement`).
-    fn law_element(&self) -> PyResult<PyLawElement> {
-        let e = LawElement::from_characterization(&self.case, &self.inner).map_err(err)?;
+    /// The bearing with the fitted laws as a force element (`LawElement`): each contact's law
+    /// fixed at its position in the case, or with `by_load=True` every ball taking, at any cage
+    /// angle, the law of the load it carries (interpolated over the characterized laws of its
+    /// raceway): the form for rolling cages and ball-pass studies.
+    #[pyo3(signature = (by_load = false))]
+    fn law_element(&self, by_load: bool) -> PyResult<PyLawElement> {
+        let e = if by_load {
+            LawElement::by_load_from_characterization(&self.case, &self.inner)
+        } else {
+            LawElement::from_characterization(&self.case, &self.inner)
+        }
+        .map_err(err)?;
         Ok(PyLawElement::new(Arc::new(e), false, &self.case))
     }
 }
@@ -701,6 +710,11 @@ impl ElementCore {
             .collect();
         d.set_item("overloaded", overloaded)?;
         d.set_item("speed_outside", out.speed_outside)?;
+        d.set_item(
+            "orbital_speeds",
+            PyArray1::from_slice_bound(py, &out.orbital_speeds),
+        )?;
+        d.set_item("cage_speed", out.cage_speed)?;
         Ok(d.into_any().unbind())
     }
 }
@@ -741,8 +755,10 @@ macro_rules! element_methods {
                 )
             }
 
-            /// Cage speed under pure rolling at ring speeds `inner_speed_rad_s`,
-            /// `outer_speed_rad_s`, rad/s: ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)], γ = D·cos α0/d_m.
+            /// No-load cage speed at ring speeds `inner_speed_rad_s`, `outer_speed_rad_s`, rad/s:
+            /// pure rolling at the free contact angle, ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)],
+            /// γ = D·cos α0/d_m. At an operating point the balls orbit faster (their operating
+            /// contact angles): use `cage_speed_at`.
             #[pyo3(signature = (inner_speed_rad_s, outer_speed_rad_s = 0.0))]
             fn cage_speed(&self, inner_speed_rad_s: f64, outer_speed_rad_s: f64) -> PyResult<f64> {
                 for (name, v) in [
@@ -757,6 +773,34 @@ macro_rules! element_methods {
                     .core
                     .element
                     .cage_speed(inner_speed_rad_s, outer_speed_rad_s))
+            }
+
+            /// Cage speed at the operating state (ring displacement `displacement` in m and rad,
+            /// ring speeds in rad/s, cage angle in rad), rad/s: the load-weighted mean orbital
+            /// speed of the balls in the bearing model (the `cage_speed` of
+            /// `evaluate(..., full=True)`; its `orbital_speeds` are the balls' own). The ball-pass
+            /// frequency is Z times it over 2π.
+            #[pyo3(signature = (displacement, inner_speed_rad_s, outer_speed_rad_s = 0.0, cage_angle_rad = 0.0))]
+            fn cage_speed_at(
+                &self,
+                py: Python<'_>,
+                displacement: PyArrayLike1<'_, f64, AllowTypeChange>,
+                inner_speed_rad_s: f64,
+                outer_speed_rad_s: f64,
+                cage_angle_rad: f64,
+            ) -> PyResult<f64> {
+                let input = ElementInput {
+                    displacement: vec5(&displacement, "displacement")?,
+                    velocity: [0.0; 5],
+                    inner_speed: inner_speed_rad_s,
+                    outer_speed: outer_speed_rad_s,
+                    cage_angle: cage_angle_rad,
+                };
+                py.allow_threads(|| {
+                    let mut st = self.core.state.lock().unwrap_or_else(|p| p.into_inner());
+                    self.core.element.cage_speed_at(&input, &mut st)
+                })
+                .map_err(err)
             }
 
             /// Number of balls Z.
@@ -852,14 +896,21 @@ impl PyLawElement {
     }
 
     /// The fitted laws of a characterization report dict (a study point's `result` or
-    /// `Characterization.report()`) for the bearing of `case`.
+    /// `Characterization.report()`) for the bearing of `case`; `by_load=True` as in
+    /// `Characterization.law_element` (laws by load, for rolling cages).
     #[staticmethod]
-    fn from_report(case: &PyCase, report: &Bound<'_, PyAny>) -> PyResult<Self> {
+    #[pyo3(signature = (case, report, by_load = false))]
+    fn from_report(case: &PyCase, report: &Bound<'_, PyAny>, by_load: bool) -> PyResult<Self> {
         let v = from_py(report, "", true)?;
         let r: ehl_bearing::characterize::CharacterizationReport =
             serde_json::from_value(v).map_err(|e| err(format!("characterization report: {e}")))?;
-        let e = LawElement::from_report(&case.case.bearing, case.case.operating.race_control, &r)
-            .map_err(err)?;
+        let (bearing, rc) = (&case.case.bearing, case.case.operating.race_control);
+        let e = if by_load {
+            LawElement::by_load_from_report(bearing, rc, &r)
+        } else {
+            LawElement::from_report(bearing, rc, &r)
+        }
+        .map_err(err)?;
         Ok(Self::new(
             Arc::new(e.with_kinematics(case.case.settings.kinematics)),
             false,

@@ -238,7 +238,8 @@ impl PyRotorModel {
     /// initial state always), the DOFs `record_dofs` (default all). `coupling`: "implicit" (the
     /// bearing forces at the new time, Newton on the bearing DOFs; stable) or "lagged" (the
     /// previous step's forces as an explicit load, as ROSS's `add_to_RHS`). `cage_angle_rad`:
-    /// None lets every cage roll at its cage speed (ball passes at Z·f_cage), a number holds
+    /// None lets every cage roll at its bearing's operating cage speed (the load-weighted mean
+    /// orbital speed of its balls, updated every step; ball passes at Z·f_cage), a number holds
     /// them there. Start: the static equilibrium at the initial speed, or `start_displacement`
     /// and `start_velocity` (n,). `progress(step, steps, time_s)` is called about a hundred
     /// times; an exception it raises stops the run and is raised from `simulate` (so a callback
@@ -246,7 +247,8 @@ impl PyRotorModel {
     /// beyond it the run stops with `EhlBearingError` naming the step and time reached.
     ///
     /// Returns a dict of numpy arrays: `time_s`, `speed_rad_s` (R,), `record_dofs`,
-    /// `displacement` (R, len(record_dofs)), `cage_angle_rad` (R, B), `bearing_displacement`
+    /// `displacement` (R, len(record_dofs)), `cage_angle_rad` and `cage_speed_rad_s` (R, B; the
+    /// operating cage speed, rad/s), `bearing_displacement`
     /// and `bearing_reaction` (R, B, 5; ours), and `steps`, `newton_iterations`,
     /// `max_newton_iterations`, `steps_outside_range`, `breakdown` (dict: `total_s`,
     /// `bearing_s`, `factorization_s`). Raises `EhlBearingError` if a step's Newton iteration
@@ -396,6 +398,13 @@ impl PyRotorModel {
         d.set_item(
             "cage_angle_rad",
             PyArray1::from_vec_bound(py, cage)
+                .reshape([r.time_s.len(), nb])
+                .map_err(err)?,
+        )?;
+        let cage_speed: Vec<f64> = r.cage_speed_rad_s.iter().flatten().copied().collect();
+        d.set_item(
+            "cage_speed_rad_s",
+            PyArray1::from_vec_bound(py, cage_speed)
                 .reshape([r.time_s.len(), nb])
                 .map_err(err)?,
         )?;

@@ -110,7 +110,11 @@ def test_rolling_cage_shows_the_ball_pass_frequency_and_harmonics(case3000):
     rotor, model, _, w = setup(case3000, dry)
     h, duration = 2e-5, 0.15
     out = model.simulate(step_s=h, duration_s=duration, speed_rad_s=w)
-    f_bp = dry.ball_count * dry.cage_speed(w) / (2 * math.pi)  # 231.2 Hz at 3000 rpm
+    # The operating cage speed the rolling cage turned at (the bearing model's orbital speeds;
+    # the free-angle estimate dry.cage_speed(w) is a few tenths of a percent slower).
+    w_cage = out["cage_speed_rad_s"][len(out["time_s"]) // 4 :, 0].mean()
+    assert w_cage > dry.cage_speed(w)
+    f_bp = dry.ball_count * w_cage / (2 * math.pi)  # ≈ 232 Hz at 3000 rpm
     x = out["displacement"][:, er.node_dofs(rotor, 0)[0]]
     f, a = _spectrum(x, h)
     df = f[1] - f[0]

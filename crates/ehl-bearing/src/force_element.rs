@@ -17,7 +17,7 @@
 //! (m, rad, m/s, rad/s, N, N·m, N/m, N·s/m). The reaction is the load on the inner ring in
 //! equilibrium with the balls: the bearing acts on the shaft with the opposite.
 
-use crate::bearing::{Bearing, ForceResult};
+use crate::bearing::{cage_speed_of, Bearing, ForceResult};
 use crate::bearing::{
     BearingError, BearingModel, ContactLaws, DynamicForce, Kinematics, Race, RaceControl,
 };
@@ -41,9 +41,9 @@ pub struct ElementInput {
     pub inner_speed: f64,
     /// Outer-ring speed about +x, rad/s.
     pub outer_speed: f64,
-    /// Cage angle, rad: ball j sits at azimuth 2πj/Z + cage angle. Advance it at the cage speed
-    /// ([`ForceElement::cage_speed`]) for the varying-compliance excitation at Z·f_cage; hold it
-    /// fixed for a time-invariant bearing.
+    /// Cage angle, rad: ball j sits at azimuth 2πj/Z + cage angle. Advance it at the operating
+    /// cage speed ([`ElementOutput::cage_speed`], [`ForceElement::cage_speed_at`]) for the
+    /// varying-compliance excitation at Z·f_cage; hold it fixed for a time-invariant bearing.
     pub cage_angle: f64,
 }
 
@@ -84,6 +84,12 @@ pub struct ElementOutput {
     /// displacement no bearing survives (e.g. a 1 rad tilt gave a 26 MN contact load); the
     /// numbers are returned as computed, flagged here.
     pub overloaded: Vec<(usize, Race)>,
+    /// Per ball: orbital speed ω_m of the bearing model at this state (the textbook kinematics
+    /// at its operating contact angles by default), rad/s.
+    pub orbital_speeds: Vec<f64>,
+    /// The cage speed at this state, rad/s: the load-weighted mean of `orbital_speeds`
+    /// ([`crate::bearing::cage_speed_of`]); the plain mean when no ball is loaded.
+    pub cage_speed: f64,
 }
 
 /// Contact approach, as a fraction of the ball diameter, beyond which an element flags the
@@ -133,12 +139,28 @@ pub trait ForceElement: Send + Sync {
     /// The bearing (geometry and materials).
     fn bearing(&self) -> &Bearing;
 
-    /// Cage speed at ring speeds `inner_speed` and `outer_speed` (rad/s) under pure rolling at
-    /// the free contact angle, rad/s: ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)], γ = D·cos α0/d_m.
+    /// The no-load cage speed at ring speeds `inner_speed` and `outer_speed` (rad/s): pure
+    /// rolling at the free contact angle, ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)], γ = D·cos α0/d_m,
+    /// rad/s. A fallback for an unloaded bearing or a speed ratio before any evaluation: at an
+    /// operating point the balls orbit at the speeds of their operating contact angles
+    /// ([`ForceElement::cage_speed_at`]; 0.2–0.3 % faster for the seed 7006 at 5000 rpm, 11–12 %
+    /// for the 218 at 15000 rpm).
     fn cage_speed(&self, inner_speed: f64, outer_speed: f64) -> f64 {
         let g = &self.bearing().geometry;
         let gamma = g.ball_diameter * g.free_contact_angle.cos() / g.pitch_diameter;
         0.5 * (inner_speed * (1.0 - gamma) + outer_speed * (1.0 + gamma))
+    }
+
+    /// The cage speed at the operating state `input` (displacement, speeds, cage angle), rad/s:
+    /// the load-weighted mean of the bearing model's ball orbital speeds there
+    /// ([`ElementOutput::cage_speed`]), warm-started from and updating `state`. A rotor
+    /// integrator reads it from each evaluation's output instead.
+    fn cage_speed_at(
+        &self,
+        input: &ElementInput,
+        state: &mut ElementState,
+    ) -> Result<f64, crate::Error> {
+        Ok(self.evaluate(input, state)?.cage_speed)
     }
 
     /// The reactions at `input` alone (a convenience over [`ForceElement::evaluate`] with a cold
@@ -209,8 +231,11 @@ pub struct LawElement {
     laws: ContactLaws,
     race_control: RaceControl,
     kinematics: Kinematics,
-    /// The fitted laws per ball [inner, outer], for the range flags (None for dry laws).
+    /// The fitted laws per ball [inner, outer], for the range flags (None for dry laws and laws
+    /// by load).
     fitted: Option<Vec<[FittedLaw; 2]>>,
+    /// Laws by load [inner, outer], shared by every ball (None for laws per contact).
+    by_load: Option<[Arc<LoadInterpolatedLaw>; 2]>,
 }
 
 impl LawElement {
@@ -223,6 +248,7 @@ impl LawElement {
             race_control,
             kinematics: Kinematics::default(),
             fitted: None,
+            by_load: None,
         })
     }
 
@@ -306,7 +332,94 @@ impl LawElement {
             race_control,
             kinematics: Kinematics::default(),
             fitted: Some(pairs),
+            by_load: None,
         })
+    }
+
+    /// Laws by load from a characterization of `case`: every ball, at any cage angle, takes the
+    /// law of the load it carries, interpolated over the characterization's per-contact laws of
+    /// its raceway ([`LoadInterpolatedLaw`], knots at each contact's characterization load). The
+    /// balls are then alike, so a rolling cage excites Z·f_cage and its harmonics only, where the
+    /// per-contact laws of [`LawElement::from_characterization`] (each fixed to its position in the
+    /// case) turn with the cage and excite f_cage. Valid at the characterization's speed.
+    pub fn by_load_from_characterization(
+        case: &Case,
+        c: &BearingCharacterization,
+    ) -> Result<Self, crate::Error> {
+        let mut pts: [Vec<(f64, FittedLaw)>; 2] = [Vec::new(), Vec::new()];
+        for r in &c.contacts {
+            pts[r.race as usize].push((r.characterized.load, r.characterized.law));
+        }
+        Ok(
+            Self::by_load(&case.bearing, case.operating.race_control, &pts[0], &pts[1])?
+                .with_kinematics(case.settings.kinematics),
+        )
+    }
+
+    /// Laws by load from a characterization report (each row's law at its
+    /// `characterized_load_n`), as [`LawElement::by_load_from_characterization`].
+    pub fn by_load_from_report(
+        bearing: &Bearing,
+        race_control: RaceControl,
+        report: &CharacterizationReport,
+    ) -> Result<Self, crate::Error> {
+        let mut pts: [Vec<(f64, FittedLaw)>; 2] = [Vec::new(), Vec::new()];
+        for row in &report.contacts {
+            let k = match row.race.as_str() {
+                "inner" => 0,
+                "outer" => 1,
+                other => {
+                    return Err(BearingError::Invalid(format!(
+                        "contact row of ball {}: race = {other:?}; expected \"inner\" or \"outer\"",
+                        row.ball
+                    ))
+                    .into())
+                }
+            };
+            let mut law = FittedLaw::new(
+                row.k,
+                row.d,
+                row.delta_f_n,
+                row.fit_approach_min_m,
+                row.fit_approach_max_m,
+            )?;
+            if let Some(c) = row.damping_n_s_m {
+                law = law.with_damping(c)?;
+            }
+            pts[k].push((row.characterized_load_n, law));
+        }
+        Self::by_load(bearing, race_control, &pts[0], &pts[1])
+    }
+
+    /// Laws by load from `(characterization load w in N, fitted law)` pairs of the inner and the
+    /// outer raceway ([`LoadInterpolatedLaw::new`]); every ball on a raceway shares its law.
+    pub fn by_load(
+        bearing: &Bearing,
+        race_control: RaceControl,
+        inner: &[(f64, FittedLaw)],
+        outer: &[(f64, FittedLaw)],
+    ) -> Result<Self, crate::Error> {
+        bearing.validate()?;
+        let z = bearing.geometry.ball_count;
+        let li = Arc::new(LoadInterpolatedLaw::new(inner)?);
+        let lo = Arc::new(LoadInterpolatedLaw::new(outer)?);
+        let (ai, ao): (Arc<dyn ContactLaw>, Arc<dyn ContactLaw>) = (li.clone(), lo.clone());
+        Ok(LawElement {
+            bearing: *bearing,
+            laws: ContactLaws {
+                inner: vec![ai; z],
+                outer: vec![ao; z],
+            },
+            race_control,
+            kinematics: Kinematics::default(),
+            fitted: None,
+            by_load: Some([li, lo]),
+        })
+    }
+
+    /// The laws by load [inner, outer], if the element was built by load.
+    pub fn laws_by_load(&self) -> Option<[&LoadInterpolatedLaw; 2]> {
+        self.by_load.as_ref().map(|[i, o]| [i.as_ref(), o.as_ref()])
     }
 
     /// Whether the laws carry damping terms.
@@ -314,6 +427,10 @@ impl LawElement {
         self.fitted
             .as_ref()
             .is_some_and(|f| f.iter().flatten().any(|l| l.c().is_some()))
+            || self.by_load.as_ref().is_some_and(|b| {
+                b.iter()
+                    .any(|l| l.damping.iter().any(|c| *c != 0.0) || l.low.c().is_some())
+            })
     }
 }
 
@@ -341,7 +458,17 @@ impl ForceElement for LawElement {
                 }
             }
         }
+        if let Some(by_load) = &self.by_load {
+            for (j, delta) in f.approaches.iter().enumerate() {
+                for (k, race) in [Race::Inner, Race::Outer].into_iter().enumerate() {
+                    if f.loads[j][k] > 0.0 && by_load[k].outside_range(delta[k]) {
+                        outside_range.push((j, race));
+                    }
+                }
+            }
+        }
         state.loads.clone_from(&f.loads);
+        let cage_speed = cage_speed_of(&f.orbital_speeds, &f.loads);
         Ok(ElementOutput {
             reaction: f.reaction,
             stiffness: f.stiffness,
@@ -351,6 +478,8 @@ impl ForceElement for LawElement {
             approaches: f.approaches,
             outside_range,
             speed_outside: false,
+            cage_speed,
+            orbital_speeds: f.orbital_speeds,
         })
     }
 
@@ -770,6 +899,7 @@ impl TrendForceElement {
             !(n >= lo * (1.0 - 1e-12) && n <= hi * (1.0 + 1e-12))
         });
         state.loads.clone_from(&f.loads);
+        let cage_speed = cage_speed_of(&f.orbital_speeds, &f.loads);
         Ok((
             ElementOutput {
                 reaction: f.reaction,
@@ -780,6 +910,8 @@ impl TrendForceElement {
                 approaches: f.approaches,
                 outside_range,
                 speed_outside,
+                cage_speed,
+                orbital_speeds: f.orbital_speeds,
             },
             residual,
         ))
@@ -801,5 +933,303 @@ impl ForceElement for TrendForceElement {
 
     fn bearing(&self) -> &Bearing {
         &self.bearing
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Laws by load: each ball takes the characterized law of the load it carries
+// ---------------------------------------------------------------------------------------------
+
+/// The contact law of one raceway in which every contact takes, wherever it is, the law of the
+/// load it carries, interpolated over a characterization's per-contact laws (one speed).
+///
+/// A characterization fits one law Q = K·δ^d + ΔF (+ c·δ̇) per contact at the load w_k that
+/// contact carries in the case. Each law gives a knot (w_k, δ_k = law_k⁻¹(w_k)) with the law's
+/// own compliance dδ/dQ = 1/law_k′(δ_k) there. Where the knots' approaches do not grow with the
+/// load (contacts at other contact angles or speeds carry nearly the same load at a different
+/// approach: the 218 at 15000 rpm under combined load), adjacent knots are pooled into their mean
+/// load, approach, damping and compliance until they do (pool-adjacent-violators, the isotonic
+/// regression of δ over Q; [`LoadInterpolatedLaw::pooled_knots`] counts the knots merged).
+/// Between the knots the approach is the monotone cubic Hermite interpolant δ(Q) through the
+/// knots with these slopes (Fritsch–Carlson limited if a pair of slopes would let it turn back;
+/// [`LoadInterpolatedLaw::limited_knots`]), and a contact at approach δ carries the load Q(δ) that
+/// solves δ(Q) = δ, with dQ/dδ = 1/δ′(Q): at each unpooled knot the force and stiffness of that
+/// contact's own fitted law, in between a smooth blend. Below the lowest knot the lowest-load law
+/// applies as fitted (with its extension towards separation), above the highest the highest-load
+/// law, each shifted in approach to pass through its end knot if that knot was pooled: the force
+/// is continuous there and so is its slope unless that end knot was limited. The damping
+/// coefficient c is interpolated linearly in the load between the knots (the end laws' own c,
+/// fading below their fitted range, outside).
+#[derive(Debug, Clone)]
+pub struct LoadInterpolatedLaw {
+    loads: Vec<f64>,
+    approaches: Vec<f64>,
+    slopes: Vec<f64>,
+    damping: Vec<f64>,
+    low: FittedLaw,
+    high: FittedLaw,
+    /// Approach offsets of the end laws: the law below the first knot is low(δ − shift[0]).
+    shift: [f64; 2],
+    limited: usize,
+    pooled: usize,
+}
+
+/// A knot of [`LoadInterpolatedLaw`] while pooling: sums over its members.
+struct Pool {
+    n: f64,
+    load: f64,
+    approach: f64,
+    damping: f64,
+    members: Vec<FittedLaw>,
+}
+
+impl LoadInterpolatedLaw {
+    /// The law from `(characterization load w in N, fitted law)` pairs of one raceway. Loads
+    /// that are not finite and positive are skipped (a floored or unloaded contact adds nothing);
+    /// of knots closer than 1e-9 relative in load the first is kept (mirror-image contacts).
+    /// Errors when no knot is left or when a law does not reach its own load or has no positive
+    /// stiffness there (naming the load).
+    pub fn new(points: &[(f64, FittedLaw)]) -> Result<Self, crate::Error> {
+        let mut pts: Vec<(f64, FittedLaw)> = points
+            .iter()
+            .copied()
+            .filter(|(w, _)| w.is_finite() && *w > 0.0)
+            .collect();
+        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+        pts.dedup_by(|b, a| b.0 - a.0 <= 1e-9 * b.0);
+        let (Some(&(_, low)), Some(&(_, high))) = (pts.first(), pts.last()) else {
+            return Err(BearingError::Invalid(
+                "laws by load: no contact with a finite, positive characterization load".into(),
+            )
+            .into());
+        };
+        // Compliance dδ/dQ of `law` at load `w`, and its approach there.
+        let compliance = |law: &FittedLaw, w: f64| -> Result<(f64, f64), crate::Error> {
+            let delta = law.approach_at(w).ok_or_else(|| {
+                BearingError::Invalid(format!(
+                    "laws by load: a law does not reach the load w = {w} N"
+                ))
+            })?;
+            let stiffness = law.force(delta).1;
+            if !(stiffness.is_finite() && stiffness > 0.0) {
+                return Err(BearingError::Invalid(format!(
+                    "laws by load: dQ/dδ = {stiffness} N/m at w = {w} N; expected a finite, positive contact stiffness"
+                ))
+                .into());
+            }
+            Ok((delta, 1.0 / stiffness))
+        };
+        // Pool adjacent violators until the approaches grow with the load.
+        let mut pools: Vec<Pool> = Vec::with_capacity(pts.len());
+        for (w, law) in &pts {
+            let (delta, _) = compliance(law, *w)?;
+            pools.push(Pool {
+                n: 1.0,
+                load: *w,
+                approach: delta,
+                damping: law.c().unwrap_or(0.0),
+                members: vec![*law],
+            });
+            while pools.len() >= 2 {
+                let m = pools.len();
+                let (a, b) = (&pools[m - 2], &pools[m - 1]);
+                if b.approach / b.n > a.approach / a.n {
+                    break;
+                }
+                let b = pools.pop().expect("two pools");
+                let a = pools.last_mut().expect("two pools");
+                a.n += b.n;
+                a.load += b.load;
+                a.approach += b.approach;
+                a.damping += b.damping;
+                a.members.extend(b.members);
+            }
+        }
+        let pooled = pts.len() - pools.len();
+        let mut loads = Vec::with_capacity(pools.len());
+        let mut approaches = Vec::with_capacity(pools.len());
+        let mut slopes = Vec::with_capacity(pools.len());
+        let mut damping = Vec::with_capacity(pools.len());
+        for p in &pools {
+            let w = p.load / p.n;
+            let mut slope = 0.0;
+            for law in &p.members {
+                slope += compliance(law, w)?.1;
+            }
+            loads.push(w);
+            approaches.push(p.approach / p.n);
+            slopes.push(slope / p.members.len() as f64);
+            damping.push(p.damping / p.n);
+        }
+        // The end laws pass through the end knots with their own slopes there.
+        let last = loads.len() - 1;
+        let (d_low, s_low) = compliance(&low, loads[0])?;
+        let (d_high, s_high) = compliance(&high, loads[last])?;
+        let shift = [approaches[0] - d_low, approaches[last] - d_high];
+        slopes[0] = s_low;
+        slopes[last] = s_high;
+        // Fritsch–Carlson: a cubic Hermite piece is monotone if (m_k/Δ)² + (m_k+1/Δ)² ≤ 9.
+        let mut limited = vec![false; loads.len()];
+        for k in 0..last {
+            let secant = (approaches[k + 1] - approaches[k]) / (loads[k + 1] - loads[k]);
+            let (a, b) = (slopes[k] / secant, slopes[k + 1] / secant);
+            let r2 = a * a + b * b;
+            if r2 > 9.0 {
+                let tau = 3.0 / r2.sqrt();
+                slopes[k] = tau * a * secant;
+                slopes[k + 1] = tau * b * secant;
+                limited[k] = true;
+                limited[k + 1] = true;
+            }
+        }
+        Ok(LoadInterpolatedLaw {
+            loads,
+            approaches,
+            slopes,
+            damping,
+            low,
+            high,
+            shift,
+            limited: limited.iter().filter(|l| **l).count(),
+            pooled,
+        })
+    }
+
+    /// Knots merged into their neighbours because their approaches did not grow with the load
+    /// (0: every knot is its own contact's law).
+    pub fn pooled_knots(&self) -> usize {
+        self.pooled
+    }
+
+    /// The knots' load range [w_min, w_max], N.
+    pub fn load_range(&self) -> [f64; 2] {
+        [self.loads[0], self.loads[self.loads.len() - 1]]
+    }
+
+    /// Number of knots.
+    pub fn knots(&self) -> usize {
+        self.loads.len()
+    }
+
+    /// Knots whose slope the monotonicity limit changed (0: every knot has its own law's
+    /// stiffness).
+    pub fn limited_knots(&self) -> usize {
+        self.limited
+    }
+
+    /// Whether a contact at approach `approach` (m) lies outside the fitted range of the law that
+    /// applies there: below the lowest or above the highest knot, that end law's fitted range
+    /// (between the knots, inside).
+    pub fn outside_range(&self, approach: f64) -> bool {
+        if approach < self.approaches[0] {
+            self.low.outside_fit_range(approach - self.shift[0])
+        } else if approach > self.approaches[self.approaches.len() - 1] {
+            self.high.outside_fit_range(approach - self.shift[1])
+        } else {
+            approach.is_nan()
+        }
+    }
+
+    /// The Hermite piece k at load q: (δ, dδ/dQ).
+    fn piece(&self, k: usize, q: f64) -> (f64, f64) {
+        let h = self.loads[k + 1] - self.loads[k];
+        let t = (q - self.loads[k]) / h;
+        let (t2, t3) = (t * t, t * t * t);
+        let (y0, y1) = (self.approaches[k], self.approaches[k + 1]);
+        let (m0, m1) = (self.slopes[k] * h, self.slopes[k + 1] * h);
+        let v = (2.0 * t3 - 3.0 * t2 + 1.0) * y0
+            + (t3 - 2.0 * t2 + t) * m0
+            + (-2.0 * t3 + 3.0 * t2) * y1
+            + (t3 - t2) * m1;
+        let dv = (6.0 * t2 - 6.0 * t) * y0
+            + (3.0 * t2 - 4.0 * t + 1.0) * m0
+            + (-6.0 * t2 + 6.0 * t) * y1
+            + (3.0 * t2 - 2.0 * t) * m1;
+        (v, dv / h)
+    }
+
+    /// Load and dQ/dδ at an approach strictly between the first and the last knot: the root of
+    /// the monotone piece by Newton safeguarded with bisection (to 1e-14 of the piece's load
+    /// span).
+    fn load_between(&self, approach: f64) -> (f64, f64) {
+        let k = self
+            .approaches
+            .partition_point(|d| *d <= approach)
+            .clamp(1, self.approaches.len() - 1)
+            - 1;
+        let (mut a, mut b) = (self.loads[k], self.loads[k + 1]);
+        let span = b - a;
+        let (d0, d1) = (self.approaches[k], self.approaches[k + 1]);
+        let mut q = a + span * (approach - d0) / (d1 - d0);
+        let mut slope = 0.0;
+        for _ in 0..100 {
+            let (v, dv) = self.piece(k, q);
+            slope = dv;
+            let f = v - approach;
+            if f > 0.0 {
+                b = q;
+            } else {
+                a = q;
+            }
+            if f == 0.0 || b - a <= 1e-14 * span {
+                break;
+            }
+            let newton = q - f / dv;
+            let next = if dv > 0.0 && newton > a && newton < b {
+                newton
+            } else {
+                0.5 * (a + b)
+            };
+            if (next - q).abs() <= 1e-14 * span {
+                q = next;
+                slope = self.piece(k, q).1;
+                break;
+            }
+            q = next;
+        }
+        let dq = if slope > 0.0 { 1.0 / slope } else { 0.0 };
+        (q, dq)
+    }
+}
+
+impl ContactLaw for LoadInterpolatedLaw {
+    fn force(&self, approach: f64) -> (f64, f64) {
+        let n = self.approaches.len();
+        if n == 1 || approach <= self.approaches[0] {
+            self.low.force(approach - self.shift[0])
+        } else if approach >= self.approaches[n - 1] {
+            self.high.force(approach - self.shift[1])
+        } else {
+            self.load_between(approach)
+        }
+    }
+
+    fn approach_at(&self, load: f64) -> Option<f64> {
+        if !(load.is_finite() && load > 0.0) {
+            return None;
+        }
+        let n = self.loads.len();
+        if n == 1 || load <= self.loads[0] {
+            self.low.approach_at(load).map(|d| d + self.shift[0])
+        } else if load >= self.loads[n - 1] {
+            self.high.approach_at(load).map(|d| d + self.shift[1])
+        } else {
+            let k = self.loads.partition_point(|w| *w <= load).clamp(1, n - 1) - 1;
+            Some(self.piece(k, load).0)
+        }
+    }
+
+    fn damping(&self, approach: f64) -> f64 {
+        let n = self.approaches.len();
+        if n == 1 || approach <= self.approaches[0] {
+            self.low.damping(approach - self.shift[0])
+        } else if approach >= self.approaches[n - 1] {
+            self.high.damping(approach - self.shift[1])
+        } else {
+            let q = self.load_between(approach).0;
+            let k = self.loads.partition_point(|w| *w <= q).clamp(1, n - 1) - 1;
+            let t = ((q - self.loads[k]) / (self.loads[k + 1] - self.loads[k])).clamp(0.0, 1.0);
+            self.damping[k] + t * (self.damping[k + 1] - self.damping[k])
+        }
     }
 }

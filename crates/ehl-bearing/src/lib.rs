@@ -43,7 +43,8 @@ pub mod prelude {
     };
     pub use crate::coefficients::SpeedCoefficients;
     pub use crate::force_element::{
-        ElementInput, ElementOutput, ElementState, ForceElement, LawElement, TrendForceElement,
+        ElementInput, ElementOutput, ElementState, ForceElement, LawElement, LoadInterpolatedLaw,
+        TrendForceElement,
     };
     pub use crate::io::{read_case, Case, FsStore};
     pub use crate::method::Method;

@@ -373,3 +373,137 @@ fn element_rejects_non_finite_inputs_naming_them() {
     input.cage_angle = 0.0;
     assert!(e.evaluate(&input, &mut state).is_ok());
 }
+
+/// Laws by load (`LoadInterpolatedLaw`): at every knot the force and stiffness of that
+/// contact's own law (to the inversion's 1e-12), monotone and C¹ everywhere (one-sided
+/// differences across knots and ends agree to 1e-4 of the stiffness, step 1e-12 m), the damping
+/// interpolated between the knots' c, the lowest and highest laws outside the knots. Knots whose
+/// approaches do not grow with the load are pooled. The element built from the
+/// Hertz-method characterization of the seed reproduces the characterization's equilibrium
+/// reactions within 1e-4 (the balls carry loads within 1e-4 of their characterization loads).
+#[test]
+fn laws_by_load_interpolate_the_characterized_laws_over_the_load() {
+    use ehl_bearing::contact_law::ContactLaw;
+    use ehl_bearing::force_element::LoadInterpolatedLaw;
+    // Knots: K·δ^d + ΔF with d and K drifting with the load, damping growing with it.
+    let pts: Vec<(f64, FittedLaw)> = (0..6)
+        .map(|k| {
+            let w = 50.0 * 1.6f64.powi(k);
+            let d = 1.3 + 0.03 * k as f64;
+            let df = 20.0 + 3.0 * k as f64;
+            let delta = 1e-6 * 1.4f64.powi(k);
+            let kk = (w - df) / delta.powf(d);
+            let law = FittedLaw::new(kk, d, df, 0.8 * delta, 1.2 * delta)
+                .unwrap()
+                .with_damping(100.0 + 10.0 * k as f64)
+                .unwrap();
+            (w, law)
+        })
+        .collect();
+    let l = LoadInterpolatedLaw::new(&pts).unwrap();
+    assert_eq!(l.knots(), 6);
+    assert_eq!(l.limited_knots(), 0);
+    for (w, law) in &pts {
+        let delta = law.approach_at(*w).unwrap();
+        let (q, dq) = l.force(delta);
+        let (q0, dq0) = law.force(delta);
+        assert!((q / q0 - 1.0).abs() < 1e-12, "{q} vs {q0}");
+        assert!((dq / dq0 - 1.0).abs() < 1e-6, "{dq} vs {dq0}");
+        assert!((l.approach_at(*w).unwrap() / delta - 1.0).abs() < 1e-12);
+        // C¹ across the knot.
+        let h = 1e-12;
+        let left = (l.force(delta).0 - l.force(delta - h).0) / h;
+        let right = (l.force(delta + h).0 - l.force(delta).0) / h;
+        assert!((left / right - 1.0).abs() < 1e-3, "{left} vs {right}");
+        assert!((l.damping(delta) - law.damping(delta)).abs() < 1e-9);
+    }
+    // Monotone in between, the returned slope the derivative, round trip with approach_at.
+    let (d0, d1) = (
+        pts[0].1.approach_at(pts[0].0).unwrap(),
+        pts[5].1.approach_at(pts[5].0).unwrap(),
+    );
+    let mut prev = 0.0;
+    for i in 0..=400 {
+        let delta = 0.5 * d0 + (1.5 * d1 - 0.5 * d0) * i as f64 / 400.0;
+        let (q, dq) = l.force(delta);
+        assert!(q > prev && dq > 0.0, "{delta}: {q}");
+        let h = 1e-13;
+        let fd = (l.force(delta + h).0 - l.force(delta - h).0) / (2.0 * h);
+        assert!((fd / dq - 1.0).abs() < 1e-4, "{delta}: {fd} vs {dq}");
+        assert!((l.approach_at(q).unwrap() / delta - 1.0).abs() < 1e-9);
+        let c = l.damping(delta);
+        assert!((100.0..=150.0).contains(&c) || delta < d0, "{c}");
+        prev = q;
+    }
+    // Outside the knots: the end laws as fitted.
+    assert_eq!(l.force(0.5 * d0), pts[0].1.force(0.5 * d0));
+    assert_eq!(l.force(1.5 * d1), pts[5].1.force(1.5 * d1));
+    // Knots out of order (knot 3 ten times stiffer: its approach at its load falls below knot
+    // 2's) are pooled with their neighbour into one knot at the mean load and approach; the law
+    // stays monotone, C¹ and through the other knots.
+    let mut bad = pts.clone();
+    let l3 = bad[3].1;
+    let [lo3, hi3] = l3.fit_range();
+    bad[3].1 = FittedLaw::new(10.0 * l3.k(), l3.d(), l3.delta_f(), 0.3 * lo3, 0.3 * hi3).unwrap();
+    let lb = LoadInterpolatedLaw::new(&bad).unwrap();
+    assert!(lb.pooled_knots() >= 1, "{}", lb.pooled_knots());
+    assert_eq!(lb.knots() + lb.pooled_knots(), 6);
+    let mut prev = 0.0;
+    for i in 0..=400 {
+        let delta = 0.5 * d0 + (1.5 * d1 - 0.5 * d0) * i as f64 / 400.0;
+        let (q, dq) = lb.force(delta);
+        assert!(q > prev && dq > 0.0, "pooled, {delta}: {q}");
+        prev = q;
+    }
+    for k in [0, 5] {
+        let (w, law) = bad[k];
+        let delta = law.approach_at(w).unwrap();
+        assert!((lb.force(delta).0 / w - 1.0).abs() < 1e-12);
+    }
+    assert!(LoadInterpolatedLaw::new(&[]).is_err());
+
+    // The element by load from a characterization (Hertz method: fast).
+    let case = seed();
+    let c = characterize_bearing(
+        &case,
+        &Method::Hertz(HertzCharacterizer::default()),
+        &CharacterizeSettings::default(),
+    )
+    .unwrap();
+    let e = LawElement::by_load_from_characterization(&case, &c).unwrap();
+    let input = ElementInput::at(
+        c.equilibrium.displacement,
+        case.operating.inner_speed,
+        case.operating.outer_speed,
+    );
+    let out = e.evaluate(&input, &mut ElementState::default()).unwrap();
+    for k in 0..3 {
+        let Control::Load(f) = case.operating.dofs[k] else {
+            panic!()
+        };
+        assert!(
+            (out.reaction[k] - f).abs() < 1e-4 * f,
+            "{k}: {}",
+            out.reaction[k]
+        );
+    }
+    // Every ball on a raceway shares one law: the reaction repeats every 2π/Z of cage angle.
+    let z = case.bearing.geometry.ball_count as f64;
+    let mut turned = input;
+    turned.cage_angle = 2.0 * PI / z;
+    let out2 = e.evaluate(&turned, &mut ElementState::default()).unwrap();
+    for k in 0..5 {
+        assert!((out2.reaction[k] - out.reaction[k]).abs() <= 1e-9 * out.reaction[0].abs());
+    }
+    // From the report: the same element.
+    let e2 = LawElement::by_load_from_report(
+        &case.bearing,
+        case.operating.race_control,
+        &c.report(false),
+    )
+    .unwrap();
+    let out3 = e2.evaluate(&input, &mut ElementState::default()).unwrap();
+    for k in 0..5 {
+        assert!((out3.reaction[k] - out.reaction[k]).abs() <= 1e-9 * out.reaction[0].abs());
+    }
+}

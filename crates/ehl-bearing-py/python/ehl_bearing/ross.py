@@ -692,10 +692,13 @@ def time_response(
     (rad/s, rad/s, s; then constant). ``coupling``: ``"implicit"`` (bearing forces at the new
     time, Newton on the bearing DOFs) or ``"lagged"`` (the previous step's forces, as ROSS's
     ``add_to_RHS``). ``cage_angle_rad``: None lets the cages roll (ball passes at Z·f_cage), a
-    number holds them — hold them with fitted laws (a ``LawElement`` from a characterization
-    keeps each ball's law, fitted at that ball's position in the case: a rolling cage would carry
-    the laws around and excite the cage frequency, an artifact); ball-pass studies with dry Hertz
-    or a ``TrendForceElement``. Starts from the static equilibrium at the initial speed, or
+    number holds them. Each rolling cage turns at its bearing's operating cage speed (the
+    load-weighted mean orbital speed of its balls; recorded as ``cage_speed_rad_s``). A
+    ``LawElement`` with laws per contact (``law_element()``) keeps each ball's law, fitted at that
+    ball's position in the case: a rolling cage would carry the laws around and excite the cage
+    frequency, an artifact — hold its cages, or build it by load (``law_element(by_load=True)``:
+    every ball takes the law of the load it carries), which rolls correctly, as do dry Hertz and
+    a ``TrendForceElement``. Starts from the static equilibrium at the initial speed, or
     from ``start_displacement`` and ``start_velocity`` ((ndof,), ROSS's global DOFs, SI; e.g.
     the static equilibrium plus a linear steady orbit). Constant loads: gravity
     (``gravity=True``) and ``extra_force_n`` (n,).

@@ -174,7 +174,30 @@ fn blend(alpha: D4, theta: D4, delta: D4, band: f64) -> D4 {
 /// traction limit).
 pub const MU_MAX: f64 = 0.1;
 
-/// Smooth saturation of a friction force `f` at `limit` ≥ 0: f/(1 + (|f|/limit)^8)^(1/8).
+/// Fraction of the friction limit μ_max·Q up to which the friction force the gyroscopic moment
+/// needs is transmitted in full ([`saturate`]).
+pub const FRICTION_FULL_CONTROL: f64 = 0.95;
+
+/// The friction limit's shape: G(r) for r = F^H/(μ_max·Q) ≥ 0 and its derivative dG/dr.
+/// G(r) = r up to r0 = [`FRICTION_FULL_CONTROL`] (full race control, exact), then
+/// G = 1 − (1 − r0)/(1 + t + t²), t = (r − r0)/(1 − r0): continuous with its first and second
+/// derivatives at r0 (G′ = 1, G″ = 0 on both sides), increasing, below 1 and tending to 1 (the
+/// limit μ_max·Q) as r grows. Public for the table of docs/bearing.md §2.5.
+pub fn friction_limit_shape(r: f64) -> (f64, f64) {
+    let r0 = FRICTION_FULL_CONTROL;
+    if r <= r0 {
+        return (r, 1.0);
+    }
+    let w = 1.0 - r0;
+    let t = (r - r0) / w;
+    let p = 1.0 + t + t * t;
+    (1.0 - w / p, (1.0 + 2.0 * t) / (p * p))
+}
+
+/// The friction force transmitted when `f` is needed at a contact with limit `limit` ≥ 0:
+/// F = μQ·G(|F^H|/μQ)·sign(F^H) with G of [`friction_limit_shape`]: exactly `f` while
+/// |f| ≤ [`FRICTION_FULL_CONTROL`]·limit (the textbook's full race control), a C² approach to
+/// ±limit above.
 fn saturate(f: D4, limit: D4) -> D4 {
     if f.v == 0.0 {
         return f;
@@ -182,12 +205,12 @@ fn saturate(f: D4, limit: D4) -> D4 {
     if limit.v <= 0.0 {
         return D4::cst(0.0);
     }
+    if f.v.abs() <= FRICTION_FULL_CONTROL * limit.v {
+        return f;
+    }
     let r = f / limit;
-    let r8 = r.v.powi(8);
-    // g(r) = (1 + r⁸)^(−1/8); f·g(f/limit)
-    let g = 1.0 / (1.0 + r8).powf(0.125);
-    let dg = -r.v.powi(7) * g / (1.0 + r8);
-    f * r.chain(g, dg)
+    let (g, dg) = friction_limit_shape(r.v.abs());
+    limit * r.chain(g.copysign(r.v), dg)
 }
 
 /// Convergence settings of the equilibrium solver.
@@ -313,6 +336,20 @@ pub struct Equilibrium {
     pub warnings: Vec<String>,
 }
 
+impl Equilibrium {
+    /// The cage speed at this equilibrium, rad/s: the load-weighted mean of the balls' orbital
+    /// speeds ([`cage_speed_of`]). The ball-pass frequency is Z times it over 2π.
+    pub fn cage_speed(&self) -> f64 {
+        let w: Vec<f64> = self.balls.iter().map(|b| b.orbital_speed).collect();
+        let q: Vec<[f64; 2]> = self
+            .balls
+            .iter()
+            .map(|b| [b.inner.load, b.outer.load])
+            .collect();
+        cage_speed_of(&w, &q)
+    }
+}
+
 /// Bearing reactions and their Jacobian at given ring displacements: the bearing as a force
 /// element for rotor simulations.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -381,6 +418,8 @@ struct BallSolution {
     delta: [f64; 2],
     /// d(δ_i, δ_o)/dA with the ball at its equilibrium (rows inner, outer).
     ddelta: [[f64; 2]; 2],
+    /// Orbital speed ω_m of the ball at its equilibrium, rad/s.
+    orbital_speed: f64,
 }
 
 /// Reactions, stiffness, damping and contact states of the bearing at a ring displacement and
@@ -397,6 +436,30 @@ pub struct DynamicForce {
     pub loads: Vec<[f64; 2]>,
     /// Per ball: [inner, outer] contact approaches, m.
     pub approaches: Vec<[f64; 2]>,
+    /// Per ball: orbital speed ω_m at its equilibrium (the textbook kinematics at its operating
+    /// contact angles, or the groove-line model's), rad/s.
+    pub orbital_speeds: Vec<f64>,
+}
+
+/// The speed of a cage that carries balls with orbital speeds `orbital_speeds` (rad/s) and
+/// contact loads `loads` ([inner, outer] per ball, N): the load-weighted mean
+/// Σ_j (Q_i,j + Q_o,j)·ω_m,j / Σ_j (Q_i,j + Q_o,j), rad/s. The loaded balls drive the cage, each
+/// in proportion to the traction it can carry, and a ball entering or leaving the load zone
+/// enters the mean continuously. With no load at all, the plain mean of the balls' orbital
+/// speeds; NaN for no balls. Under pure thrust (all balls alike) it is the balls' common ω_m.
+pub fn cage_speed_of(orbital_speeds: &[f64], loads: &[[f64; 2]]) -> f64 {
+    let mut weighted = 0.0;
+    let mut total = 0.0;
+    for (w, q) in orbital_speeds.iter().zip(loads) {
+        let l = q[0].max(0.0) + q[1].max(0.0);
+        weighted += l * w;
+        total += l;
+    }
+    if total > 0.0 {
+        weighted / total
+    } else {
+        orbital_speeds.iter().sum::<f64>() / orbital_speeds.len() as f64
+    }
 }
 
 /// Consecutive creeping Newton steps of a ball (textbook kinematics) that end an attempt so that
@@ -461,8 +524,8 @@ impl BearingModel {
     }
 
     /// Set the cage angle, rad: ball j sits at azimuth ψ_j = 2πj/Z + angle (from +y toward +z).
-    /// The balls move with the cage, so a rotor simulation advances it at the cage speed
-    /// ([`BearingModel::cage_speed`]); the stiffness of a radially loaded bearing then varies at
+    /// The balls move with the cage, so a rotor simulation advances it at the operating cage
+    /// speed ([`cage_speed_of`] the balls' orbital speeds); the stiffness of a radially loaded bearing then varies at
     /// Z times the cage frequency. Errors if not finite.
     pub fn set_cage_angle(&mut self, angle: f64) -> Result<(), BearingError> {
         if !angle.is_finite() {
@@ -503,8 +566,11 @@ impl BearingModel {
     }
 
     /// Cage (orbital) speed of an unloaded ball at the free contact angle under pure rolling,
-    /// rad/s: ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)], γ = D·cos α0/d_m (the kinematic estimate a
-    /// rotor model advances the cage angle with).
+    /// rad/s: ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)], γ = D·cos α0/d_m. A no-load estimate only:
+    /// at an operating point the balls orbit at the speeds of their operating contact angles
+    /// (11 % faster for the 218 at 15000 rpm); the cage speed there is
+    /// [`Equilibrium::cage_speed`] or the `orbital_speeds` of
+    /// [`BearingModel::evaluate_dynamic`] ([`cage_speed_of`]).
     pub fn cage_speed(&self) -> f64 {
         self.orbital_guess()
     }
@@ -638,7 +704,8 @@ impl BearingModel {
         // Friction forces that carry the gyroscopic moment: F_i = λ_i·G/D at the inner contact and
         // F_o = −λ_o·G/D at the outer (along τ̂ = (cos α, −sin α)), each limited smoothly to
         // μ_max·Q: where a contact cannot hold its share the ball pivots (Harris) and the moment is
-        // not fully resisted. The limit is inactive (< 1e-6 relative) wherever |F| < μ_max·Q/6.
+        // not fully resisted. The limit is inactive (F = F^H exactly) wherever |F^H| is at most
+        // FRICTION_FULL_CONTROL·μ_max·Q.
         let (lam_i, lam_o) = self.race_control.lambdas();
         let fi = saturate(gyro * (lam_i / d), qi * MU_MAX);
         let fo = saturate(gyro * (-lam_o / d), qo * MU_MAX);
@@ -752,6 +819,7 @@ impl BearingModel {
                     q: [0.0; 2],
                     delta: [tm.di, tm.dout],
                     ddelta: [[0.0; 2]; 2],
+                    orbital_speed: tm.om_m,
                 });
             }
             x = xm;
@@ -854,6 +922,7 @@ impl BearingModel {
             q: [t.qi, t.qo],
             delta: [t.di, t.dout],
             ddelta,
+            orbital_speed: t.om_m,
         })
     }
 
@@ -1073,6 +1142,7 @@ impl BearingModel {
             damping: [[0.0; 5]; 5],
             loads: Vec::with_capacity(z),
             approaches: Vec::with_capacity(z),
+            orbital_speeds: Vec::with_capacity(z),
         };
         for j in 0..z {
             let a = self.groove_offsets(j, q);
@@ -1111,6 +1181,7 @@ impl BearingModel {
             }
             out.loads.push(sol.q);
             out.approaches.push(sol.delta);
+            out.orbital_speeds.push(sol.orbital_speed);
         }
         Ok(out)
     }
@@ -1451,19 +1522,28 @@ fn kinematic_angle_warning(balls: &[BallState], out: &mut Vec<String>) {
     }
 }
 
-/// Gyroscopic friction near its limit μ_max·Q (the ball pivots).
+/// Gyroscopic friction near its limit μ_max·Q: a warning from 80 % of the limit needed, saying
+/// whether the contact still transmits it in full (up to [`FRICTION_FULL_CONTROL`]) or the
+/// moment is partly unresisted (the ball pivots).
 fn friction_warnings(balls: &[BallState], out: &mut Vec<String>) {
     for (j, b) in balls.iter().enumerate() {
-        for (race, f, q) in [
-            ("inner", b.inner_friction, b.inner.load),
-            ("outer", b.outer_friction, b.outer.load),
+        for (race, f, c) in [
+            ("inner", b.inner_friction, &b.inner),
+            ("outer", b.outer_friction, &b.outer),
         ] {
-            if q > 0.0 && f.abs() > 0.8 * MU_MAX * q {
+            let limit = MU_MAX * c.load;
+            if c.load > 0.0 && c.friction_needed > 0.8 * limit {
+                let consequence = if c.friction_needed > FRICTION_FULL_CONTROL * limit {
+                    "the moment is partly unresisted (the ball pivots)"
+                } else {
+                    "still transmitted in full (race control holds)"
+                };
                 out.push(format!(
-                    "ball {j}: the gyroscopic friction at the {race} contact, {:.3} N, is at {:.0} % of its limit μ_max·Q = {:.3} N: the moment is partly unresisted (the ball pivots)",
+                    "ball {j}: the gyroscopic friction needed at the {race} contact, {:.3} N, is {:.0} % of its limit μ_max·Q = {:.3} N (transmitted {:.3} N): {consequence}",
+                    c.friction_needed,
+                    100.0 * c.friction_needed / limit,
+                    limit,
                     f.abs(),
-                    100.0 * f.abs() / (MU_MAX * q),
-                    MU_MAX * q
                 ));
             }
         }

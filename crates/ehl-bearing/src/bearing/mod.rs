@@ -8,9 +8,9 @@ pub mod hertz_law;
 mod linalg;
 
 pub use equilibrium::{
-    solve_equilibrium, BallState, BearingModel, ContactLaws, ContactState, Control, DynamicForce,
-    Equilibrium, EquilibriumSettings, ForceResult, Kinematics, OperatingPoint, RaceControl,
-    DOF_NAMES,
+    cage_speed_of, solve_equilibrium, BallState, BearingModel, ContactLaws, ContactState, Control,
+    DynamicForce, Equilibrium, EquilibriumSettings, ForceResult, Kinematics, OperatingPoint,
+    RaceControl, DOF_NAMES,
 };
 pub use geometry::{Bearing, BearingGeometry, Race};
 pub use hertz_law::OperatingAngleHertzLaw;

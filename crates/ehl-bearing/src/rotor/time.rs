@@ -113,8 +113,9 @@ pub enum Coupling {
 /// How the cages move.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum CageMotion {
-    /// Each cage turns at its bearing's cage speed (ω_c = cage ratio · Ω): the balls pass the
-    /// load zone at Z·f_cage (varying compliance).
+    /// Each cage turns at its bearing's operating cage speed (the load-weighted mean orbital
+    /// speed of its balls in the bearing model, updated every step): the balls pass the load
+    /// zone at Z·f_cage (varying compliance).
     #[default]
     Rolling,
     /// Every cage held at this angle, rad: a time-invariant bearing.
@@ -298,6 +299,9 @@ pub struct TimeResponse {
     pub displacement: Vec<Vec<f64>>,
     /// Per recorded time, per bearing: cage angle, rad.
     pub cage_angle_rad: Vec<Vec<f64>>,
+    /// Per recorded time, per bearing: the bearing's operating cage speed at that state (the
+    /// load-weighted mean orbital speed of its balls, whether or not the cage rolls), rad/s.
+    pub cage_speed_rad_s: Vec<Vec<f64>>,
     /// Per recorded time, per bearing: bearing displacement (x, y, z, θy, θz), m and rad.
     pub bearing_displacement: Vec<Vec<[f64; 5]>>,
     /// Per recorded time, per bearing: reaction (load on the inner ring), N and N·m.
@@ -407,14 +411,42 @@ impl RotorModel {
         let c5 = h * (1.0 - GAMMA / (2.0 * BETA));
         let dofs = BearingDofs::of(self);
         let nb = self.bearings.len();
-        let cage_ratio: Vec<f64> = self
+        // Cage angles: each rolling cage turns at its bearing's operating cage speed, the
+        // load-weighted mean orbital speed of its balls from the bearing model
+        // (`ElementOutput::cage_speed`), taken from the last converged evaluation as a ratio to the
+        // shaft speed and applied to the exact shaft rotation of the step:
+        // θ(t + h) = θ(t) + (ω_c/Ω)(t)·(φ(t + h) − φ(t)). It follows the operating point (loads,
+        // run-ups) with a lag of one step; at constant speed and load it is the equilibrium's
+        // cage speed to within its ripple over a ball pass. Before any evaluation, or at Ω = 0,
+        // the no-load ratio at the free contact angle (`ForceElement::cage_speed`).
+        let free_ratio: Vec<f64> = self
             .bearings
             .iter()
             .map(|s| s.element.cage_speed(1.0, 0.0))
             .collect();
-        let cage_angles = |t: f64| -> Vec<f64> {
+        let cage_ratios = |outs: &[ElementOutput], speed: f64| -> Vec<f64> {
+            outs.iter()
+                .zip(&free_ratio)
+                .map(|(o, &free)| {
+                    let r = o.cage_speed / speed;
+                    if speed != 0.0 && r.is_finite() {
+                        r
+                    } else {
+                        free
+                    }
+                })
+                .collect()
+        };
+        let advance = |angles: &[f64], ratios: &[f64], t0: f64, t1: f64| -> Vec<f64> {
             match options.cage {
-                CageMotion::Rolling => cage_ratio.iter().map(|r| r * profile.angle(t)).collect(),
+                CageMotion::Rolling => {
+                    let dphi = profile.angle(t1) - profile.angle(t0);
+                    angles
+                        .iter()
+                        .zip(ratios)
+                        .map(|(a, r)| a + r * dphi)
+                        .collect()
+                }
                 CageMotion::Fixed { angle_rad } => vec![angle_rad; nb],
             }
         };
@@ -436,7 +468,10 @@ impl RotorModel {
                 DVector::from_column_slice(velocity),
             ),
         };
-        let mut angles = cage_angles(0.0);
+        let mut angles = match options.cage {
+            CageMotion::Rolling => vec![0.0; nb],
+            CageMotion::Fixed { angle_rad } => vec![angle_rad; nb],
+        };
         let mut outs = self.evaluate_all(&q, &v, speed0, &angles, &mut states, 0.0)?;
         let force0 = self.external_force(profile, 0.0);
         let mut rhs =
@@ -475,6 +510,9 @@ impl RotorModel {
                 .push(record_dofs.iter().map(|&i| q[i]).collect());
             response.cage_angle_rad.push(angles.to_vec());
             response
+                .cage_speed_rad_s
+                .push(outs.iter().map(|o| o.cage_speed).collect());
+            response
                 .bearing_displacement
                 .push(self.bearings.iter().map(|s| s.displacement(q)).collect());
             response
@@ -494,7 +532,13 @@ impl RotorModel {
                 breakdown.factorization_s += t0.elapsed().as_secs_f64();
             }
             let cond = condensed.as_ref().expect("condensed just set");
-            angles = cage_angles(t);
+            let t_prev = (step - 1) as f64 * h;
+            angles = advance(
+                &angles,
+                &cage_ratios(&outs, profile.speed(t_prev)),
+                t_prev,
+                t,
+            );
             // q1 = u0 − W·R, a1 = c0·q1 + e_a, v1 = c1·q1 + e_v.
             let e_a = -(&q * c0) - &v * c2 - &a * c3;
             let e_v = -(&q * c1) + &v * c4 + &a * c5;
