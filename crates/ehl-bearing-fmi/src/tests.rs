@@ -57,7 +57,12 @@ impl Fmu {
     fn try_new(dir: &Path, guid: &str, fmu_type: c_int) -> Result<Fmu, Vec<(Status, String)>> {
         let log: Box<Log> = Box::default();
         // SAFETY: a non-variadic logger called without variadic arguments (as FMPy's is).
-        let l: Logger = unsafe { std::mem::transmute(logger as extern "C" fn(_, _, _, _, _)) };
+        let l = unsafe {
+            std::mem::transmute::<
+                extern "C" fn(*mut c_void, *const c_char, Status, *const c_char, *const c_char),
+                Logger,
+            >(logger)
+        };
         let functions = Box::new(CallbackFunctions {
             logger: Some(l),
             allocate_memory: None,
