@@ -36,7 +36,7 @@ def simulate(fmu, inputs_csv, helper, out_dir, tol, cold):
     from fmpy import extract
 
     # The reference reads the very files inside the FMU.
-    resources = extract(fmu) + "/resources"
+    resources = str(extract(fmu)) + "/resources"
 
     md = read_model_description(fmu)
     inputs = [v.name for v in md.modelVariables if v.causality == "input"]

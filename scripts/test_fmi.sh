@@ -64,6 +64,6 @@ done
 stage "per-call cost"
 "$venv/bin/python" scripts/fmi_check.py time "$out/7006_fitted.fmu" "$out/inputs.csv" 20000
 mkdir -p "$out/fitted_resources"
-(cd "$out/fitted_resources" && "$venv/bin/python" -m zipfile -e ../7006_fitted.fmu .)
+"$venv/bin/python" -m zipfile -e "$out/7006_fitted.fmu" "$out/fitted_resources"
 echo "  through the C functions (Rust caller, in-process): $("$helper" bench "$out/fitted_resources/resources" 20000)"
 stage "all FMU checks passed"
