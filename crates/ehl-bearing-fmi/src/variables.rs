@@ -239,7 +239,7 @@ fn build() -> Vec<Variable> {
             ),
         ));
     }
-    for i in 0..5 {
+    for (i, row) in ROWS.iter().enumerate() {
         for j in 0..5 {
             let (suffix, unit) = match (i < 3, j < 3) {
                 (true, true) => ("N_m", "N/m"),
@@ -248,18 +248,15 @@ fn build() -> Vec<Variable> {
                 (false, false) => ("Nm_rad", "N.m/rad"),
             };
             v.push(real(
-                &format!("K_{}_{}_{suffix}", ROWS[i], COLS[j]),
+                &format!("K_{row}_{}_{suffix}", COLS[j]),
                 VR_K + (5 * i + j) as u32,
                 Output,
                 unit,
-                &format!(
-                    "Stiffness d{}/d{} ({unit}; not symmetrized)",
-                    ROWS[i], Q_NAMES[j]
-                ),
+                &format!("Stiffness d{row}/d{} ({unit}; not symmetrized)", Q_NAMES[j]),
             ));
         }
     }
-    for i in 0..5 {
+    for (i, row) in ROWS.iter().enumerate() {
         for j in 0..5 {
             let (suffix, unit) = match (i < 3, j < 3) {
                 (true, true) => ("Ns_m", "N.s/m"),
@@ -268,13 +265,13 @@ fn build() -> Vec<Variable> {
                 (false, false) => ("Nms_rad", "N.m.s/rad"),
             };
             v.push(real(
-                &format!("C_{}_{}_{suffix}", ROWS[i], COLS[j]),
+                &format!("C_{row}_{}_{suffix}", COLS[j]),
                 VR_C + (5 * i + j) as u32,
                 Output,
                 unit,
                 &format!(
-                    "Damping d{}/d{} ({unit}; zero for laws without damping terms)",
-                    ROWS[i], V_NAMES[j]
+                    "Damping d{row}/d{} ({unit}; zero for laws without damping terms)",
+                    V_NAMES[j]
                 ),
             ));
         }
