@@ -2,7 +2,7 @@
 //!
 //! The shared library (`crate-type = "cdylib"`) exports the FMI 2.0 C functions of model exchange
 //! under their plain names (`fmi2Instantiate`, `fmi2SetReal`, …); `scripts/build_fmu.sh` zips it
-//! with `modelDescription.xml` (written from [`variables`]) and the case and characterization or
+//! with `modelDescription.xml` (written from [`mod@variables`]) and the case and characterization or
 //! trend files in `resources/` into an `.fmu`. The unit has no states and no event indicators:
 //! its outputs (reactions, K, C, cage speed, contact-load maxima and flags) are algebraic in its
 //! inputs (ring displacements and rates, ring speeds, cage angle) — direct feedthrough — and are
