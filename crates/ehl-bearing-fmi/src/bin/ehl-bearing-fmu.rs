@@ -9,7 +9,8 @@
 //!   resource files with the library's own calls (not through the FMU's code).
 //! - `ehl-bearing-fmu bench RESOURCES_DIR [CALLS]`: time per call through the C functions
 //!   (fmi2SetReal of the 13 inputs, fmi2GetReal of reactions, K and C) next to the library's
-//!   `ForceElement::evaluate` on the same inputs, both warm.
+//!   `ForceElement::evaluate` on the same inputs, both warm; CPU time of the thread (robust to
+//!   other load) and wall time (best and median of 5 rounds).
 
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws};
 use ehl_bearing::characterize::CharacterizationReport;
@@ -188,6 +189,15 @@ fn reference(dir: &str, input: &str, out: &str) -> Res<()> {
     std::fs::write(out, csv).map_err(|e| format!("{out}: {e}"))
 }
 
+/// CPU time of this thread, s (Linux: /proc/thread-self/schedstat; NaN elsewhere): unlike wall
+/// time, not inflated by other load on a shared machine.
+fn cpu_seconds() -> f64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map_or(f64::NAN, |ns| ns * 1e-9)
+}
+
 fn bench(dir: &str, calls: Option<&String>) -> Res<()> {
     let calls: usize = match calls {
         Some(c) => c.parse().map_err(|_| format!("CALLS = {c:?}"))?,
@@ -267,19 +277,22 @@ fn bench(dir: &str, calls: Option<&String>) -> Res<()> {
     }
     let rounds = 5;
     let (mut t_fmi, mut t_lib) = (Vec::new(), Vec::new());
+    let (mut c_fmi, mut c_lib) = (0.0, 0.0);
     let mut step = calls / 10;
     for _ in 0..rounds {
         let n = calls / rounds;
-        let t = Instant::now();
+        let (t, c) = (Instant::now(), cpu_seconds());
         for s in step..step + n {
             fmi_call(s)?;
         }
         t_fmi.push(t.elapsed().as_secs_f64() / n as f64);
-        let t = Instant::now();
+        c_fmi += (cpu_seconds() - c) / calls as f64;
+        let (t, c) = (Instant::now(), cpu_seconds());
         for s in step..step + n {
             lib_call(s)?;
         }
         t_lib.push(t.elapsed().as_secs_f64() / n as f64);
+        c_lib += (cpu_seconds() - c) / calls as f64;
         step += n;
     }
     ehl_bearing_fmi::fmi2Terminate(c);
@@ -292,7 +305,9 @@ fn bench(dir: &str, calls: Option<&String>) -> Res<()> {
     };
     let ((f, fm), (l, lm)) = (stats(&mut t_fmi), stats(&mut t_lib));
     println!(
-        "{{\"calls\": {calls}, \"rounds\": {rounds}, \"fmi_us_per_call_best\": {f:.2}, \"library_us_per_call_best\": {l:.2}, \"fmi_us_per_call_median\": {fm:.2}, \"library_us_per_call_median\": {lm:.2}}}"
+        "{{\"calls\": {calls}, \"rounds\": {rounds}, \"fmi_us_per_call_cpu\": {:.2}, \"library_us_per_call_cpu\": {:.2}, \"fmi_us_per_call_wall_best\": {f:.2}, \"library_us_per_call_wall_best\": {l:.2}, \"fmi_us_per_call_wall_median\": {fm:.2}, \"library_us_per_call_wall_median\": {lm:.2}}}",
+        c_fmi * 1e6,
+        c_lib * 1e6
     );
     Ok(())
 }
