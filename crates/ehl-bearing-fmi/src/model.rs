@@ -186,6 +186,14 @@ impl Model {
 
     /// Set the Real input `vr` to `value`. Errors name the variable, the value and the range.
     pub fn set_real(&mut self, vr: u32, value: f64) -> Result<(), String> {
+        if vr < N_INPUTS && value.is_finite() {
+            if self.real[vr as usize].to_bits() != value.to_bits() {
+                self.real[vr as usize] = value;
+                self.fresh = false;
+            }
+            return Ok(());
+        }
+        // An error: find the variable for the message.
         let var = real_variable(vr).ok_or_else(|| {
             format!(
                 "value reference {vr} is not a Real variable of this FMU (0 to {})",
@@ -199,21 +207,14 @@ impl Model {
                 N_INPUTS - 1
             ));
         }
-        if !value.is_finite() {
-            let unit = match var.kind {
-                Kind::Real { unit, .. } => unit,
-                _ => "",
-            };
-            return Err(format!(
-                "{} = {value}: the input must be a finite number ({unit})",
-                var.name
-            ));
-        }
-        if self.real[vr as usize].to_bits() != value.to_bits() {
-            self.real[vr as usize] = value;
-            self.fresh = false;
-        }
-        Ok(())
+        let unit = match var.kind {
+            Kind::Real { unit, .. } => unit,
+            _ => "",
+        };
+        Err(format!(
+            "{} = {value}: the input must be a finite number ({unit})",
+            var.name
+        ))
     }
 
     /// The Real variable `vr`, evaluating the element first if an output is asked for and the
