@@ -10,7 +10,8 @@
 #   case.toml and characterization.json or trends.json; the unit reads them at fmi2Instantiate.
 # OUT.fmu: default ehl_bearing.fmu.
 #
-# Builds crates/ehl-bearing-fmi in release (cargo, CARGO_TARGET_DIR or target/), writes
+# Builds crates/ehl-bearing-fmi in release (cargo, CARGO_TARGET_DIR or target/; FMU_PROFILE=test
+# builds with the test profile instead, reusing what `cargo test` compiled), writes
 # modelDescription.xml from the crate's variable table and zips it with
 # binaries/linux64/ehl_bearing_fmi.so and resources/ (Python's zipfile: no zip tool needed).
 # Platform: x86_64 Linux (binaries/linux64).
@@ -39,14 +40,16 @@ print("characterization" if "contacts" in d else "trends" if "inner" in d and "o
         exit 1
     fi
 fi
-(cd "$root" && cargo build --release --quiet -p ehl-bearing-fmi)
-release=$CARGO_TARGET_DIR/release
+profile=${FMU_PROFILE:-release}
+case $profile in dev | test) profile_dir=debug ;; *) profile_dir=$profile ;; esac
+(cd "$root" && cargo build --profile "$profile" --quiet -p ehl-bearing-fmi)
+release=$CARGO_TARGET_DIR/$profile_dir
 stage=$(mktemp -d)
 trap 'rm -rf "$stage"' EXIT
 mkdir -p "$stage/binaries/linux64" "$stage/resources"
 "$release/ehl-bearing-fmu" model-description "$stage/modelDescription.xml"
 cp "$release/libehl_bearing_fmi.so" "$stage/binaries/linux64/ehl_bearing_fmi.so"
-# The release profile keeps line tables (debug = 1): drop them from the unit if strip is there.
+# The profiles keep line tables (debug = 1): drop them from the unit if strip is there.
 if command -v strip >/dev/null; then strip --strip-debug "$stage/binaries/linux64/ehl_bearing_fmi.so"; fi
 cp "$case_file" "$stage/resources/case.toml"
 case $kind in
