@@ -5,7 +5,7 @@
 #
 # CASE.toml: the bearing (geometry, materials, race control, kinematics model).
 # ELEMENT.json: a characterization report (`ehl-bearing characterize CASE --json`,
-#   characterization.json, a study point file's record) → fitted laws; or a study's trends.json →
+#   characterization.json, a study point's `result` record) → fitted laws; or a study's trends.json →
 #   trend element; omitted or `-` → dry Hertz laws. The files go into the FMU's resources/ as
 #   case.toml and characterization.json or trends.json; the unit reads them at fmi2Instantiate.
 # OUT.fmu: default ehl_bearing.fmu.
