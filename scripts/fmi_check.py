@@ -5,6 +5,7 @@ FMPy's low-level API.
 
 usage: python fmi_check.py simulate FMU INPUTS.csv HELPER OUT_DIR TOL [--cold]
        python fmi_check.py time FMU INPUTS.csv CALLS
+       python fmi_check.py errors FMU
 """
 
 import csv
@@ -150,10 +151,57 @@ def time_calls(fmu, inputs_csv, calls):
     )
 
 
+def errors(fmu):
+    """Errors reach FMPy's calls as fmi2Error with the unit's message in the importer's logger."""
+    import math
+
+    from fmpy import extract
+    from fmpy.fmi1 import FMICallException
+    from fmpy.fmi2 import FMU2Model, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
+
+    messages = []
+
+    def log(env, name, status, category, message):
+        messages.append((status, message.decode()))
+
+    callbacks = fmi2CallbackFunctions()
+    callbacks.logger = fmi2CallbackLoggerTYPE(log)
+    md = read_model_description(fmu)
+    m = FMU2Model(
+        guid=md.guid,
+        unzipDirectory=extract(fmu),
+        modelIdentifier=md.modelExchange.modelIdentifier,
+        instanceName="errors",
+    )
+    m.instantiate(callbacks=callbacks)
+    m.setupExperiment(startTime=0.0)
+    m.enterInitializationMode()
+    m.exitInitializationMode()
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    try:
+        m.setReal([vr["q_y_m"]], [math.nan])
+        sys.exit("FAILED: fmi2SetReal accepted NaN")
+    except FMICallException as e:
+        assert e.status == 3, e
+    status, text = messages[-1]
+    assert status == 3 and "q_y_m = NaN: the input must be a finite number (m)" in text, messages
+    print(f"  NaN input: fmi2Error, logged: {text}")
+    # A tilt of 1 rad: contacts far beyond 2 % of the ball diameter → fmi2Warning, flagged.
+    m.setReal([vr["q_thy_rad"], vr["inner_speed_rad_s"]], [1.0, 500.0])
+    (n,) = m.getReal([vr["overloaded_contacts"]])
+    status, text = messages[-1]
+    assert n > 0 and status == 1 and "beyond 2 percent of the ball diameter" in text, (n, messages)
+    print(f"  overloaded: overloaded_contacts = {n:g}, fmi2Warning, logged: {text[:90]}...")
+    m.terminate()
+    m.freeInstance()
+
+
 if __name__ == "__main__":
     if sys.argv[1] == "simulate":
         fmu, inputs_csv, helper, out_dir, tol = sys.argv[2:7]
         simulate(fmu, inputs_csv, helper, out_dir, float(tol), "--cold" in sys.argv)
+    elif sys.argv[1] == "errors":
+        errors(sys.argv[2])
     elif sys.argv[1] == "time":
         time_calls(sys.argv[2], sys.argv[3], int(sys.argv[4]))
     else:

@@ -68,6 +68,8 @@ for f in hertz fitted trends; do
     # Warm starts (the default): the same within the solvers' tolerances.
     check "$out/7006_$f.fmu" 1e-9
 done
+stage "errors through FMPy's logger"
+"$venv/bin/python" scripts/fmi_check.py errors "$out/7006_fitted.fmu"
 stage "per-call cost"
 "$venv/bin/python" scripts/fmi_check.py time "$out/7006_fitted.fmu" "$out/inputs.csv" 20000
 for f in fitted trends; do
