@@ -7,7 +7,7 @@
 # (`ehl-bearing-fmu reference`): bit-identical with warm_start = false, within the solvers'
 # tolerances with warm starts. Then times calls through FMPy's API and through the C functions.
 # Makes its own virtual environment (target/fmi-venv) with a pinned FMPy from PyPI.
-# Run time on the 2-core machine: about 6 min from a clean clone (pip download and the release
+# Run time on the 2-core machine: 4.5-6 min from a clean clone (pip download and the release
 # build, the two cores shared with other builds), 15-35 s again; with FMU_PROFILE=test after
 # `cargo test --workspace`, the build takes seconds.
 set -euo pipefail
