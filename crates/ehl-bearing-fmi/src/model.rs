@@ -266,8 +266,7 @@ impl Model {
                 input.displacement, input.velocity, input.inner_speed, input.outer_speed, input.cage_angle
             )
         })?;
-        let cage = element.cage_speed(input.inner_speed, input.outer_speed);
-        write_outputs(&mut self.real, &out, cage);
+        write_outputs(&mut self.real, &out);
         self.fresh = true;
         let n = out.overloaded.len();
         let was = std::mem::replace(&mut self.last_overloaded, n);
@@ -287,7 +286,7 @@ impl Model {
 
 /// The outputs of one evaluation into the Real values by value reference (shared with the
 /// reference writer of the helper binary).
-pub fn write_outputs(real: &mut [f64], out: &ElementOutput, cage_speed: f64) {
+pub fn write_outputs(real: &mut [f64], out: &ElementOutput) {
     let base = VR_REACTION as usize;
     real[base..base + 5].copy_from_slice(&out.reaction);
     for i in 0..5 {
@@ -296,7 +295,7 @@ pub fn write_outputs(real: &mut [f64], out: &ElementOutput, cage_speed: f64) {
             real[VR_C as usize + 5 * i + j] = out.damping[i][j];
         }
     }
-    real[VR_CAGE_SPEED as usize] = cage_speed;
+    real[VR_CAGE_SPEED as usize] = out.cage_speed;
     let max = |k: usize| out.loads.iter().map(|l| l[k]).fold(0.0_f64, f64::max);
     real[VR_MAX_LOAD_INNER as usize] = max(0);
     real[VR_MAX_LOAD_OUTER as usize] = max(1);

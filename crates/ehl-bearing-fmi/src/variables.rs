@@ -281,7 +281,7 @@ fn build() -> Vec<Variable> {
         VR_CAGE_SPEED,
         Output,
         "rad/s",
-        "Cage speed under pure rolling at the free contact angle, rad/s (the rate of cage_angle_rad)",
+        "Cage speed at the operating state, rad/s: the load-weighted mean of the balls' orbital speeds of the bearing model (the rate of cage_angle_rad)",
     ));
     v.push(real(
         "max_ball_load_inner_N",
