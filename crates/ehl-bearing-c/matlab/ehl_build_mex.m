@@ -11,9 +11,14 @@ end
 inc = fullfile(here, '..', 'include');
 src = fullfile(here, 'ehl_mex.c');
 if exist('OCTAVE_VERSION', 'builtin')
+  libdir = canonicalize_file_name(libdir);
+  if isempty(libdir) || exist(fullfile(libdir, 'libehl_bearing_c.so'), 'file') ~= 2
+    error('ehl:build', ['libehl_bearing_c.so not found; build it with ' ...
+          '`cargo build --release -p ehl-bearing-c` or give its folder']);
+  end
   out = fullfile(here, 'ehl_mex.mex');
-  [status, text] = system(sprintf(['mkoctfile --mex -O2 -I"%s" "%s" -L"%s" -lehl_bearing_c ' ...
-      '-Wl,-rpath,"%s" -o "%s"'], inc, src, libdir, libdir, out));
+  [status, text] = mkoctfile('--mex', '-O2', ['-I' inc], src, ['-L' libdir], ...
+      '-lehl_bearing_c', ['-Wl,-rpath,' libdir], '-o', out);
   if status ~= 0
     error('ehl:build', 'mkoctfile failed:\n%s', text);
   end

@@ -10,12 +10,8 @@ function ch = ehl_characterize(c, method, progress)
 %   report (the characterization report as a struct, SI). EHL_ELEMENT(CH) gives its force
 %   element. Release it with EHL_FREE.
 if nargin < 2, method = ''; end
-if nargin < 3 || isempty(progress)
-  fn = [];
-else
-  fn = @(json) progress(jsondecode(json));
-end
-[id, json] = ehl_mex('characterize', c, method, fn);
+if nargin < 3, progress = []; end
+[id, json] = ehl_mex_progress(progress, 'characterize', c, method);
 report = jsondecode(json);
 ch = struct('id', id, 'type', 'ehl_characterization', 'converged', report.converged, ...
             'iterations', report.iterations, ...

@@ -10,12 +10,7 @@ opts = struct('method', '', 'element', [], 'progress', []);
 for i = 1:2:numel(varargin)
   opts.(varargin{i}) = varargin{i + 1};
 end
-fn = [];
-if ~isempty(opts.progress)
-  p = opts.progress;
-  fn = @(json) p(jsondecode(json));
-end
-json = ehl_mex('coefficients', c, speeds_rpm, opts.method, opts.element, fn);
+json = ehl_mex_progress(opts.progress, 'coefficients', c, speeds_rpm, opts.method, opts.element);
 co = jsondecode(json);
 if nargout > 1
   csv = ehl_mex('ross_table', json);

@@ -11,6 +11,8 @@ function [R, K, C, info] = ehl_evaluate(e, q, qdot, inner_speed_rad_s, outer_spe
 if nargin < 3 || isempty(qdot), qdot = zeros(5, 1); end
 if nargin < 5, outer_speed_rad_s = 0; end
 if nargin < 6, cage_angle_rad = 0; end
-if nargin < 7, state = e.state; end
+if nargin < 7
+  if isstruct(e) && isfield(e, 'state'), state = e.state; else, state = e; end
+end
 [R, K, C, info] = ehl_mex('evaluate', e, state, q, qdot, inner_speed_rad_s, outer_speed_rad_s, cage_angle_rad);
 end

@@ -176,7 +176,7 @@ static void *object_arg(const mxArray *a, int type, const char *name) {
                           "file was cleared)",
                           name, mxGetScalar(idf));
     if (e->type != type)
-        mexErrMsgIdAndTxt("ehl:usage", "%s is an ehl-bearing %s, a %s was expected", name,
+        mexErrMsgIdAndTxt("ehl:usage", "%s is an ehl-bearing %s, not an ehl-bearing %s", name,
                           type_names[e->type], type_names[type]);
     return e->ptr;
 }
