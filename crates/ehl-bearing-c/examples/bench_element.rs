@@ -17,8 +17,8 @@ fn main() {
         .unwrap_or(200_000);
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let case = at_rpm(&read_case(&root.join(CASE)).unwrap(), REPORT_RPM);
-    let report = serde_json::from_str(&std::fs::read_to_string(root.join(REPORT)).unwrap())
-        .unwrap();
+    let report =
+        serde_json::from_str(&std::fs::read_to_string(root.join(REPORT)).unwrap()).unwrap();
     let e = LawElement::from_report(&case.bearing, case.operating.race_control, &report)
         .unwrap()
         .with_kinematics(case.settings.kinematics);

@@ -47,8 +47,8 @@ fn main() {
     );
     let rpm = g("speed_rpm");
     let case = at_rpm(&read_case(&root.join(CASE)).unwrap(), rpm);
-    let report = serde_json::from_str(&std::fs::read_to_string(root.join(REPORT)).unwrap())
-        .unwrap();
+    let report =
+        serde_json::from_str(&std::fs::read_to_string(root.join(REPORT)).unwrap()).unwrap();
     let e: Arc<dyn ForceElement> = Arc::new(
         LawElement::from_report(&case.bearing, case.operating.race_control, &report)
             .unwrap()
@@ -77,7 +77,8 @@ fn main() {
     }
     let matrices = RotorMatrices::new(n, m, c, vec![0.0; n * n], k).unwrap();
     let offset = [g("preload_approach_m"), 0.0, 0.0, 0.0, 0.0];
-    let a = BearingSite::new(e.clone(), [Some(0), Some(3), Some(4), None, None]).with_offset(offset);
+    let a =
+        BearingSite::new(e.clone(), [Some(0), Some(3), Some(4), None, None]).with_offset(offset);
     let b = BearingSite::new(e, [Some(0), Some(5), Some(6), None, None])
         .mirrored()
         .with_offset(offset);

@@ -289,7 +289,7 @@ void ehl_string_free(char *s);
 int ehl_case_from_file(const char *path, struct EhlCase **out);
 
 /**
- * Parse and validate a case from TOML text into `*out`; `origin` (may be NULL: "<string>")
+ * Parse and validate a case from TOML text into `*out`; `origin` (may be NULL: `"<string>"`)
  * names the text in error messages.
  */
 int ehl_case_from_toml(const char *toml_text, const char *origin, struct EhlCase **out);

@@ -149,12 +149,11 @@ pub extern "C" fn ehl_last_error() -> *const c_char {
 /// The library's version ("0.1.0"), a static string (never freed).
 #[no_mangle]
 pub extern "C" fn ehl_version() -> *const c_char {
-    static VERSION: &CStr = match CStr::from_bytes_with_nul(
-        concat!(env!("CARGO_PKG_VERSION"), "\0").as_bytes(),
-    ) {
-        Ok(v) => v,
-        Err(_) => c"unknown",
-    };
+    static VERSION: &CStr =
+        match CStr::from_bytes_with_nul(concat!(env!("CARGO_PKG_VERSION"), "\0").as_bytes()) {
+            Ok(v) => v,
+            Err(_) => c"unknown",
+        };
     VERSION.as_ptr()
 }
 
@@ -291,7 +290,7 @@ pub unsafe extern "C" fn ehl_case_from_file(path: *const c_char, out: *mut *mut 
     })
 }
 
-/// Parse and validate a case from TOML text into `*out`; `origin` (may be NULL: "<string>")
+/// Parse and validate a case from TOML text into `*out`; `origin` (may be NULL: `"<string>"`)
 /// names the text in error messages.
 #[no_mangle]
 pub unsafe extern "C" fn ehl_case_from_toml(
@@ -376,7 +375,8 @@ pub unsafe extern "C" fn ehl_case_equilibrium_json(
         // SAFETY: a case from this library or NULL.
         let c = &unsafe { obj(c, "case") }?.case;
         let laws = ContactLaws::hertz(&c.bearing).map_err(lib_err)?;
-        let eq = solve_equilibrium(&c.bearing, &laws, &c.operating, &c.settings).map_err(lib_err)?;
+        let eq =
+            solve_equilibrium(&c.bearing, &laws, &c.operating, &c.settings).map_err(lib_err)?;
         let v = ehl_bearing::io::json::equilibrium_json(&eq);
         // SAFETY: checked above.
         unsafe { put_text(out_json, v.to_string()) }
@@ -458,7 +458,9 @@ fn progress_json(p: &Progress) -> serde_json::Value {
         Progress::IterationStarted {
             iteration,
             contacts,
-        } => serde_json::json!({"event": "iteration_started", "iteration": iteration, "contacts": contacts}),
+        } => {
+            serde_json::json!({"event": "iteration_started", "iteration": iteration, "contacts": contacts})
+        }
         Progress::ContactDone { iteration } => {
             serde_json::json!({"event": "contact_done", "iteration": iteration})
         }
@@ -582,10 +584,8 @@ pub unsafe extern "C" fn ehl_characterize(
         let settings = CharacterizeSettings::default();
         let ch = with_progress(progress, user, |report, cancel| {
             let ch = Cancellable { inner: &m, cancel };
-            characterize_bearing_with_progress(case, &ch, &settings, &|p| {
-                report(progress_json(&p))
-            })
-            .map_err(lib_err)
+            characterize_bearing_with_progress(case, &ch, &settings, &|p| report(progress_json(&p)))
+                .map_err(lib_err)
         })?;
         // SAFETY: `out` checked above.
         unsafe {
@@ -810,8 +810,8 @@ fn report_element(case: &Case, json: &str, origin: &str) -> R<LawElement> {
             format!("{origin}: not a characterization report: {e}"),
         )
     })?;
-    let e = LawElement::from_report(&case.bearing, case.operating.race_control, &r)
-        .map_err(lib_err)?;
+    let e =
+        LawElement::from_report(&case.bearing, case.operating.race_control, &r).map_err(lib_err)?;
     Ok(e.with_kinematics(case.settings.kinematics))
 }
 
@@ -898,10 +898,7 @@ pub unsafe extern "C" fn ehl_element_trend_from_file(
 
 /// Numbers of an element into `*out`.
 #[no_mangle]
-pub unsafe extern "C" fn ehl_element_info(
-    e: *const EhlElement,
-    out: *mut EhlElementInfo,
-) -> c_int {
+pub unsafe extern "C" fn ehl_element_info(e: *const EhlElement, out: *mut EhlElementInfo) -> c_int {
     guard(|| {
         // SAFETY: an element from this library or NULL.
         let e = unsafe { obj(e, "element") }?;
@@ -1051,10 +1048,7 @@ pub unsafe extern "C" fn ehl_evaluate(
             outer_speed: i.outer_speed_rad_s,
             cage_angle: i.cage_angle_rad,
         };
-        let r = e
-            .element
-            .evaluate(&input, &mut st.state)
-            .map_err(lib_err)?;
+        let r = e.element.evaluate(&input, &mut st.state).map_err(lib_err)?;
         o.reaction = r.reaction;
         o.stiffness = flat(&r.stiffness);
         o.damping = flat(&r.damping);

@@ -62,19 +62,15 @@ pub fn reference_text(root: &Path) -> Result<String, String> {
 fn reference(root: &Path) -> Result<String, Box<dyn std::error::Error>> {
     let case = read_case(&root.join(CASE))?;
     let case3000 = at_rpm(&case, REPORT_RPM);
-    let report_text = std::fs::read_to_string(root.join(REPORT))
-        .map_err(|e| format!("{REPORT}: {e}"))?;
+    let report_text =
+        std::fs::read_to_string(root.join(REPORT)).map_err(|e| format!("{REPORT}: {e}"))?;
     let report: ehl_bearing::characterize::CharacterizationReport =
-        serde_json::from_str(&report_text)
-            .map_err(|e| format!("{REPORT}: {e}"))?;
-    let fitted = LawElement::from_report(
-        &case3000.bearing,
-        case3000.operating.race_control,
-        &report,
-    )?
-    .with_kinematics(case3000.settings.kinematics);
-    let trend_text = std::fs::read_to_string(root.join(TRENDS))
-        .map_err(|e| format!("{TRENDS}: {e}"))?;
+        serde_json::from_str(&report_text).map_err(|e| format!("{REPORT}: {e}"))?;
+    let fitted =
+        LawElement::from_report(&case3000.bearing, case3000.operating.race_control, &report)?
+            .with_kinematics(case3000.settings.kinematics);
+    let trend_text =
+        std::fs::read_to_string(root.join(TRENDS)).map_err(|e| format!("{TRENDS}: {e}"))?;
     let trend = TrendForceElement::from_json(&trend_text)?;
     let dry = LawElement::hertz_case(&case)?;
     let synthetic_method = case.method_or(Some("synthetic"))?;

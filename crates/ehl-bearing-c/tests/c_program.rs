@@ -39,7 +39,14 @@ fn c_program_agrees_with_the_rust_library() {
     let exe = tmp.join("test_ehl");
     let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
     let status = Command::new(&cc)
-        .args(["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic"])
+        .args([
+            "-std=c99",
+            "-O2",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+            "-pedantic",
+        ])
         .arg("-I")
         .arg(manifest.join("include"))
         .arg(manifest.join("tests/c/test_ehl.c"))
