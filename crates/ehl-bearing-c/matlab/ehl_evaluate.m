@@ -14,5 +14,8 @@ if nargin < 6, cage_angle_rad = 0; end
 if nargin < 7
   if isstruct(e) && isfield(e, 'state'), state = e.state; else, state = e; end
 end
+% Ids rather than structs: passing a struct to a MEX file copies all its fields (~15 us).
+if isstruct(e), e = e.id; end
+if isstruct(state), state = state.id; end
 [R, K, C, info] = ehl_mex('evaluate', e, state, q, qdot, inner_speed_rad_s, outer_speed_rad_s, cage_angle_rad);
 end

@@ -22,11 +22,12 @@ end
 dt = toc;
 fprintf('force element through MEX, ehl_evaluate.m: %d calls, %.2f us per call\n', calls, 1e6 * dt / calls);
 s = e.state;
+id = e.id;
 tic;
 for i = 1:calls
   t = i * 1e-5;
   q(2) = q0(2) + 1e-8 * sin(1e3 * t);
-  [R, K, C] = ehl_mex('evaluate', e, s, q, v, ws, 0, wc * t); %#ok<ASGLU>
+  [R, K, C] = ehl_mex('evaluate', id, s, q, v, ws, 0, wc * t); %#ok<ASGLU>
 end
 dt2 = toc;
 fprintf('force element through MEX, ehl_mex(''evaluate'', ...) directly: %d calls, %.2f us per call\n', ...
@@ -38,5 +39,11 @@ for i = 1:calls
 end
 dt3 = toc;
 fprintf('the loop alone (no call): %.2f us per iteration\n', 1e6 * dt3 / calls);
+tic;
+for i = 1:calls
+  n = ehl_mex('count'); %#ok<NASGU>
+end
+dt4 = toc;
+fprintf('an empty MEX call (ehl_mex(''count'')): %.2f us per call\n', 1e6 * dt4 / calls);
 ehl_free(c, e);
 end
