@@ -1,5 +1,5 @@
-function [R, K, C, info] = ehl_evaluate(e, q, qdot, inner_speed_rad_s, outer_speed_rad_s, cage_angle_rad, state)
-%EHL_EVALUATE  Evaluate a bearing force element.
+function varargout = ehl_evaluate(e, q, qdot, inner_speed_rad_s, outer_speed_rad_s, cage_angle_rad, state)
+%EHL_EVALUATE  Evaluate a bearing force element: [R, K, C, INFO] = EHL_EVALUATE(...).
 %   [R, K, C] = EHL_EVALUATE(E, Q, QDOT, WI, WO, CAGE) at ring displacement Q (x, y, z in m;
 %   theta_y, theta_z in rad; inner relative to outer ring, x axial), rates QDOT (m/s, rad/s;
 %   [] for zero), ring speeds WI, WO (rad/s, default WO = 0) and cage angle CAGE (rad, default 0;
@@ -17,5 +17,5 @@ end
 % Ids rather than structs: passing a struct to a MEX file copies all its fields (~15 us).
 if isstruct(e), e = e.id; end
 if isstruct(state), state = state.id; end
-[R, K, C, info] = ehl_mex('evaluate', e, state, q, qdot, inner_speed_rad_s, outer_speed_rad_s, cage_angle_rad);
+[varargout{1:max(nargout, 1)}] = ehl_mex('evaluate', e, state, q, qdot, inner_speed_rad_s, outer_speed_rad_s, cage_angle_rad);
 end
