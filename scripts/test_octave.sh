@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # The MATLAB/Octave route (docs/matlab.md), from a clean clone: installs GNU Octave with its MEX
 # headers (Debian's octave and liboctave-dev) if mkoctfile is missing, builds the C library
-# (crates/ehl-bearing-c) in release with its Rust reference programs, builds the MEX gateway
+# (crates/ehl-bearing-c) with its Rust reference programs, builds the MEX gateway
 # with `mkoctfile --mex`, and runs in Octave: the interface tests against the Rust library's
 # numbers and error paths (matlab/tests/test_ehl_mex.m), the Jeffcott rotor example against the
 # Rust rotor model within 0.5 % (matlab/tests/test_jeffcott.m), and, with EHL_BENCH=1, the
 # per-call timing (matlab/tests/bench_ehl_mex.m). Each stage line gives the time since the start.
+# The library builds with cargo's `test` profile by default (EHL_PROFILE=release for another):
+# the same optimization as release in this workspace (opt-level 3), and after
+# `cargo test --workspace` (scripts/test.sh) nothing of it is left to compile.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -21,9 +24,11 @@ if ! command -v mkoctfile >/dev/null || ! command -v octave >/dev/null; then
         octave liboctave-dev >/dev/null
     echo "apt-get install took $((SECONDS - t0)) s"
 fi
-stage "cargo build --release -p ehl-bearing-c (library and reference programs)"
-cargo build --release -p ehl-bearing-c --lib --examples
-lib="$CARGO_TARGET_DIR/release"
+profile=${EHL_PROFILE:-test}
+case "$profile" in test | dev) dir=debug ;; *) dir=$profile ;; esac
+stage "cargo build --profile $profile -p ehl-bearing-c (library and reference programs)"
+cargo build --profile "$profile" -p ehl-bearing-c --lib --examples
+lib="$CARGO_TARGET_DIR/$dir"
 work="$CARGO_TARGET_DIR/octave"
 mkdir -p "$work"
 stage "Rust reference numbers and the Jeffcott rotor by the Rust rotor model"
