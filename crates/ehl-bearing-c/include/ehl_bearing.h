@@ -147,8 +147,9 @@ typedef struct EhlCaseInfo {
 /**
  * Progress callback: called with one event as JSON text (`{"event": "iteration_started", ...}`,
  * valid during the call only) and the caller's `user` pointer, always on the thread that made
- * the call into the library and never concurrently. Return 0 to go on, nonzero to cancel: the
- * computation stops at its next contact and the call returns EHL_ERR_CANCELLED.
+ * the call into the library and never concurrently. Return 0 to go on, nonzero to cancel: no
+ * further events come, the computation stops at its next contact and the call returns
+ * EHL_ERR_CANCELLED.
  */
 typedef int (*EhlProgressFn)(const char *event_json, void *user);
 

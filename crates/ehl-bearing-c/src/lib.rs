@@ -398,8 +398,9 @@ pub unsafe extern "C" fn ehl_case_free(c: *mut EhlCase) {
 
 /// Progress callback: called with one event as JSON text (`{"event": "iteration_started", ...}`,
 /// valid during the call only) and the caller's `user` pointer, always on the thread that made
-/// the call into the library and never concurrently. Return 0 to go on, nonzero to cancel: the
-/// computation stops at its next contact and the call returns EHL_ERR_CANCELLED.
+/// the call into the library and never concurrently. Return 0 to go on, nonzero to cancel: no
+/// further events come, the computation stops at its next contact and the call returns
+/// EHL_ERR_CANCELLED.
 pub type EhlProgressFn =
     Option<unsafe extern "C" fn(event_json: *const c_char, user: *mut c_void) -> c_int>;
 
@@ -494,6 +495,9 @@ fn with_progress<T: Send>(
     let joined = std::thread::scope(|s| {
         let worker = s.spawn(move || {
             let report = |event: serde_json::Value| {
+                if cancel_ref.load(Ordering::SeqCst) {
+                    return; // cancelled: no more events
+                }
                 let (reply_tx, reply_rx) = mpsc::sync_channel(1);
                 if tx.send((event.to_string(), reply_tx)).is_ok() && reply_rx.recv() == Ok(true) {
                     cancel_ref.store(true, Ordering::SeqCst);
