@@ -262,6 +262,11 @@ typedef struct EhlOutput {
    * 1 if the speed is outside a trend element's speed range (laws at the nearest end).
    */
   int speed_outside;
+  /**
+   * Cage speed at this state, rad/s: the load-weighted mean of the balls' orbital speeds of
+   * the bearing model (advance the cage angle at it for the ball-pass excitation).
+   */
+  double cage_speed_rad_s;
 } EhlOutput;
 
 #ifdef __cplusplus
@@ -389,8 +394,11 @@ int ehl_element_trend_from_file(const char *path, struct EhlElement **out);
 int ehl_element_info(const struct EhlElement *e, struct EhlElementInfo *out);
 
 /**
- * Cage speed under pure rolling at ring speeds `inner_speed_rad_s`, `outer_speed_rad_s`
- * (rad/s) into `*out` (rad/s): ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)], γ = D·cos α0/d_m.
+ * Cage speed under pure rolling at the free contact angle, at ring speeds `inner_speed_rad_s`,
+ * `outer_speed_rad_s` (rad/s) into `*out` (rad/s): ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)],
+ * γ = D·cos α0/d_m — the unloaded bearing's. A loaded bearing's cage runs at the operating
+ * cage speed, `EhlOutput::cage_speed_rad_s` of [`ehl_evaluate`] (the balls' orbital speeds at
+ * their operating contact angles; up to 12 % faster at high speed).
  */
 int ehl_element_cage_speed(const struct EhlElement *e,
                            double inner_speed_rad_s,

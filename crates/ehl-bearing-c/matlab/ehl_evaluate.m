@@ -5,7 +5,8 @@ function [R, K, C, info] = ehl_evaluate(e, q, qdot, inner_speed_rad_s, outer_spe
 %   [] for zero), ring speeds WI, WO (rad/s, default WO = 0) and cage angle CAGE (rad, default 0;
 %   ball j at 2*pi*j/Z + CAGE). R (5x1) is the load on the inner ring (N, N*m; the bearing acts
 %   on the shaft with -R), K = dR/dq and C = dR/dqdot (5x5, SI). INFO has outside_range,
-%   overloaded (contact counts) and speed_outside.
+%   overloaded (contact counts), speed_outside and cage_speed_rad_s (the cage speed at this
+%   state from the bearing model's orbital speeds, rad/s).
 %   EHL_EVALUATE(..., STATE) uses the warm-start state STATE (EHL_STATE) instead of the
 %   element's own: one state per bearing and caller.
 % Kept lean: in Octave every statement here costs microseconds (docs/matlab.md, cost per call).

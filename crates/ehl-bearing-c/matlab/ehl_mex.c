@@ -323,11 +323,13 @@ static void cmd_evaluate(int nlhs, mxArray *plhs[], int nrhs, const mxArray *prh
     if (nlhs > 1) plhs[1] = matrix5(out.stiffness);
     if (nlhs > 2) plhs[2] = matrix5(out.damping);
     if (nlhs > 3) {
-        static const char *fields[] = {"outside_range", "overloaded", "speed_outside"};
-        mxArray *info = mxCreateStructMatrix(1, 1, 3, fields);
+        static const char *fields[] = {"outside_range", "overloaded", "speed_outside",
+                                       "cage_speed_rad_s"};
+        mxArray *info = mxCreateStructMatrix(1, 1, 4, fields);
         mxSetField(info, 0, "outside_range", mxCreateDoubleScalar(out.outside_range));
         mxSetField(info, 0, "overloaded", mxCreateDoubleScalar(out.overloaded));
         mxSetField(info, 0, "speed_outside", mxCreateLogicalScalar(out.speed_outside != 0));
+        mxSetField(info, 0, "cage_speed_rad_s", mxCreateDoubleScalar(out.cage_speed_rad_s));
         plhs[3] = info;
     }
 }

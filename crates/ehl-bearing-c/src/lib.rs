@@ -728,6 +728,9 @@ pub struct EhlOutput {
     pub overloaded: u32,
     /// 1 if the speed is outside a trend element's speed range (laws at the nearest end).
     pub speed_outside: c_int,
+    /// Cage speed at this state, rad/s: the load-weighted mean of the balls' orbital speeds of
+    /// the bearing model (advance the cage angle at it for the ball-pass excitation).
+    pub cage_speed_rad_s: f64,
 }
 
 impl Default for EhlOutput {
@@ -739,6 +742,7 @@ impl Default for EhlOutput {
             outside_range: 0,
             overloaded: 0,
             speed_outside: 0,
+            cage_speed_rad_s: 0.0,
         }
     }
 }
@@ -920,8 +924,11 @@ pub unsafe extern "C" fn ehl_element_info(e: *const EhlElement, out: *mut EhlEle
     })
 }
 
-/// Cage speed under pure rolling at ring speeds `inner_speed_rad_s`, `outer_speed_rad_s`
-/// (rad/s) into `*out` (rad/s): ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)], γ = D·cos α0/d_m.
+/// Cage speed under pure rolling at the free contact angle, at ring speeds `inner_speed_rad_s`,
+/// `outer_speed_rad_s` (rad/s) into `*out` (rad/s): ω_c = ½·[ω_i·(1 − γ) + ω_o·(1 + γ)],
+/// γ = D·cos α0/d_m — the unloaded bearing's. A loaded bearing's cage runs at the operating
+/// cage speed, `EhlOutput::cage_speed_rad_s` of [`ehl_evaluate`] (the balls' orbital speeds at
+/// their operating contact angles; up to 12 % faster at high speed).
 #[no_mangle]
 pub unsafe extern "C" fn ehl_element_cage_speed(
     e: *const EhlElement,
@@ -1059,6 +1066,7 @@ pub unsafe extern "C" fn ehl_evaluate(
         o.outside_range = r.outside_range.len() as u32;
         o.overloaded = r.overloaded.len() as u32;
         o.speed_outside = r.speed_outside as c_int;
+        o.cage_speed_rad_s = r.cage_speed;
         st.loads = r.loads;
         st.approaches = r.approaches;
         Ok(())
@@ -1166,7 +1174,8 @@ pub unsafe extern "C" fn ehl_coefficients(
                         &|i, p| {
                             let mut v = progress_json(&p);
                             v["speed_index"] = i.into();
-                            report(v)
+                            report(v);
+                            std::ops::ControlFlow::Continue(())
                         },
                     )
                     .map_err(lib_err)

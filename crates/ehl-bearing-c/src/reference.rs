@@ -12,7 +12,7 @@
 //!   `synthetic` method (instant).
 //!
 //! Lines (numbers in Rust's shortest round-trip form, read exactly by `strtod`):
-//! - `eval NAME q[5] v[5] inner_speed outer_speed cage_angle reaction[5] K[25] C[25]`: one
+//! - `eval NAME q[5] v[5] inner_speed outer_speed cage_angle reaction[5] K[25] C[25] cage_speed`: one
 //!   evaluation; each element's evaluations use one state, in file order;
 //! - `cage NAME inner_speed outer_speed cage_speed`;
 //! - `equilibrium NAME q[5] K[25]`: the element's equilibrium under the case's loads
@@ -113,6 +113,7 @@ fn reference(root: &Path) -> Result<String, Box<dyn std::error::Error>> {
             nums(&mut out, &r.reaction);
             nums(&mut out, &flat(&r.stiffness));
             nums(&mut out, &flat(&r.damping));
+            nums(&mut out, &[r.cage_speed]);
             out.push('\n');
         }
         write!(out, "cage {name}").expect("write to String");

@@ -42,10 +42,11 @@ while true
   switch kind
     case 'eval'
       e = els.(name);
-      [R, K, C] = ehl_evaluate(e, v(1:5), v(6:10), v(11), v(12), v(13));
+      [R, K, C, info] = ehl_evaluate(e, v(1:5), v(6:10), v(11), v(12), v(13));
       close_to(R, v(14:18)', tol, [where ' reaction']);
       close_to(K, reshape(v(19:43), 5, 5)', tol, [where ' stiffness']);
       close_to(C, reshape(v(44:68), 5, 5)', tol, [where ' damping']);
+      close_to(info.cage_speed_rad_s, v(69), tol, [where ' operating cage speed']);
       evals = evals + 1;
     case 'cage'
       close_to(ehl_cage_speed(els.(name), v(1), v(2)), v(3), tol, [where ' cage speed']);

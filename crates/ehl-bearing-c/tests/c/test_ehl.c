@@ -184,10 +184,10 @@ int main(int argc, char **argv) {
         p = line + n;
         k = index_of(name);
         if (strcmp(kind, "eval") == 0) {
-            double in[13], want[55];
+            double in[13], want[56];
             EhlInput input;
             EhlOutput out;
-            CHECK(k >= 0 && numbers(&p, in, 13) && numbers(&p, want, 55), "line %d unreadable", lineno);
+            CHECK(k >= 0 && numbers(&p, in, 13) && numbers(&p, want, 56), "line %d unreadable", lineno);
             if (k < 0) continue;
             memcpy(input.displacement, in, sizeof input.displacement);
             memcpy(input.velocity, in + 5, sizeof input.velocity);
@@ -198,6 +198,7 @@ int main(int argc, char **argv) {
             compare("reaction", lineno, out.reaction, want, 5);
             compare("stiffness", lineno, out.stiffness, want + 5, 25);
             compare("damping", lineno, out.damping, want + 30, 25);
+            compare("operating cage speed", lineno, &out.cage_speed_rad_s, want + 55, 1);
             evals++;
         } else if (strcmp(kind, "cage") == 0) {
             double v[3], got;
