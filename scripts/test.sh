@@ -7,6 +7,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 stage() { echo "== [$((SECONDS / 60)) min $((SECONDS % 60)) s] $*"; }
+# Octave (about 1 min of apt-get on a fresh machine) installs in the background while Rust compiles;
+# the Octave stage waits for it (and installs itself if this failed).
+mkdir -p target
+scripts/test_octave.sh --install-only >target/octave-install.log 2>&1 &
+octave_install=$!
 stage "cargo fmt --check"
 cargo fmt --all -- --check
 stage "cargo clippy"
@@ -15,6 +20,7 @@ stage "cargo doc (broken links are errors)"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --quiet
 stage "cargo test"
 cargo test --workspace
+wait "$octave_install" || { echo "background Octave install failed:"; tail -5 target/octave-install.log; }
 stage "FMI unit, checked with FMPy (scripts/test_fmi.sh, reusing the cargo test build)"
 FMU_PROFILE=test scripts/test_fmi.sh
 stage "MATLAB/Octave MEX gateway and rotor example (scripts/test_octave.sh; installs Octave if missing)"

@@ -24,6 +24,8 @@ if ! command -v mkoctfile >/dev/null || ! command -v octave >/dev/null; then
         octave liboctave-dev >/dev/null
     echo "apt-get install took $((SECONDS - t0)) s"
 fi
+# --install-only: scripts/test.sh starts the install in the background while Rust compiles.
+if [ "${1:-}" = "--install-only" ]; then exit 0; fi
 profile=${EHL_PROFILE:-test}
 case "$profile" in test | dev) dir=debug ;; *) dir=$profile ;; esac
 stage "cargo build --profile $profile -p ehl-bearing-c (library and reference programs)"
