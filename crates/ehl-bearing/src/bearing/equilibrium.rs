@@ -175,7 +175,7 @@ fn blend(alpha: D4, theta: D4, delta: D4, band: f64) -> D4 {
 pub const MU_MAX: f64 = 0.1;
 
 /// Fraction of the friction limit μ_max·Q up to which the friction force the gyroscopic moment
-/// needs is transmitted in full ([`saturate`]).
+/// needs is transmitted in full ([`friction_limit_shape`]).
 pub const FRICTION_FULL_CONTROL: f64 = 0.95;
 
 /// The friction limit's shape: G(r) for r = F^H/(μ_max·Q) ≥ 0 and its derivative dG/dr.
