@@ -115,3 +115,18 @@ for key, wn, band, c_lo, c_hi, k_lo, k_hi, c_def, best, *_ in summary:
     cost, tau, k0, k1, ek, ec = best
     print(f"| {key[0]} | ball {key[1]} {key[2]} | {tau * 1e6:.2f} | {k0:.4e} | {k1:.3e} | {k1 * tau:.1f} | "
           f"{100 * ek:.2f} % | {100 * ec:.1f} % |")
+
+print()
+print("| rpm | contact | w0 N | ω_n/2π kHz | rotor band Ω/ω_n | d: qs / 0.005 / 0.1 | ΔF N: qs / 0.005 / 0.1 | c_eq N·s/m: 0.005 / 0.1 | k'/k_qs: 0.005 / 0.1 |")
+print("|---|---|---|---|---|---|---|---|---|")
+for key, wn, band, *_ in summary:
+    rs = [r for r in rows if (r["rpm"], r["ball"], r["race"]) == key]
+    qs = next(r for r in rs if r["method"] == "quasi-static")
+    at = {r["ratio"]: r for r in rs if r["method"] == "harmonic" and not r["error"]}
+    a, b = at["0.005"], at["0.1"]
+    kq = f(qs["k_law_n_m"])
+    print(f"| {key[0]} | ball {key[1]} {key[2]} | {f(qs['load_n']):.1f} | {wn / 2 / math.pi / 1e3:.1f} | "
+          f"{band[0]:.4f}–{band[1]:.4f} | {f(qs['d']):.4f} / {f(a['d']):.4f} / {f(b['d']):.4f} | "
+          f"{f(qs['delta_f_n']):.1f} / {f(a['delta_f_n']):.1f} / {f(b['delta_f_n']):.1f} | "
+          f"{f(a['c_eq_n_s_m']):.1f} / {f(b['c_eq_n_s_m']):.1f} | "
+          f"{f(a['k_dyn_n_m']) / kq:.4f} / {f(b['k_dyn_n_m']) / kq:.4f} |")
