@@ -188,6 +188,15 @@ fn main() {
 /// One plotted series: label and (Ω/ω_n, value) points.
 type Series = (String, Vec<(f64, f64)>);
 
+/// One panel: title, the series drawn as lines, series drawn as dots, and a dashed reference
+/// value per series.
+type Panel<'a> = (
+    &'a str,
+    &'a Vec<Series>,
+    Option<&'a Vec<Series>>,
+    Vec<Option<f64>>,
+);
+
 /// SVG of four panels against log Ω/ω_n from the CSV text: k'/k_qs, c_eq (lines) and the law's
 /// c (dots), d, ΔF. The quasi-static values are drawn as dashed horizontal lines in the same
 /// colour. The rotor band (100–400 Hz over the contacts' ω_n) is shaded.
@@ -249,7 +258,7 @@ fn plot(csv: &str) -> String {
          font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" \
          fill=\"white\"/>\n"
     );
-    let panels: [(&str, &Vec<Series>, Option<&Vec<Series>>, Vec<Option<f64>>); 4] = [
+    let panels: [Panel; 4] = [
         (
             "dynamic stiffness k'/k_qs (k_qs: quasi-static tangent)",
             &k_rel,
