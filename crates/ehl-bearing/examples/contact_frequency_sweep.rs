@@ -2,22 +2,23 @@
 //! (dry-Hertz loads of `benches/seed_contacts.csv`), with the quasi-static limit beside it.
 //!
 //! Per contact and speed, one quasi-static characterization and one harmonic characterization per
-//! Ω/ω_n. Each row gives the fitted law (K, d, ΔF, c) and the first-harmonic complex stiffness of
-//! the recorded period (`ContactFit::dynamic_stiffness`), k*(Ω) = F₁/δ₁ = k' + i·Ω·c_eq (F₁, δ₁ the first Fourier coefficients of the
-//! film force ∬p dA and of the approach over the recorded period), so k' (N/m) is the dynamic
-//! stiffness and c_eq (N·s/m) the equivalent viscous damping. The quasi-static row has k' = the
+//! Ω/ω_n (harmonic defaults but up to 4 settling periods). Each row gives the fitted law (K, d, ΔF,
+//! c) and the first-harmonic complex stiffness of the recorded period
+//! (`ContactFit::dynamic_stiffness`), k*(Ω) = F₁/δ₁ = k' + i·Ω·c_eq (F₁, δ₁ the first Fourier
+//! coefficients of the film force ∬p dA and of the approach over the recorded period), so k' (N/m)
+//! is the dynamic stiffness and c_eq (N·s/m) the equivalent viscous damping. The quasi-static row has k' = the
 //! law's tangent K·d·δ0^(d−1) at w0 and no damping. Writes `sweep.csv` and `sweep.svg` (k'/k_qs,
 //! c_eq and c, d, ΔF against Ω/ω_n, log scale, the rotor band shaded) into OUT.
 //!
 //! `cargo run --release -p ehl-bearing --example contact_frequency_sweep -- [OPTIONS]`
 //!
 //! - `--out DIR` (default `docs/figures/contact_frequency`)
-//! - `--grid N` EHL grid of every solution (default 65)
+//! - `--grid N` EHL grid of every solution (default 129, the methods' default)
 //! - `--steps N` steps per period (default 64)
 //! - `--rpm 3000,4000,5000` speeds of `seed_contacts.csv`
-//! - `--contacts 1i,5i` ball number and race initial (default: the heaviest inner contact, ball 1,
-//!   and a light one, ball 5)
-//! - `--ratios 0.002,0.005,…` Ω/ω_n (default 0.002 0.005 0.01 0.02 0.05 0.1 0.2 0.5 1)
+//! - `--contacts 1i,1o,5i` ball number and race initial (default: the heaviest inner and outer
+//!   contacts, ball 1, and a light inner one, ball 5)
+//! - `--ratios 0.002,0.005,…` Ω/ω_n (default 0.002 0.005 0.01 0.02 0.05 0.1 0.2 0.3 0.5 1)
 //! - `--plot` only redraw `OUT/sweep.svg` from `OUT/sweep.csv`
 use ehl_bearing::contact::{
     ball_mass, characterize_harmonic, characterize_quasi_static, Excitation, ExcitationFrequency,
@@ -64,12 +65,12 @@ fn main() {
         std::fs::write(out.join("sweep.svg"), plot(&csv)).expect("write svg");
         return;
     }
-    let grid: usize = arg(&args, "--grid").map_or(65, |x| x.parse().expect("grid"));
+    let grid: usize = arg(&args, "--grid").map_or(129, |x| x.parse().expect("grid"));
     let steps: usize = arg(&args, "--steps").map_or(64, |x| x.parse().expect("steps"));
     let rpms = list(arg(&args, "--rpm").unwrap_or("3000,4000,5000"));
-    let contacts = list(arg(&args, "--contacts").unwrap_or("1i,5i"));
+    let contacts = list(arg(&args, "--contacts").unwrap_or("1i,1o,5i"));
     let ratios: Vec<f64> =
-        list(arg(&args, "--ratios").unwrap_or("0.002,0.005,0.01,0.02,0.05,0.1,0.2,0.5,1"))
+        list(arg(&args, "--ratios").unwrap_or("0.002,0.005,0.01,0.02,0.05,0.1,0.2,0.3,0.5,1"))
             .iter()
             .map(|x| x.parse().expect("ratio"))
             .collect();
