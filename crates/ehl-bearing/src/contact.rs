@@ -165,6 +165,56 @@ pub struct ContactFit {
     pub law: FittedLaw,
 }
 
+/// First-harmonic complex stiffness of a harmonic result's recorded period,
+/// k*(Ω) = F₁/δ₁ = k' + i·Ω·c_eq, with F₁ and δ₁ the first Fourier coefficients at the excitation
+/// frequency of the film force ∬p dA and of the approach δ (SI).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DynamicStiffness {
+    /// Excitation frequency Ω, rad/s.
+    pub frequency_rad_s: f64,
+    /// Dynamic stiffness k' = Re k*, N/m.
+    pub stiffness_n_m: f64,
+    /// Equivalent viscous damping c_eq = Im k*/Ω, N·s/m.
+    pub damping_n_s_m: f64,
+    /// Amplitude of the first harmonic of δ, m.
+    pub approach_amplitude_m: f64,
+}
+
+impl ContactFit {
+    /// The first-harmonic complex stiffness of the recorded periods (harmonic method; None for
+    /// the quasi-static method, or a recorded δ without a first harmonic). The recorded steps
+    /// span whole periods at equal steps, so the discrete Fourier sums are exact for the
+    /// harmonics the steps resolve.
+    pub fn dynamic_stiffness(&self) -> Option<DynamicStiffness> {
+        let Excitation::Harmonic(x) = self.excitation else {
+            return None;
+        };
+        let rec = self.history.get(self.settling_steps..)?;
+        let n = x.recorded_periods * x.steps_per_period;
+        let rec = rec.get(..n)?;
+        let omega = x.frequency_rad_s;
+        let fourier = |f: &dyn Fn(&TransientStep) -> f64| {
+            rec.iter().fold((0.0, 0.0), |(a, b), s| {
+                let (sin, cos) = (omega * s.time).sin_cos();
+                (a + f(s) * cos, b - f(s) * sin)
+            })
+        };
+        let (fr, fi) = fourier(&|s| s.film_force);
+        let (dr, di) = fourier(&|s| s.approach);
+        let m = dr * dr + di * di;
+        if !(m.is_finite() && m > 0.0) {
+            return None;
+        }
+        let (kr, ki) = ((fr * dr + fi * di) / m, (fi * dr - fr * di) / m);
+        Some(DynamicStiffness {
+            frequency_rad_s: omega,
+            stiffness_n_m: kr,
+            damping_n_s_m: ki / omega,
+            approach_amplitude_m: 2.0 * m.sqrt() / n as f64,
+        })
+    }
+}
+
 /// How a contact's samples were produced (SI), as written into every result.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "method", rename_all = "kebab-case")]
