@@ -1,5 +1,5 @@
 //! Inputs outside what the models describe are refused at once, naming the key, and long
-//! solves are bounded by `--time-limit` (issue 15: each of these ran for minutes before).
+//! solves are bounded by `--time-limit` (each of these ran for minutes before).
 
 use assert_cmd::cargo::CommandCargoExt;
 use std::path::{Path, PathBuf};

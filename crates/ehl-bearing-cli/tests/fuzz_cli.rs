@@ -1,4 +1,4 @@
-//! Fuzzing of command lines (issue 15; docs/robustness.md): generated argument lists, each run
+//! Fuzzing of command lines (docs/robustness.md): generated argument lists, each run
 //! as the real binary (clap parsing, validation, the plausibility checks and a bounded run), must
 //! end with exit status 0 or 1 and, on failure, a message on stderr: never a panic (status 101),
 //! a signal, or a hang. Commands that compute get a `--time-limit` (unless the list already has

@@ -1,4 +1,4 @@
-//! Faults on disk during a study (issue 15): a full disk, a read-only output folder and
+//! Faults on disk during a study: a full disk, a read-only output folder and
 //! corrupted point files. In each case the study ends with a clear error or redoes the point,
 //! and no finished point file is lost or replaced by a partial one. (Truncated point files,
 //! `-o` naming a file and a closed stdout: `study_resume.rs`.)

@@ -43,7 +43,7 @@ fn solve(b: &Bearing, op: &OperatingPoint) -> Equilibrium {
 }
 
 /// Solve with the given kinematics model (the default is the textbook model at the operating
-/// contact angles; `GrooveLine` is the model before issue 14).
+/// contact angles; `GrooveLine` is the model before the textbook kinematics).
 fn solve_kin(b: &Bearing, op: &OperatingPoint, kinematics: Kinematics) -> Equilibrium {
     let laws = ContactLaws::hertz(b).unwrap();
     let settings = EquilibriumSettings {

@@ -1,4 +1,4 @@
-//! High-speed fidelity of the bearing model (issue 14): the textbook (Jones–Harris) kinematics at
+//! High-speed fidelity of the bearing model: the textbook (Jones–Harris) kinematics at
 //! each contact's operating angle, checked from first principles and against an independent
 //! implementation of the textbook equations of docs/bearing.md.
 // Index loops mirror the matrix formulas in these checks.
@@ -625,7 +625,7 @@ fn friction_limit_is_exact_below_and_c2_smooth_into_the_limit() {
 }
 
 /// The groove-line model departs from the textbook model by degrees and many percent at
-/// 15000 rpm (the motivation of issue 14), and agrees with it at rest.
+/// 15000 rpm (the motivation of the textbook kinematics), and agrees with it at rest.
 #[test]
 fn groove_line_model_departs_from_the_textbook_at_high_speed() {
     let b = b218();

@@ -181,7 +181,7 @@ fn free_vibration_tends_to_the_hertz_natural_frequency() {
     }
 }
 
-/// At low excitation frequency the harmonic and quasi-static methods agree (issue 4): the force
+/// At low excitation frequency the harmonic and quasi-static methods agree: the force
 /// at the operating approach within 1 %, d within 0.02.
 #[test]
 fn harmonic_agrees_with_quasi_static_at_low_frequency() {

@@ -100,7 +100,7 @@ fn invalid_settings_are_errors() {
     assert!(e.contains("load"), "{e}");
 }
 
-/// The family's members share the DC-FFT kernels and plans (per-thread cache, issue 11): a
+/// The family's members share the DC-FFT kernels and plans (per-thread cache): a
 /// characterization on a fresh thread builds few kernels and reuses them for the other members
 /// (the seed contact at 600 N has the same domain at every load of the family, inlet 6 a_x and
 /// half-width 2 a_y; the cache key is the exact cell size, and a_y/a_x differs in its last bits
@@ -132,7 +132,7 @@ fn family_reuses_kernels_and_plans() {
     .expect("thread");
 }
 
-/// Default accuracy of the film at w0 (issue 16, item 2): the Richardson estimate of the `contact`
+/// Default accuracy of the film at w0: the Richardson estimate of the `contact`
 /// command (129² family + one 257² solution at w0) brings the central film and the approach of
 /// the most loaded seed inner contact (600 N, 5000 rpm) within 0.5 % of the grid-converged
 /// values — reference: the Richardson extrapolation of the 257² and 513² families, H_c 0.56588 µm,

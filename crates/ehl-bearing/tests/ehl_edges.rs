@@ -1,4 +1,4 @@
-//! Physics inputs at the edges (issue 15; docs/robustness.md): the EHL solver over random
+//! Physics inputs at the edges (docs/robustness.md): the EHL solver over random
 //! (M, L, Ry/Rx, rheology) beyond the documented range, and the bearing equilibrium over random
 //! valid geometry, speeds and loads. Each either converges with finite numbers or reports that
 //! it did not (an error or `converged: false`); never a panic, never NaN.

@@ -348,7 +348,7 @@ fn assert_converged_in_start(x: &EhlSolution, start: usize) {
 /// Barus at large αp_h (circular, M 5, L 25: αp_h = 17.9): every direct start diverges within a
 /// few cycles and so does load continuation; the continuation in α from L/4 (start 8, ω_GS ≤ 0.1
 /// and a coarsest grid of 65² on the warm-started steps) converges (docs/ehl.md §5.8). (The case
-/// of this test was M 20 until the line relaxation's active set was iterated, issue 16: since
+/// of this test was M 20 until the line relaxation's active set was iterated: since
 /// then M 20 converges on 129² in start 4, and still needs start 8 on 257²; M 5 needs start 8 on
 /// both.)
 #[test]
@@ -458,7 +458,7 @@ fn seed_contact_and_warm_start() {
     assert!(warm.cycles <= cold.cycles);
 }
 
-/// Family warm starts (issue 16, session 7): the seed's most loaded inner contact on one domain
+/// Family warm starts: the seed's most loaded inner contact on one domain
 /// (the quasi-static family's), 640 N warm-started from 600 N, and 680 N either warm-started from
 /// 640 N alone or extrapolated linearly in load from 600 and 640 N (`solve_steady_extrapolated`,
 /// Hertz-scaled pressure and H0). Every start stops at the family's fixed tolerances within 1e-3
@@ -640,7 +640,7 @@ fn discretization_rule_stops_within_its_estimate() {
     assert_eq!(warm.discretization_estimate, a.discretization_estimate);
 }
 
-/// The converged discrete solution does not depend on the start that reached it (issue 16):
+/// The converged discrete solution does not depend on the start that reached it:
 /// the seed's inner contact at 240 N (M ≈ 945, L ≈ 25, Ry/Rx 60; a light member of the 300 N
 /// family, on that family's domain) solved to tight tolerances from four cold starts whose
 /// relaxation settings differ. Before the line relaxation's active set was iterated and the

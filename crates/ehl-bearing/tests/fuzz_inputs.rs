@@ -1,4 +1,4 @@
-//! Structure-aware fuzzing of the input files on stable Rust (issue 15; docs/robustness.md).
+//! Structure-aware fuzzing of the input files on stable Rust (docs/robustness.md).
 //!
 //! Case files, contact files and study files are generated from the examples by mutations
 //! (right keys with wild values: 0, negative, NaN, ±inf, huge, tiny, wrong types; missing,

@@ -1,4 +1,4 @@
-//! Smoothness of the fitted contact laws over a load sweep (issue 17): the quasi-static fits of
+//! Smoothness of the fitted contact laws over a load sweep: the quasi-static fits of
 //! neighbouring loads must not scatter more than their reported standard errors admit, and d and
 //! ΔF must grow with the load at a fixed speed (d → 1.5 as the load grows; the lift ΔF grows with
 //! the film-carrying load). `docs/gallery.md` ("Smoothness of the fitted parameters") has the
