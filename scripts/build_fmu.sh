@@ -42,7 +42,10 @@ print("characterization" if "contacts" in d else "trends" if "inner" in d and "o
 fi
 profile=${FMU_PROFILE:-release}
 case $profile in dev | test) profile_dir=debug ;; *) profile_dir=$profile ;; esac
-(cd "$root" && cargo build --profile "$profile" --quiet -p ehl-bearing-fmi)
+# scripts/test_fmi.sh builds first (FMU_BUILT=1), with the feature set it needs.
+if [ -z "${FMU_BUILT:-}" ]; then
+    (cd "$root" && cargo build --profile "$profile" --quiet -p ehl-bearing-fmi)
+fi
 release=$CARGO_TARGET_DIR/$profile_dir
 stage=$(mktemp -d)
 trap 'rm -rf "$stage"' EXIT

@@ -40,8 +40,17 @@ fi
 # release build's minutes); the unit and the reference helper always share the profile.
 export FMU_PROFILE=${FMU_PROFILE:-release}
 case $FMU_PROFILE in dev | test) profile_dir=debug ;; *) profile_dir=$FMU_PROFILE ;; esac
-stage "cargo build --profile $FMU_PROFILE -p ehl-bearing-fmi"
-cargo build --profile "$FMU_PROFILE" --quiet -p ehl-bearing-fmi
+if [ "$FMU_PROFILE" = test ]; then
+    # The feature set of `cargo test --workspace` (dev-dependencies included): after the cargo
+    # test stage of scripts/test.sh this compiles only the unit's cdylib and helper binary
+    # (`-p ehl-bearing-fmi` alone resolves other features and rebuilds the library: minutes).
+    stage "cargo build --profile test --workspace (the cargo test feature set)"
+    cargo build --profile test --quiet --workspace --lib --bins --tests --examples
+else
+    stage "cargo build --profile $FMU_PROFILE -p ehl-bearing-fmi"
+    cargo build --profile "$FMU_PROFILE" --quiet -p ehl-bearing-fmi
+fi
+export FMU_BUILT=1
 helper=$CARGO_TARGET_DIR/$profile_dir/ehl-bearing-fmu
 out=target/fmi-test
 rm -rf "$out"

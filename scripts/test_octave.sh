@@ -28,8 +28,16 @@ fi
 if [ "${1:-}" = "--install-only" ]; then exit 0; fi
 profile=${EHL_PROFILE:-test}
 case "$profile" in test | dev) dir=debug ;; *) dir=$profile ;; esac
-stage "cargo build --profile $profile -p ehl-bearing-c (library and reference programs)"
-cargo build --profile "$profile" -p ehl-bearing-c --lib --examples
+if [ "$profile" = test ]; then
+    # The feature set of `cargo test --workspace` (dev-dependencies included): after the cargo
+    # test stage of scripts/test.sh this compiles at most the C library's cdylib
+    # (`-p ehl-bearing-c` alone resolves other features and rebuilds the library: minutes).
+    stage "cargo build --profile test --workspace (the cargo test feature set)"
+    cargo build --profile test --quiet --workspace --lib --bins --tests --examples
+else
+    stage "cargo build --profile $profile -p ehl-bearing-c (library and reference programs)"
+    cargo build --profile "$profile" -p ehl-bearing-c --lib --examples
+fi
 lib="$CARGO_TARGET_DIR/$dir"
 work="$CARGO_TARGET_DIR/octave"
 mkdir -p "$work"
