@@ -12,17 +12,16 @@
 
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws};
 use ehl_bearing::characterize::{
-    characterization_json, characterize_bearing_with_progress, BearingCharacterization,
-    CharacterizationReport, CharacterizeSettings, CharacterizedContact, ContactCharacterizer,
-    ContactConditions, LoadPredictor, PredictedLaw, Progress,
+    characterization_json, characterize_bearing_with_control, BearingCharacterization,
+    CharacterizationReport, CharacterizeSettings,
 };
 use ehl_bearing::force_element::{
     ElementInput, ElementState, ForceElement, LawElement, TrendForceElement,
 };
 use ehl_bearing::io::{parse_case, read_case, Case};
-use ehl_bearing::method::{Method, MethodError};
 use std::cell::RefCell;
 use std::ffi::{c_char, c_int, c_void, CStr, CString};
+use std::ops::ControlFlow;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{mpsc, Arc};
@@ -404,71 +403,12 @@ pub unsafe extern "C" fn ehl_case_free(c: *mut EhlCase) {
 pub type EhlProgressFn =
     Option<unsafe extern "C" fn(event_json: *const c_char, user: *mut c_void) -> c_int>;
 
-/// A characterization method that stops (with an error) once `cancel` is set: checked before
-/// every contact characterization and load prediction.
-struct Cancellable<'a> {
-    inner: &'a Method,
-    cancel: &'a AtomicBool,
-}
-
-impl Cancellable<'_> {
-    fn check(&self) -> Result<(), ehl_bearing::Error> {
-        if self.cancel.load(Ordering::SeqCst) {
-            Err(MethodError::Law("cancelled by the progress callback".into()).into())
-        } else {
-            Ok(())
-        }
-    }
-}
-
-impl ContactCharacterizer for Cancellable<'_> {
-    fn characterize(
-        &self,
-        c: &ContactConditions,
-    ) -> Result<CharacterizedContact, ehl_bearing::Error> {
-        self.check()?;
-        self.inner.characterize(c)
-    }
-
-    fn method(&self) -> Method {
-        ContactCharacterizer::method(self.inner)
-    }
-
-    fn name(&self) -> &str {
-        ContactCharacterizer::name(self.inner)
-    }
-
-    fn predictor(&self) -> Option<&dyn LoadPredictor> {
-        self.inner.predictor().map(|_| self as &dyn LoadPredictor)
-    }
-}
-
-impl LoadPredictor for Cancellable<'_> {
-    fn predict(&self, c: &ContactConditions) -> Result<PredictedLaw, ehl_bearing::Error> {
-        self.check()?;
-        match self.inner.predictor() {
-            Some(p) => p.predict(c),
-            None => Err(MethodError::Law("method has no load predictor".into()).into()),
-        }
-    }
-}
-
-/// A characterization loop event as JSON (the Python package's progress dicts).
-fn progress_json(p: &Progress) -> serde_json::Value {
-    match p {
-        Progress::IterationStarted {
-            iteration,
-            contacts,
-        } => {
-            serde_json::json!({"event": "iteration_started", "iteration": iteration, "contacts": contacts})
-        }
-        Progress::ContactDone { iteration } => {
-            serde_json::json!({"event": "contact_done", "iteration": iteration})
-        }
-        Progress::IterationDone(r) => serde_json::json!({
-            "event": "iteration_done",
-            "record": serde_json::to_value(r).unwrap_or(serde_json::Value::Null),
-        }),
+/// Stop the library's loop once the caller asked to cancel (after the event just reported).
+fn go_on(cancel: &AtomicBool) -> ControlFlow<()> {
+    if cancel.load(Ordering::SeqCst) {
+        ControlFlow::Break(())
+    } else {
+        ControlFlow::Continue(())
     }
 }
 
@@ -587,9 +527,11 @@ pub unsafe extern "C" fn ehl_characterize(
         let m = case.method_or(method).map_err(lib_err)?;
         let settings = CharacterizeSettings::default();
         let ch = with_progress(progress, user, |report, cancel| {
-            let ch = Cancellable { inner: &m, cancel };
-            characterize_bearing_with_progress(case, &ch, &settings, &|p| report(progress_json(&p)))
-                .map_err(lib_err)
+            characterize_bearing_with_control(case, &m, &settings, &|p| {
+                report(p.to_json());
+                go_on(cancel)
+            })
+            .map_err(lib_err)
         })?;
         // SAFETY: `out` checked above.
         unsafe {
@@ -1165,17 +1107,16 @@ pub unsafe extern "C" fn ehl_coefficients(
             None => {
                 let m = case.method_or(method).map_err(lib_err)?;
                 with_progress(progress, user, |report, cancel| {
-                    let ch = Cancellable { inner: &m, cancel };
                     ehl_bearing::coefficients::from_characterization(
                         case,
                         &speeds,
-                        &ch,
+                        &m,
                         &CharacterizeSettings::default(),
                         &|i, p| {
-                            let mut v = progress_json(&p);
+                            let mut v = p.to_json();
                             v["speed_index"] = i.into();
                             report(v);
-                            std::ops::ControlFlow::Continue(())
+                            go_on(cancel)
                         },
                     )
                     .map_err(lib_err)

@@ -10,7 +10,7 @@
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws};
 use ehl_bearing::characterize::{
     characterization_json, characterize_bearing_with_control, BearingCharacterization,
-    CharacterizeSettings, Progress,
+    CharacterizeSettings,
 };
 use ehl_bearing::force_element::{
     ElementInput, ElementOutput, ElementState, ForceElement, LawElement, TrendForceElement,
@@ -148,24 +148,6 @@ fn report(callback: &Option<PyObject>, event: serde_json::Value) {
                 e.print(py);
             }
         });
-    }
-}
-
-fn progress_json(p: &Progress) -> serde_json::Value {
-    match p {
-        Progress::IterationStarted {
-            iteration,
-            contacts,
-        } => {
-            serde_json::json!({"event": "iteration_started", "iteration": iteration, "contacts": contacts})
-        }
-        Progress::ContactDone { iteration } => {
-            serde_json::json!({"event": "contact_done", "iteration": iteration})
-        }
-        Progress::IterationDone(r) => serde_json::json!({
-            "event": "iteration_done",
-            "record": serde_json::to_value(r).unwrap_or(serde_json::Value::Null),
-        }),
     }
 }
 
@@ -465,7 +447,7 @@ fn characterize(
     let m = m.with_deadline(settings.deadline);
     let control = Control::new(progress);
     let r = py.allow_threads(|| {
-        characterize_bearing_with_control(&c, &m, &settings, &|p| control.event(progress_json(&p)))
+        characterize_bearing_with_control(&c, &m, &settings, &|p| control.event(p.to_json()))
     });
     control.finish()?;
     Ok(Characterization {
@@ -564,7 +546,7 @@ fn study(
                     redone,
                 } => serde_json::json!({"event": "planned", "points": points, "to_compute": to_compute, "redone": redone}),
                 StudyEvent::PointStarted(p) => serde_json::json!({"event": "point_started", "index": p.index, "inner_speed_rpm": p.inner_speed_rpm, "load_scale": p.load_scale}),
-                StudyEvent::Loop(p, l) => serde_json::json!({"event": "loop", "index": p.index, "progress": progress_json(&l)}),
+                StudyEvent::Loop(p, l) => serde_json::json!({"event": "loop", "index": p.index, "progress": l.to_json()}),
                 StudyEvent::PointDone { point, converged, error, seconds } => serde_json::json!({"event": "point_done", "index": point.index, "converged": converged, "error": error, "seconds": seconds}),
             };
             report(&progress, v)
@@ -1012,7 +994,7 @@ fn coefficients(
                     &m,
                     &CharacterizeSettings::default(),
                     &|i, p| {
-                        let mut v = progress_json(&p);
+                        let mut v = p.to_json();
                         v["speed_index"] = i.into();
                         control.event(v)
                     },

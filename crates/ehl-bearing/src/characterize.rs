@@ -607,6 +607,31 @@ pub enum Progress {
     IterationDone(IterationRecord),
 }
 
+impl Progress {
+    /// The event as JSON, the form the Python package's progress dicts and the C interface's
+    /// progress texts take: `{"event": "iteration_started", "iteration", "contacts"}`,
+    /// `{"event": "contact_done", "iteration"}`, `{"event": "iteration_done", "record"}`.
+    pub fn to_json(&self) -> Value {
+        match self {
+            Progress::IterationStarted {
+                iteration,
+                contacts,
+            } => serde_json::json!({
+                "event": "iteration_started",
+                "iteration": iteration,
+                "contacts": contacts,
+            }),
+            Progress::ContactDone { iteration } => {
+                serde_json::json!({"event": "contact_done", "iteration": iteration})
+            }
+            Progress::IterationDone(r) => serde_json::json!({
+                "event": "iteration_done",
+                "record": serde_json::to_value(r).unwrap_or(Value::Null),
+            }),
+        }
+    }
+}
+
 /// As [`characterize_bearing`], calling `progress` as contacts and iterations finish.
 pub fn characterize_bearing_with_progress(
     case: &Case,
@@ -621,7 +646,8 @@ pub fn characterize_bearing_with_progress(
 }
 
 /// As [`characterize_bearing_with_progress`], with a callback that can stop the run: once it
-/// returns [`ControlFlow::Break`], no further contact characterization starts and the call
+/// returns [`ControlFlow::Break`], no further contact characterization (or load prediction)
+/// starts and the call
 /// returns [`CharacterizeError::Cancelled`] as soon as those already running finish (a contact
 /// takes up to seconds by the quasi-static method, tens of seconds by the harmonic one; bound
 /// them with [`CharacterizeSettings::deadline`]). Callers use it for a cancel button, Ctrl-C, or
@@ -645,7 +671,7 @@ pub fn characterize_bearing_with_control(
     let dry = solve_equilibrium(&case.bearing, &dry_laws, &case.operating, &case.settings)
         .map_err(CharacterizeError::DryEquilibrium)?;
     let (start, prediction) = if settings.predict_loads {
-        predicted_start(case, ch, settings, &dry_laws, &dry, progress)
+        predicted_start(case, ch, settings, &dry_laws, &dry, (progress, &stop))
     } else {
         (None, None)
     };
@@ -1027,7 +1053,7 @@ fn predicted_start(
     settings: &CharacterizeSettings,
     dry_laws: &ContactLaws,
     dry: &Equilibrium,
-    progress: &(dyn Fn(Progress) + Sync),
+    (progress, stop): (&(dyn Fn(Progress) + Sync), &AtomicBool),
 ) -> (Option<Equilibrium>, Option<PredictionRecord>) {
     let t0 = Instant::now();
     let Some(predictor) = ch.predictor() else {
@@ -1041,6 +1067,10 @@ fn predicted_start(
     let predicted: Vec<Result<PredictedLaw, crate::Error>> = conds
         .par_iter()
         .map(|(c, _)| {
+            if stop.load(Ordering::Relaxed) {
+                // The caller stopped the run: the loop returns Cancelled after the prediction.
+                return Err(crate::method::MethodError::Law("cancelled".into()).into());
+            }
             let r = predictor.predict(c);
             progress(Progress::ContactDone { iteration: 0 });
             r
