@@ -21,7 +21,9 @@ use crate::bearing::{cage_speed_of, Bearing, ForceResult};
 use crate::bearing::{
     BearingError, BearingModel, ContactLaws, DynamicForce, Kinematics, Race, RaceControl,
 };
-use crate::characterize::{BearingCharacterization, CharacterizationReport, CharacterizeError};
+use crate::characterize::{
+    BearingCharacterization, CharacterizationReport, CharacterizeError, ContactRow,
+};
 use crate::contact_law::ContactLaw;
 use crate::fit::FittedLaw;
 use crate::io::Case;
@@ -223,6 +225,21 @@ fn solve(state: &mut ElementState, input: &ElementInput) -> Result<DynamicForce,
     Ok(out)
 }
 
+/// The fitted law (with its damping, if fitted) of one row of a characterization report.
+fn row_law(row: &ContactRow) -> Result<FittedLaw, crate::Error> {
+    let law = FittedLaw::new(
+        row.k,
+        row.d,
+        row.delta_f_n,
+        row.fit_approach_min_m,
+        row.fit_approach_max_m,
+    )?;
+    Ok(match row.damping_n_s_m {
+        Some(c) => law.with_damping(c)?,
+        None => law,
+    })
+}
+
 /// A bearing whose every contact has a fixed law: dry Hertz, or the fitted laws of one
 /// characterization (with their damping terms, if the method fitted them).
 #[derive(Debug, Clone)]
@@ -285,20 +302,11 @@ impl LawElement {
         race_control: RaceControl,
         report: &CharacterizationReport,
     ) -> Result<Self, crate::Error> {
-        let mut laws = Vec::with_capacity(report.contacts.len());
-        for row in &report.contacts {
-            let mut law = FittedLaw::new(
-                row.k,
-                row.d,
-                row.delta_f_n,
-                row.fit_approach_min_m,
-                row.fit_approach_max_m,
-            )?;
-            if let Some(c) = row.damping_n_s_m {
-                law = law.with_damping(c)?;
-            }
-            laws.push(law);
-        }
+        let laws = report
+            .contacts
+            .iter()
+            .map(row_law)
+            .collect::<Result<Vec<_>, _>>()?;
         Self::from_fitted(bearing, race_control, &laws)
     }
 
@@ -376,17 +384,7 @@ impl LawElement {
                     .into())
                 }
             };
-            let mut law = FittedLaw::new(
-                row.k,
-                row.d,
-                row.delta_f_n,
-                row.fit_approach_min_m,
-                row.fit_approach_max_m,
-            )?;
-            if let Some(c) = row.damping_n_s_m {
-                law = law.with_damping(c)?;
-            }
-            pts[k].push((row.characterized_load_n, law));
+            pts[k].push((row.characterized_load_n, row_law(row)?));
         }
         Self::by_load(bearing, race_control, &pts[0], &pts[1])
     }
