@@ -600,39 +600,39 @@ def targets(env: Env) -> dict[str, Callable[[random.Random], Call]]:
     }
 
 
+def outcome_of(thunk: Call) -> tuple[str, str]:
+    """(outcome, detail) of one call."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            result = thunk()
+        except CLEAR as e:
+            msg = str(e).strip()
+            return (
+                "clear error" if msg else "error without a message"
+            ), f"{type(e).__name__}: {msg}"
+        except (KeyboardInterrupt, SystemExit):
+            raise
+        except BaseException as e:  # a pyo3 panic is a BaseException
+            kind = "panic" if type(e).__name__ == "PanicException" else "unexpected exception"
+            return kind, f"{type(e).__name__}: {e}"
+    bad = nonfinite(result)
+    warned = f"; warning: {caught[0].message}" if caught else ""
+    if bad:
+        return ("flagged" if caught else "non-finite result"), f"non-finite at {bad}{warned}"
+    return ("flagged" if caught else "result"), warned
+
+
 def run_one(thunk: Call) -> tuple[str, str, float]:
-    """(outcome, detail, seconds) of one call."""
+    """(outcome, detail, seconds) of one call; a call running longer than HANG_S ends the process
+    (faulthandler prints where it hung)."""
     t0 = time.perf_counter()
     faulthandler.dump_traceback_later(HANG_S, exit=True)
     try:
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            try:
-                result = thunk()
-            except CLEAR as e:
-                msg = str(e).strip()
-                return (
-                    ("clear error" if msg else "error without a message"),
-                    f"{type(e).__name__}: {msg}",
-                    0.0,
-                )
-            except (KeyboardInterrupt, SystemExit):
-                raise
-            except BaseException as e:  # a pyo3 panic is a BaseException
-                kind = "panic" if type(e).__name__ == "PanicException" else "unexpected exception"
-                return kind, f"{type(e).__name__}: {e}", 0.0
-        bad = nonfinite(result)
-        warned = f"; warning: {caught[0].message}" if caught else ""
-        if bad:
-            return (
-                ("flagged" if caught else "non-finite result"),
-                f"non-finite at {bad}{warned}",
-                0.0,
-            )
-        return ("flagged" if caught else "result"), warned, 0.0
+        outcome, detail = outcome_of(thunk)
     finally:
         faulthandler.cancel_dump_traceback_later()
-        run_one.last_seconds = time.perf_counter() - t0  # type: ignore[attr-defined]
+    return outcome, detail, time.perf_counter() - t0
 
 
 FAILURES = {"panic", "unexpected exception", "non-finite result", "error without a message"}
@@ -661,8 +661,7 @@ def test_fuzz_the_python_api(env: Env) -> None:
         if MESSAGES:  # the call about to run, in case it never returns
             with open(MESSAGES + ".last", "w") as f:
                 f.write(f"{i}\t{name}\n")
-        outcome, detail, _ = run_one(thunk)
-        seconds = run_one.last_seconds  # type: ignore[attr-defined]
+        outcome, detail, seconds = run_one(thunk)
         counts[name][outcome] += 1
         slowest[name] = max(slowest[name], seconds)
         if ONE is not None:
