@@ -40,7 +40,7 @@ pub struct ContactArgs {
     #[arg(long)]
     pub no_film_extrapolation: bool,
     /// Harmonic method: excitation frequency Ω as a fraction of the contact's linearized natural
-    /// frequency (default 0.1).
+    /// frequency (default 0.005, inside the rotor band).
     #[arg(long, conflicts_with = "frequency_rad_s")]
     pub frequency_fraction: Option<f64>,
     /// Harmonic method: excitation frequency Ω in rad/s.

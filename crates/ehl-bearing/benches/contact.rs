@@ -6,9 +6,10 @@
 //!   plans);
 //! - harmonic: steady start and ±5 % solutions (ω_n), the start at the load maximum, then the
 //!   settling (quarter periods until the periodicity is ≤ 1e-3: 32 steps on this contact) and
-//!   1 recorded period of 64 transient steps at Ω = 0.1·ω_n on 129 × 129, LM fit with the
-//!   damping term (issue 16); `harmonic_two_settled_periods`: the same with the settling of
-//!   before issue 16 (two whole periods, `periodicity_tol` = 0), for the comparison;
+//!   1 recorded period of 64 transient steps at the default Ω (0.005·ω_n; 0.1·ω_n until
+//!   2026-11-26: the steps are per period, so the cost does not depend on Ω) on 129 × 129, LM fit
+//!   with the damping term; `harmonic_two_settled_periods`: the same with the settling of
+//!   before (two whole periods, `periodicity_tol` = 0), for the comparison;
 //!   `harmonic_65`: the default settings on 65².
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};

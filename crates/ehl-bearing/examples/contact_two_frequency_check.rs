@@ -2,7 +2,7 @@
 //! motion under w(t) = w0·(1 + ε·sin Ω₁t + ε·sin Ω₂t), Ω₂ = n·Ω₁, and the film force ∬p dA it
 //! records against the force Q = K·δ^d + ΔF + c·δ̇ of fitted laws fed with the recorded δ(t) and
 //! δ̇(t): the quasi-static law (c = 0) and harmonic laws fitted at single frequencies (in the rotor
-//! band and at the default 0.1·ω_n). Prints per law the largest and the RMS error over one period
+//! band and at 0.1·ω_n, the default until 2026-11-26). Prints per law the largest and the RMS error over one period
 //! of Ω₁, relative to the recorded force's swing (max − min) and in N.
 //!
 //! `cargo run --release -p ehl-bearing --example contact_two_frequency_check -- [RPM BALL+RACE

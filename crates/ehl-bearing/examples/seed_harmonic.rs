@@ -2,10 +2,11 @@
 //! `benches/seed_contacts.csv`), one after the other on one thread, at the default settings:
 //! one line per contact (race, load, d, ΔF, c, settling steps, periodicity, cycles per step,
 //! steps not converged, seconds) and a total. Used for the step-iteration study of
-//! BENCHMARKS.md (issue 16).
+//! BENCHMARKS.md and docs/contact.md.
 //!
 //! `cargo run --release -p ehl-bearing --example seed_harmonic -- [RPM [CONTACT…]]`: RPM 3000
 //! (default), 4000 or 5000; CONTACTs select some, as ball number and race initial (`7i 5o`).
+//! Environment: `STEP_TOL_FILM` overrides the steps' film tolerance, `FREQUENCY_FRACTION` Ω/ω_n.
 use ehl_bearing::contact::{ball_mass, characterize_harmonic, Excitation, HarmonicSettings};
 use ehl_bearing::ehl::EhlContact;
 use ehl_bearing::material::{reduced_modulus, Lubricant, Solid};
@@ -16,7 +17,18 @@ fn main() {
     let only = &args[args.len().min(1)..];
     let e = reduced_modulus(&Solid::AISI_52100, &Solid::AISI_52100);
     let m = ball_mass(7e-3, Solid::AISI_52100.density);
-    let s = HarmonicSettings::default();
+    let mut s = HarmonicSettings::default();
+    let env = |k: &str| {
+        std::env::var(k)
+            .ok()
+            .map(|v| v.parse::<f64>().expect("a number"))
+    };
+    if let Some(t) = env("STEP_TOL_FILM") {
+        s.step_tol_film = t;
+    }
+    if let Some(f) = env("FREQUENCY_FRACTION") {
+        s.frequency = ehl_bearing::contact::ExcitationFrequency::FractionOfNatural(f);
+    }
     let (mut steps, mut cycles, mut seconds, mut bad) = (0usize, 0.0, 0.0, 0usize);
     for line in include_str!("../benches/seed_contacts.csv")
         .lines()

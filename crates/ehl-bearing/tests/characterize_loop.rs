@@ -648,8 +648,9 @@ fn harmonic_loop_converges_and_its_laws_carry_the_steady_film_forces() {
     assert!(total <= 26, "{:?}", r.history);
     assert_eq!(r.history.last().unwrap().characterized, 0);
     // Each law's static part K·δ^d + ΔF at the approach of a fresh steady EHL solution (same
-    // grid) at the contact's final load: the harmonic law is the dynamic one at Ω = 0.1·ω_n, whose
-    // force at the steady approach stays within 0.5 % of the load up to Ω = 0.5·ω_n
+    // grid) at the contact's final load: the harmonic law is the dynamic one at the default
+    // Ω = 0.005·ω_n, whose force at the steady approach stays within 0.5 % of the load up to
+    // Ω = 0.5·ω_n
     // (docs/contact.md, "How the two methods part as Ω rises"); asserted at 1 %. Its reported
     // bound (largest |K·δ^d + ΔF + c·δ̇ − F| over the recorded steps) is finite and positive, and
     // so are the standard errors.

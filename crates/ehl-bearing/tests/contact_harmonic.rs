@@ -379,8 +379,14 @@ fn harmonic_settings_are_validated() {
 /// measured periodicity is below its bound) gives the law of a run settled for two whole
 /// periods with tight steps (step_tol_film 1e-5): d within 1e-3, ΔF within 2 % (the fit's
 /// standard errors are 0.002 and 0.7 N on 129², docs/contact.md), the force and stiffness at
-/// δ0 within 1e-4, c within 0.5 %. The reference's own error is not in this bound: the
-/// time-step error (docs/contact.md) is the same in both.
+/// δ0 within 1e-4. c: the settling alone moves it by less than 0.5 % (the same run settled for
+/// two whole periods at the default step tolerance: 0.14 % on 65², 0.09 % on 129²); the
+/// default step tolerance 7e-5 against 1e-5 by less than 1.5 %: the steps' iteration lag acts
+/// like a phase lag, the same in δ at every Ω, while the damping force c·Ω·δ₁ it is read
+/// against falls with Ω — at the default 0.005·ω_n it is 1.0 % of c on 65², 0.7 % on 129² and
+/// 0.3–1.1 % on the 22 seed contacts against steps iterated to 1e-6 (docs/contact.md, step
+/// tolerance), below c's own grid error (≈ 10 % between 65² and 129²). The reference's own time-step error is not in these
+/// bounds: it is the same in both.
 #[test]
 fn short_settling_gives_the_law_of_a_settled_run() {
     let c = inner(600.0);
@@ -438,7 +444,20 @@ fn short_settling_gives_the_law_of_a_settled_run() {
         "dF/dδ(δ0) {ff:?} vs {fs:?}"
     );
     let (cf, cs) = (fast.c.unwrap(), slow.c.unwrap());
-    assert!((cf / cs - 1.0).abs() < 5e-3, "c {cf} vs {cs}");
+    assert!((cf / cs - 1.0).abs() < 1.5e-2, "c {cf} vs {cs}");
+    // The settling's share of the difference in c, at the default step tolerance.
+    let whole = characterize_harmonic(
+        &c,
+        mass(),
+        &HarmonicSettings {
+            periodicity_tol: 0.0,
+            ..base
+        },
+    )
+    .unwrap();
+    let cw = whole.c.unwrap();
+    assert_eq!(whole.settling_steps, 2 * 64);
+    assert!((cf / cw - 1.0).abs() < 5e-3, "c {cf} vs {cw}");
 }
 
 /// A run that cannot reach its periodicity bound within `settling_periods` says so
