@@ -610,7 +610,8 @@ pub enum Progress {
 impl Progress {
     /// The event as JSON, the form the Python package's progress dicts and the C interface's
     /// progress texts take: `{"event": "iteration_started", "iteration", "contacts"}`,
-    /// `{"event": "contact_done", "iteration"}`, `{"event": "iteration_done", "record"}`.
+    /// `{"event": "contact_done", "iteration"}`, `{"event": "iteration_done", "record"}` (the
+    /// record with its `seconds`, as [`IterationSummary`]).
     pub fn to_json(&self) -> Value {
         match self {
             Progress::IterationStarted {
@@ -624,9 +625,14 @@ impl Progress {
             Progress::ContactDone { iteration } => {
                 serde_json::json!({"event": "contact_done", "iteration": iteration})
             }
+            // With its wall-clock time, which the record alone does not serialize.
             Progress::IterationDone(r) => serde_json::json!({
                 "event": "iteration_done",
-                "record": serde_json::to_value(r).unwrap_or(Value::Null),
+                "record": serde_json::to_value(IterationSummary {
+                    record: *r,
+                    seconds: Some(r.seconds),
+                })
+                .unwrap_or(Value::Null),
             }),
         }
     }

@@ -767,3 +767,30 @@ fn a_progress_callback_can_stop_the_loop() {
             .unwrap();
     assert_eq!(plain, characterization_json(&controlled, false).to_string());
 }
+
+/// A progress event's JSON (what Python's progress dicts and C's progress texts carry) holds the
+/// iteration's wall-clock time, which report files leave out.
+#[test]
+fn iteration_done_event_carries_its_time() {
+    use ehl_bearing::characterize::{IterationRecord, Progress};
+    let record = IterationRecord {
+        iteration: 2,
+        max_load_change: 1e-3,
+        characterized: 3,
+        reused: 19,
+        max_key_distance: 0.0,
+        max_load_offset: 0.0,
+        max_relative_residual: 0.0,
+        equilibrium_iterations: 5,
+        seconds: 1.25,
+    };
+    let v = Progress::IterationDone(record).to_json();
+    assert_eq!(v["event"], "iteration_done");
+    assert_eq!(v["record"]["seconds"], 1.25);
+    assert_eq!(v["record"]["characterized"], 3);
+    // The report's own serialization stays without timings.
+    assert!(serde_json::to_value(record)
+        .unwrap()
+        .get("seconds")
+        .is_none());
+}
