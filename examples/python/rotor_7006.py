@@ -200,18 +200,21 @@ def main() -> None:
         "| cαα N·m·s/rad |",
         "|---|---|---|---|---|---|---|---|---|",
     ]
+    radial_c = {}  # model → radial damping cxx per speed, N·s/m
     for rpm in SPEEDS_RPM:
         w = rpm * math.pi / 30
         for name, r in rotors.items():
             b = r.bearing_elements[0]
             if isinstance(b, er.EhlBearingElement):
                 k, c = b.K5(w), b.C5(w)
+                radial_c.setdefault(name, []).append(c[0, 0])
                 md.append(
                     f"| {name} | {rpm:.0f} | {k[0, 0]:.3e} | {k[1, 1]:.3e} | {k[2, 2]:.3e} | "
                     f"{k[3, 3]:.3e} | {k[0, 4]:.3e} | {c[0, 0]:.3e} | {c[3, 3]:.3e} |"
                 )
             else:
                 k, c = b.K(w), b.C(w)
+                radial_c.setdefault(name, []).append(c[0, 0])
                 md.append(
                     f"| {name} | {rpm:.0f} | {k[0, 0]:.3e} | {k[1, 1]:.3e} | {k[2, 2]:.3e} | — "
                     f"(none) | — | {c[0, 0]:.3e} | — |"
@@ -246,6 +249,11 @@ def main() -> None:
         "|---|---|---|---|---|---|",
     ]
     zeta1 = {}
+
+    def c_range(name: str) -> str:
+        lo, hi = min(radial_c[name]), max(radial_c[name])
+        return f"{lo:.0f}" if round(lo) == round(hi) else f"{lo:.0f}–{hi:.0f}"
+
     for rpm in SPEEDS_RPM:
         for name, r in rotors.items():
             rows = modal_table(r, rpm * math.pi / 30)
@@ -259,7 +267,8 @@ def main() -> None:
         + ", ".join(f"{k} {min(v):.1e}–{max(v):.1e}" for k, v in zeta1.items())
         + ". The dry Hertz bearing has no damping (ζ at round-off); the fitted EHL bearing's "
         "damping is the harmonic method's squeeze-film term c·δ̇ of each contact "
-        "(≈ 230 N·s/m radially per bearing), Friswell's is the rule c = 1.25e-5·k (≈ 980 N·s/m): "
+        f"({c_range('fitted EHL')} N·s/m radially per bearing), Friswell's is the rule "
+        f"c = 1.25e-5·k ({c_range('Friswell (ROSS)')} N·s/m): "
         "both leave the rotor almost undamped, so free vibration rings for seconds (visible in "
         "the run-up waterfalls).",
     ]
