@@ -172,18 +172,22 @@ fn spec_difference(record: &PointRecord, spec: &super::point::PointSpec) -> Stri
     let a = serde_json::to_value(&record.spec).unwrap_or_default();
     let b = serde_json::to_value(spec).unwrap_or_default();
     if let (Some(a), Some(b)) = (a.as_object(), b.as_object()) {
+        let short = |v: Option<&serde_json::Value>| {
+            let s = v.map(|v| v.to_string()).unwrap_or_else(|| "absent".into());
+            if s.len() > 80 {
+                format!("{}…", &s[..s.floor_char_boundary_compat(80)])
+            } else {
+                s
+            }
+        };
         for (k, va) in a {
             if b.get(k) != Some(va) {
-                let short = |v: Option<&serde_json::Value>| {
-                    let s = v.map(|v| v.to_string()).unwrap_or_else(|| "absent".into());
-                    if s.len() > 80 {
-                        format!("{}…", &s[..s.floor_char_boundary_compat(80)])
-                    } else {
-                        s
-                    }
-                };
                 return format!("{k} is {} there, {} here", short(Some(va)), short(b.get(k)));
             }
+        }
+        // A part only this study's spec has (e.g. roughness added to the case).
+        if let Some((k, vb)) = b.iter().find(|(k, _)| !a.contains_key(*k)) {
+            return format!("{k} is absent there, {} here", short(Some(vb)));
         }
     }
     "the spec differs".into()

@@ -280,6 +280,8 @@ impl Study {
             lubricant: c.lubricant,
             operating: c.operating,
             equilibrium: c.settings,
+            oil: c.oil,
+            roughness: c.roughness,
         }
     }
 
