@@ -4,7 +4,7 @@
 
 use crate::bearing::{Bearing, EquilibriumSettings, OperatingPoint};
 use crate::characterize::{CharacterizationReport, CharacterizeSettings, ContactRow};
-use crate::lubrication::{LubricationReport, Roughness};
+use crate::lubrication::{LubricationReport, RingOils, Roughness};
 use crate::material::Lubricant;
 use crate::oil::OilProperties;
 use crate::method::Method;
@@ -40,6 +40,9 @@ pub struct PointSpec {
     /// Surface roughness (absent when not given): enters Λ.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub roughness: Option<Roughness>,
+    /// The oil at the ring temperatures (absent when not given): enters each raceway's figures.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ring_oils: Option<RingOils>,
 }
 
 impl PointSpec {

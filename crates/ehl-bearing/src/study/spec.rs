@@ -282,6 +282,7 @@ impl Study {
             equilibrium: c.settings,
             oil: c.oil,
             roughness: c.roughness,
+            ring_oils: c.ring_oils,
         }
     }
 
