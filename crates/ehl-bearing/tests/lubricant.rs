@@ -702,6 +702,26 @@ fn ring_temperatures_give_each_raceway_its_oil() {
         thinner += 1;
     }
     assert_eq!(thinner, 22);
+    // α given (at temperature_c): the rings keep its Roelands Z, so α follows η0 (Z·(ln η0 +
+    // 9.67)/p0) instead of staying at the given value.
+    let given = case(
+        &format!("{oil}\npressure_viscosity_1_pa = 2.0e-8"),
+        "temperature_c = 60.0\ninner_ring_temperature_c = 70.0\nouter_ring_temperature_c = 55.0",
+        rough,
+    )
+    .unwrap();
+    let z = given.oil.as_ref().unwrap().roelands_z;
+    for o in [&given.ring_oils.as_ref().unwrap().inner, &given.ring_oils.as_ref().unwrap().outer] {
+        assert!(rel(o.roelands_z, z) < 1e-12);
+        let want = z * (o.viscosity_pa_s.ln() + ROELANDS_LN_ETA_INF) / ROELANDS_P0;
+        assert!(rel(o.pressure_viscosity_1_pa, want) < 1e-12);
+        assert!(o
+            .sources
+            .iter()
+            .any(|s| s.quantity == "roelands_z" && s.source.contains("α given")));
+    }
+    let ring = given.ring_oils.as_ref().unwrap();
+    assert!(ring.inner.pressure_viscosity_1_pa < 2.0e-8 && ring.outer.pressure_viscosity_1_pa > 2.0e-8);
     // Ring temperatures equal to temperature_c: the same figures as without them.
     let same = case(
         oil,

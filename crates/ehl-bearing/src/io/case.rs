@@ -393,11 +393,33 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
                     .into(),
             })?;
             let (lub, oil, desc) = described_lubricant(l, t)?;
+            // A given α holds at temperature_c: at the rings, its Z (Roelands, constant with
+            // temperature) carries it, as for a given Z.
+            let ring_desc = OilDescription {
+                pressure_viscosity_1_pa: None,
+                pressure_viscosity_index_z: Some(oil.roelands_z),
+                ..desc
+            };
+            let at_ring = |t: f64, key: &str| -> Result<OilProperties, InputError> {
+                let mut o = oil_at(&ring_desc, t, key)?;
+                if desc.pressure_viscosity_1_pa.is_some() {
+                    for s in o.sources.iter_mut().filter(|s| s.quantity == "roelands_z") {
+                        s.source = "Z = α·p0/(ln η0 + 9.67) of the α given at \
+                                    operating.temperature_c, Roelands (1966), constant with \
+                                    temperature"
+                            .into();
+                    }
+                } else if desc.pressure_viscosity_index_z.is_none() {
+                    // The built-in Z: the same sources as at temperature_c.
+                    o.sources.clone_from(&oil.sources);
+                }
+                Ok(o)
+            };
             let ring_oils = match ring_temperatures {
                 None => None,
                 Some((ti, to)) => Some(RingOils {
-                    inner: oil_at(&desc, ti, "operating.inner_ring_temperature_c")?,
-                    outer: oil_at(&desc, to, "operating.outer_ring_temperature_c")?,
+                    inner: at_ring(ti, "operating.inner_ring_temperature_c")?,
+                    outer: at_ring(to, "operating.outer_ring_temperature_c")?,
                 }),
             };
             (lub, true, Some(oil), ring_oils)
