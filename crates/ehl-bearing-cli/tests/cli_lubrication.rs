@@ -144,11 +144,7 @@ fn ring_temperatures_reach_the_report() {
         t.contains("inner ring at 50 °C") && t.contains("outer ring at 45 °C"),
         "{t}"
     );
-    std::fs::write(
-        &path,
-        text.replace("outer_ring_temperature_c = 45.0", ""),
-    )
-    .unwrap();
+    std::fs::write(&path, text.replace("outer_ring_temperature_c = 45.0", "")).unwrap();
     let bad = bin().arg("equilibrium").arg(&path).output().unwrap();
     assert!(!bad.status.success());
     let e = String::from_utf8_lossy(&bad.stderr);

@@ -711,7 +711,10 @@ fn ring_temperatures_give_each_raceway_its_oil() {
     )
     .unwrap();
     let z = given.oil.as_ref().unwrap().roelands_z;
-    for o in [&given.ring_oils.as_ref().unwrap().inner, &given.ring_oils.as_ref().unwrap().outer] {
+    for o in [
+        &given.ring_oils.as_ref().unwrap().inner,
+        &given.ring_oils.as_ref().unwrap().outer,
+    ] {
         assert!(rel(o.roelands_z, z) < 1e-12);
         let want = z * (o.viscosity_pa_s.ln() + ROELANDS_LN_ETA_INF) / ROELANDS_P0;
         assert!(rel(o.pressure_viscosity_1_pa, want) < 1e-12);
@@ -721,7 +724,9 @@ fn ring_temperatures_give_each_raceway_its_oil() {
             .any(|s| s.quantity == "roelands_z" && s.source.contains("α given")));
     }
     let ring = given.ring_oils.as_ref().unwrap();
-    assert!(ring.inner.pressure_viscosity_1_pa < 2.0e-8 && ring.outer.pressure_viscosity_1_pa > 2.0e-8);
+    assert!(
+        ring.inner.pressure_viscosity_1_pa < 2.0e-8 && ring.outer.pressure_viscosity_1_pa > 2.0e-8
+    );
     // Ring temperatures equal to temperature_c: the same figures as without them.
     let same = case(
         oil,
@@ -732,8 +737,18 @@ fn ring_temperatures_give_each_raceway_its_oil() {
     let s = assess(&same, &states);
     for (a, b) in s.contacts.iter().zip(&p.contacts) {
         assert_eq!(
-            (a.min_film_m, a.central_film_m, a.lambda, a.thermal_reduction),
-            (b.min_film_m, b.central_film_m, b.lambda, b.thermal_reduction)
+            (
+                a.min_film_m,
+                a.central_film_m,
+                a.lambda,
+                a.thermal_reduction
+            ),
+            (
+                b.min_film_m,
+                b.central_film_m,
+                b.lambda,
+                b.thermal_reduction
+            )
         );
     }
 }

@@ -485,21 +485,29 @@ fn lubricated_studies_carry_the_lubrication_figures() {
     // The thermal reduction grows with speed (VG 46 at 40 °C: η0·β·u²).
     let red = |i: usize| opt_num(&cell(&h, &rows[i], "max_thermal_reduction")).unwrap();
     let rpm = |i: usize| out.records[i].spec.inner_speed_rpm;
-    let (slow, fast) = ((0..4).find(|&i| rpm(i) == 3000.0), (0..4).find(|&i| rpm(i) == 5000.0));
+    let (slow, fast) = (
+        (0..4).find(|&i| rpm(i) == 3000.0),
+        (0..4).find(|&i| rpm(i) == 5000.0),
+    );
     assert!(red(fast.unwrap()) > red(slow.unwrap()));
 
     // The seed case with constants and no roughness: no lubrication columns.
     let plain = study("synthetic", "");
     let store = MemoryStore::default();
     run(&plain, &store, Shard::new(1, 9).unwrap());
-    let rec = PointRecord::from_json(store.points.lock().unwrap().values().next().unwrap()).unwrap();
+    let rec =
+        PointRecord::from_json(store.points.lock().unwrap().values().next().unwrap()).unwrap();
     assert!(!rec.spec.has_lubrication());
     let csv = ehl_bearing::study::points_csv(std::slice::from_ref(&rec), &[None]);
     assert_eq!(csv.lines().next().unwrap(), POINTS_CSV_HEADER);
     let rows = rec.rows();
     assert!(rows.iter().all(|r| r.lubrication.is_none()));
     let header = ehl_bearing::study::results_csv(&rows);
-    assert!(header.lines().next().unwrap().ends_with(",outside_fit_range"));
+    assert!(header
+        .lines()
+        .next()
+        .unwrap()
+        .ends_with(",outside_fit_range"));
 }
 
 /// The roughness and the oil description are part of a point's spec: the point files of a study

@@ -6,8 +6,8 @@ use crate::bearing::{Bearing, EquilibriumSettings, OperatingPoint};
 use crate::characterize::{CharacterizationReport, CharacterizeSettings, ContactRow};
 use crate::lubrication::{LubricationReport, RingOils, Roughness};
 use crate::material::Lubricant;
-use crate::oil::OilProperties;
 use crate::method::Method;
+use crate::oil::OilProperties;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::f64::consts::PI;
@@ -99,9 +99,8 @@ impl PointRecord {
                 load_scale: self.spec.load_scale,
                 point_converged: r.converged,
                 contact: c.clone(),
-                lubrication: lubricated.then(|| {
-                    ContactLubrication::of(r.lubrication.as_ref(), c.ball, &c.race)
-                }),
+                lubrication: lubricated
+                    .then(|| ContactLubrication::of(r.lubrication.as_ref(), c.ball, &c.race)),
             })
             .collect()
     }
@@ -215,12 +214,13 @@ fn lubrication_cells(report: Option<&LubricationReport>) -> Vec<String> {
         .contacts
         .iter()
         .filter_map(|c| c.lambda.map(|x| (x, c)))
-        .fold(None, |m: Option<(f64, &crate::lubrication::ContactFilm)>, (x, c)| {
-            match m {
+        .fold(
+            None,
+            |m: Option<(f64, &crate::lubrication::ContactFilm)>, (x, c)| match m {
                 Some((y, _)) if y <= x => m,
                 _ => Some((x, c)),
-            }
-        });
+            },
+        );
     vec![
         num(Some(l.kinematic_viscosity_mm2_s)),
         num(l.kappa),
