@@ -177,6 +177,11 @@ fn study_tables_carry_the_lubrication_columns() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("smallest Λ") && stdout.contains("largest thermal film reduction"),
+        "{stdout}"
+    );
     let results = std::fs::read_to_string(outdir.join("results.csv")).unwrap();
     let header = results.lines().next().unwrap();
     assert!(

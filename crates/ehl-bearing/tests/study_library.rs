@@ -461,7 +461,7 @@ fn lubricated_studies_carry_the_lubrication_figures() {
         assert!(lub
             .contacts
             .iter()
-            .all(|c| c.lambda.is_none_or(|l| l >= min_lambda)));
+            .all(|c| c.lambda.iter().all(|&l| l >= min_lambda)));
         let min_film = lub
             .contacts
             .iter()
@@ -482,6 +482,52 @@ fn lubricated_studies_carry_the_lubrication_figures() {
             lub.warnings.len().to_string()
         );
     }
+    // The study's summary: the extremes over every point and contact, where they occur.
+    let sum = out.lubrication_summary().unwrap();
+    assert_eq!(sum.points, 4);
+    let all: Vec<(f64, f64, &ehl_bearing::lubrication::ContactFilm)> = out
+        .records
+        .iter()
+        .flat_map(|r| {
+            let l = r.result.as_ref().unwrap().lubrication.as_ref().unwrap();
+            l.contacts
+                .iter()
+                .map(move |c| (r.spec.inner_speed_rpm, r.spec.load_scale, c))
+        })
+        .collect();
+    let lam = sum.min_lambda.as_ref().unwrap();
+    assert!(all
+        .iter()
+        .all(|(_, _, c)| c.lambda.iter().all(|&l| l >= lam.value)));
+    assert!(all.iter().any(|(n, s, c)| *n == lam.inner_speed_rpm
+        && *s == lam.load_scale
+        && c.ball == lam.ball
+        && c.race == lam.race
+        && c.lambda == Some(lam.value)));
+    let hot = sum.max_thermal_reduction.as_ref().unwrap();
+    assert!(all
+        .iter()
+        .all(|(_, _, c)| c.thermal_reduction.iter().all(|&t| t <= hot.value)));
+    assert!(all.iter().any(|(n, s, c)| *n == hot.inner_speed_rpm
+        && *s == hot.load_scale
+        && c.ball == hot.ball
+        && c.race == hot.race
+        && c.thermal_reduction == Some(hot.value)));
+    let warned = out
+        .records
+        .iter()
+        .filter(|r| {
+            !r.result
+                .as_ref()
+                .unwrap()
+                .lubrication
+                .as_ref()
+                .unwrap()
+                .warnings
+                .is_empty()
+        })
+        .count();
+    assert_eq!(sum.points_with_warnings, warned);
     // The thermal reduction grows with speed (VG 46 at 40 °C: η0·β·u²).
     let red = |i: usize| opt_num(&cell(&h, &rows[i], "max_thermal_reduction")).unwrap();
     let rpm = |i: usize| out.records[i].spec.inner_speed_rpm;
@@ -498,6 +544,14 @@ fn lubricated_studies_carry_the_lubrication_figures() {
     let rec =
         PointRecord::from_json(store.points.lock().unwrap().values().next().unwrap()).unwrap();
     assert!(!rec.spec.has_lubrication());
+    let plain_out = ehl_bearing::study::StudyOutputs {
+        records: vec![rec.clone()],
+        rows: Vec::new(),
+        trends: Err(String::new()),
+        trend_errors: vec![None],
+        failed: Vec::new(),
+    };
+    assert!(plain_out.lubrication_summary().is_none());
     let csv = ehl_bearing::study::points_csv(std::slice::from_ref(&rec), &[None]);
     assert_eq!(csv.lines().next().unwrap(), POINTS_CSV_HEADER);
     let rows = rec.rows();
