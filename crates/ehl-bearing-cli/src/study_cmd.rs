@@ -442,6 +442,30 @@ fn finish(study: &Study, store: &FsStore) -> anyhow::Result<()> {
             out.not_converged()
         );
     }
+    if let Some(l) = out.lubrication_summary() {
+        let at = |e: &ehl_bearing::study::LubricationExtreme| {
+            format!(
+                "{} rpm × {}, ball {} {}",
+                e.inner_speed_rpm, e.load_scale, e.ball, e.race
+            )
+        };
+        println!(
+            "  lubrication (docs/lubricant.md; per point in points.csv): smallest Λ {}; largest \
+             thermal film reduction {}; {} of {} points with warnings",
+            l.min_lambda
+                .as_ref()
+                .map_or("-".into(), |e| format!("{:.2} ({})", e.value, at(e))),
+            l.max_thermal_reduction
+                .as_ref()
+                .map_or("-".into(), |e| format!(
+                    "{:.1} % ({})",
+                    100.0 * e.value,
+                    at(e)
+                )),
+            l.points_with_warnings,
+            l.points
+        );
+    }
     match &out.trends {
         Ok(model) => {
             for (race, t) in [("inner", &model.inner), ("outer", &model.outer)] {

@@ -107,3 +107,98 @@ fn equilibrium_film_uses_the_ehl_solutions() {
         }
     }
 }
+
+/// Ring temperatures: each raceway's contacts at its ring's oil (`oil_temperature_c`, the JSON's
+/// `ring_oils`, a table line per ring); a missing one is named.
+#[test]
+fn ring_temperatures_reach_the_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(VG46).unwrap().replace(
+        "temperature_c = 40.0",
+        "temperature_c = 40.0\ninner_ring_temperature_c = 50.0\nouter_ring_temperature_c = 45.0",
+    );
+    let path = dir.path().join("case.toml");
+    std::fs::write(&path, &text).unwrap();
+    let out = bin()
+        .arg("equilibrium")
+        .arg(&path)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let l = &v["lubrication"];
+    assert_eq!(l["ring_oils"]["inner"]["temperature_c"], 50.0);
+    assert_eq!(l["ring_oils"]["outer"]["temperature_c"], 45.0);
+    for c in l["contacts"].as_array().unwrap() {
+        let want = if c["race"] == "inner" { 50.0 } else { 45.0 };
+        assert_eq!(c["oil_temperature_c"], want);
+    }
+    let table = bin().arg("equilibrium").arg(&path).output().unwrap();
+    let t = String::from_utf8_lossy(&table.stdout);
+    assert!(
+        t.contains("inner ring at 50 °C") && t.contains("outer ring at 45 °C"),
+        "{t}"
+    );
+    std::fs::write(&path, text.replace("outer_ring_temperature_c = 45.0", "")).unwrap();
+    let bad = bin().arg("equilibrium").arg(&path).output().unwrap();
+    assert!(!bad.status.success());
+    let e = String::from_utf8_lossy(&bad.stderr);
+    assert!(e.contains("operating.outer_ring_temperature_c"), "{e}");
+}
+
+/// A study of the described-oil case through the command: `results.csv` and `points.csv` carry
+/// the lubrication columns (docs/lubricant.md §2.5).
+#[test]
+fn study_tables_carry_the_lubrication_columns() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("study.toml");
+    std::fs::write(
+        &study,
+        format!(
+            "case = \"{VG46}\"\nmethod = \"hertz\"\ninner_speeds_rpm = [3000, 5000]\nload_scales = [1.0]\n"
+        ),
+    )
+    .unwrap();
+    let outdir = dir.path().join("out");
+    let out = bin()
+        .arg("study")
+        .arg(&study)
+        .arg("-o")
+        .arg(&outdir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("smallest Λ") && stdout.contains("largest thermal film reduction"),
+        "{stdout}"
+    );
+    let results = std::fs::read_to_string(outdir.join("results.csv")).unwrap();
+    let header = results.lines().next().unwrap();
+    assert!(
+        header.ends_with(",central_film_m,min_film_m,lambda,thermal_reduction,min_film_thermal_m"),
+        "{header}"
+    );
+    assert_eq!(results.lines().count(), 1 + 2 * 22);
+    let points = std::fs::read_to_string(outdir.join("points.csv")).unwrap();
+    let mut lines = points.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    for line in lines {
+        let cells: Vec<&str> = line.split(',').collect();
+        let lambda: f64 = cells[col("min_lambda")].parse().unwrap();
+        assert!(lambda > 1.0, "{line}");
+        assert!(["inner", "outer"].contains(&cells[col("min_lambda_race")]));
+        let kappa: f64 = cells[col("kappa")].parse().unwrap();
+        assert!(kappa > 1.0, "{line}");
+    }
+}

@@ -517,7 +517,10 @@ fn callable(py: Python<'_>, value: Option<PyObject>, what: &str) -> PyResult<Opt
 
 /// Run a load × speed study file into `output_dir` (resumable point files, `results.csv`,
 /// `points.csv`, `trends.json` when the trends fit): all points, with `method` overriding the
-/// file's. `progress` is called with a dict per event (`planned`, `point_started`, `loop`,
+/// file's. When the case describes its oil or gives roughness, both tables carry the lubrication
+/// figures (film, Λ, κ, thermal reduction; docs/lubricant.md §2.5) and the summary's
+/// `lubrication` gives the smallest Λ and largest thermal reduction with where they occur (None
+/// otherwise). `progress` is called with a dict per event (`planned`, `point_started`, `loop`,
 /// `point_done`); an exception raised in it is printed and the study goes on (finished points
 /// are kept on disk, so a study stopped by other means resumes where it stopped). Returns a
 /// summary dict with the paths written and the trend model's JSON path (None if the trends could
@@ -577,6 +580,7 @@ fn study(
             "trends_json": trends,
             "trend_error": trend_error,
             "worst_trend_error": out.worst_trend_error(),
+            "lubrication": out.lubrication_summary(),
         }))
     })?;
     to_py(py, &summary)

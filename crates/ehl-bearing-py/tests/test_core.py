@@ -197,3 +197,22 @@ def test_progress_printer_prints_elapsed_and_per_iteration_and_point_times():
         "[  12.2 s] point 1: converged in 12.0 s",
         "[   0.0 s] iteration 1: 4 contacts",
     ]
+
+
+def test_study_of_a_described_oil_carries_the_lubrication(tmp_path, examples):
+    """A study of the seed with its oil described and roughness: the tables gain the lubrication
+    columns and the summary the extremes over the points (docs/lubricant.md §2.5)."""
+    study_file = tmp_path / "s.toml"
+    study_file.write_text(
+        f'case = "{examples / "7006_vg46.toml"}"\nmethod = "hertz"\n'
+        "inner_speeds_rpm = [3000.0, 5000.0]\nload_scales = [1.0]\n"
+    )
+    out = eb.study(str(study_file), str(tmp_path / "out"))
+    lub = out["lubrication"]
+    assert lub["points"] == 2
+    assert lub["min_lambda"]["value"] > 1.0 and lub["min_lambda"]["race"] in ("inner", "outer")
+    assert 0.0 < lub["max_thermal_reduction"]["value"] < 1.0
+    header = (tmp_path / "out" / "points.csv").read_text().splitlines()[0].split(",")
+    assert header[-3:] == ["min_lambda_race", "max_thermal_reduction", "lubrication_warnings"]
+    results = (tmp_path / "out" / "results.csv").read_text().splitlines()[0]
+    assert results.endswith("lambda,thermal_reduction,min_film_thermal_m")

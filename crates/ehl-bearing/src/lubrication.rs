@@ -23,6 +23,10 @@
 //!   slip), p_h the maximum Hertz pressure. A curve fit to thermal EHL solutions; its source gives
 //!   no accuracy we could read. The reduction reported is 1 − φ_T; above
 //!   [`THERMAL_WARN`] it is a warning.
+//! - ring temperatures (`operating.inner_ring_temperature_c`, `outer_ring_temperature_c`): each
+//!   raceway's film, Λ and thermal reduction use the described oil's constants at its ring's
+//!   temperature (the formula, not a solved film); the EHL solves, the laws and κ stay at the
+//!   oil of `operating.temperature_c`.
 //! - starvation: not estimated (the case files describe no oil supply).
 
 use crate::bearing::{ContactState, Race};
@@ -37,6 +41,27 @@ pub const LAMBDA_WARN: f64 = 1.5;
 pub const LAMBDA_INVALID: f64 = 1.0;
 /// Thermal film reduction above which a warning is given (fraction).
 pub const THERMAL_WARN: f64 = 0.10;
+
+/// A described oil's constants at the inner and outer ring temperatures
+/// (`operating.inner_ring_temperature_c`, `operating.outer_ring_temperature_c`): each raceway's
+/// figures use its ring's; the EHL solves and laws use the oil at `operating.temperature_c`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RingOils {
+    /// At the inner ring's temperature.
+    pub inner: crate::oil::OilProperties,
+    /// At the outer ring's temperature.
+    pub outer: crate::oil::OilProperties,
+}
+
+impl RingOils {
+    /// The oil of raceway `race`.
+    pub fn of(&self, race: Race) -> &crate::oil::OilProperties {
+        match race {
+            Race::Inner => &self.inner,
+            Race::Outer => &self.outer,
+        }
+    }
+}
 
 /// Surface roughness of balls and rings, m (RMS, Rq).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -118,6 +143,10 @@ pub struct ContactFilm {
     /// or `hamrock-dowson-1977` (the formula); empty when unloaded.
     #[serde(default)]
     pub film_source: String,
+    /// The oil temperature these figures are at, °C: the contact's ring temperature (absent
+    /// when no ring temperatures are given: the oil's `operating.temperature_c`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub oil_temperature_c: Option<f64>,
     /// What the figures say about the model at this contact (empty: nothing to flag).
     pub flags: Vec<String>,
 }
@@ -127,6 +156,9 @@ pub struct ContactFilm {
 pub struct LubricationReport {
     /// The described oil's derived constants and their sources (null: given as constants).
     pub oil: Option<crate::oil::OilProperties>,
+    /// The oil's constants at the ring temperatures (absent when not given).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ring_oils: Option<RingOils>,
     /// η0 used, Pa·s.
     pub viscosity_pa_s: f64,
     /// α used, 1/Pa.
@@ -201,13 +233,30 @@ pub fn assess_with_films(
             o.thermal_conductivity_w_m_k,
         )
     });
-    let g = lub.pressure_viscosity * e;
+    let ring_oils = case.ring_oils.as_ref();
+    // Solved films are at the oil of operating.temperature_c: with ring temperatures the
+    // formula at each ring's oil is used instead.
+    let solved = if ring_oils.is_some() { &[][..] } else { solved };
     let mut rows = Vec::new();
     let mut low_lambda = Vec::new();
     let mut hot = Vec::new();
     let mut from_solution = 0;
     for (i, (ball, race, st)) in contacts.iter().enumerate() {
         let mut flags = Vec::new();
+        // η0, α and the thermal inputs at this contact's oil temperature.
+        let ring_oil = ring_oils.map(|r| r.of(*race));
+        let (eta0, alpha) = ring_oil.map_or((lub.viscosity, lub.pressure_viscosity), |o| {
+            (o.viscosity_pa_s, o.pressure_viscosity_1_pa)
+        });
+        let thermal = ring_oil
+            .map(|o| {
+                (
+                    o.temperature_viscosity_1_k * o.viscosity_pa_s,
+                    o.thermal_conductivity_w_m_k,
+                )
+            })
+            .or(thermal);
+        let g = alpha * e;
         let u = 0.5 * st.sum_velocity.abs();
         let loaded = st.load > 0.0 && st.semi_minor > 0.0 && st.rx > 0.0 && st.sum_velocity != 0.0;
         let k = if st.semi_minor > 0.0 {
@@ -220,7 +269,7 @@ pub fn assess_with_films(
             from_solution += 1;
             (Some(c), Some(m))
         } else if loaded {
-            let u_sum = lub.viscosity * st.sum_velocity.abs() / (e * st.rx);
+            let u_sum = eta0 * st.sum_velocity.abs() / (e * st.rx);
             let w = st.load / (e * st.rx * st.rx);
             if !(1.0..=8.0).contains(&k) {
                 flags.push(format!(
@@ -301,6 +350,7 @@ pub fn assess_with_films(
             } else {
                 String::new()
             },
+            oil_temperature_c: ring_oil.map(|o| o.temperature_c),
             flags,
         });
     }
@@ -359,6 +409,19 @@ pub fn assess_with_films(
          flooded inlet"
             .to_string(),
     ];
+    if let (Some(r), Some(o)) = (ring_oils, &case.oil) {
+        notes.push(format!(
+            "ring temperatures: the films, Λ and thermal reduction of the inner contacts use the \
+             oil at {} °C (η0 = {:.5} Pa·s), of the outer contacts at {} °C (η0 = {:.5} Pa·s), by \
+             the Hamrock–Dowson formula; the EHL solves, the laws and κ use the oil at \
+             operating.temperature_c = {} °C",
+            r.inner.temperature_c,
+            r.inner.viscosity_pa_s,
+            r.outer.temperature_c,
+            r.outer.viscosity_pa_s,
+            o.temperature_c
+        ));
+    }
     if case.roughness.is_none() {
         notes.push(
             "Λ: not computed (give ball_material.roughness_rq_um and ring_material.roughness_rq_um)"
@@ -377,6 +440,7 @@ pub fn assess_with_films(
     }
     LubricationReport {
         oil: case.oil.clone(),
+        ring_oils: case.ring_oils.clone(),
         viscosity_pa_s: lub.viscosity,
         pressure_viscosity_1_pa: lub.pressure_viscosity,
         density_kg_m3: lub.density,
@@ -434,6 +498,19 @@ pub fn table(r: &LubricationReport) -> String {
             o.roelands_z,
             o.temperature_viscosity_1_k
         );
+    }
+    if let Some(rings) = &r.ring_oils {
+        for (name, o) in [("inner", &rings.inner), ("outer", &rings.outer)] {
+            let _ = writeln!(
+                s,
+                "{name} ring at {} °C: ν = {:.3} mm²/s, η0 = {:.5} Pa·s, α = {:.3e} 1/Pa (its \
+                 contacts' films, Λ and thermal reduction)",
+                o.temperature_c,
+                o.kinematic_viscosity_mm2_s,
+                o.viscosity_pa_s,
+                o.pressure_viscosity_1_pa
+            );
+        }
     }
     let _ = writeln!(
         s,

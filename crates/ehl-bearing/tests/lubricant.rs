@@ -623,3 +623,178 @@ fn characterization_record_carries_the_report_only_when_wanted() {
     let v = serde_json::to_value(c.report(false)).unwrap();
     assert!(v.get("lubrication").is_none());
 }
+
+// ---------------------------------------------------------------------------------------------
+// Ring temperatures
+
+/// `operating.inner_ring_temperature_c` and `outer_ring_temperature_c`: the oil's constants at each
+/// ring's temperature are those of the same description at that `temperature_c`; each raceway's
+/// films, Λ and thermal reduction are the formulas at its ring's oil (by hand), while the report's
+/// η0, α and κ (and the EHL solves, through `case.lubricant`) stay at `temperature_c`; ring
+/// temperatures equal to `temperature_c` change no figure.
+#[test]
+fn ring_temperatures_give_each_raceway_its_oil() {
+    use ehl_bearing::bearing::{solve_equilibrium, ContactLaws, Race};
+    use ehl_bearing::ehl::formulas::{hamrock_dowson_central, hamrock_dowson_min};
+    let oil = "iso_vg = 32\nviscosity_index = 100.0\ndensity_15c_kg_m3 = 870.0";
+    let rough = "[ball_material]\nroughness_rq_um = 0.02\n[ring_material]\nroughness_rq_um = 0.1";
+    let c = case(
+        oil,
+        "temperature_c = 60.0\ninner_ring_temperature_c = 70.0\nouter_ring_temperature_c = 55.0",
+        rough,
+    )
+    .unwrap();
+    let at = |t: f64| {
+        case(oil, &format!("temperature_c = {t}"), rough)
+            .unwrap()
+            .oil
+            .unwrap()
+    };
+    let rings = c.ring_oils.clone().unwrap();
+    assert_eq!(rings.inner, at(70.0));
+    assert_eq!(rings.outer, at(55.0));
+    // The solves' lubricant is the oil at temperature_c.
+    let plain = case(oil, "temperature_c = 60.0", rough).unwrap();
+    assert_eq!(c.lubricant, plain.lubricant);
+    assert_eq!(c.oil, plain.oil);
+
+    let laws = ContactLaws::hertz(&c.bearing).unwrap();
+    let eq = solve_equilibrium(&c.bearing, &laws, &c.operating, &c.settings).unwrap();
+    let states: Vec<_> = eq
+        .balls
+        .iter()
+        .enumerate()
+        .flat_map(|(i, b)| [(i, Race::Inner, b.inner), (i, Race::Outer, b.outer)])
+        .collect();
+    let r = assess(&c, &states);
+    let p = assess(&plain, &states);
+    assert_eq!(r.kappa, p.kappa);
+    assert_eq!(r.viscosity_pa_s, p.viscosity_pa_s);
+    assert!(r.ring_oils.is_some() && p.ring_oils.is_none());
+    assert!(r.notes.iter().any(|n| n.contains("ring temperatures")));
+    let sigma = (0.02f64.powi(2) + 0.1f64.powi(2)).sqrt() * 1e-6;
+    let e = 208e9 / 0.91;
+    let mut thinner = 0;
+    for ((row, (_, race, st)), prow) in r.contacts.iter().zip(&states).zip(&p.contacts) {
+        let o = rings.of(*race);
+        assert_eq!(row.oil_temperature_c, Some(o.temperature_c));
+        assert_eq!(prow.oil_temperature_c, None);
+        let k = st.semi_major / st.semi_minor;
+        let (u, g, w) = (
+            o.viscosity_pa_s * st.sum_velocity / (e * st.rx),
+            o.pressure_viscosity_1_pa * e,
+            st.load / (e * st.rx * st.rx),
+        );
+        let hc = st.rx * hamrock_dowson_central(u, g, w, k);
+        let hmin = st.rx * hamrock_dowson_min(u, g, w, k);
+        assert!(rel(row.central_film_m.unwrap(), hc) < 1e-9);
+        assert!(rel(row.min_film_m.unwrap(), hmin) < 1e-9);
+        assert!((row.lambda.unwrap() - hmin / sigma).abs() < 1e-6);
+        let um = st.sum_velocity / 2.0;
+        let lt = o.temperature_viscosity_1_k * o.viscosity_pa_s * um * um / 0.1;
+        let phi = thermal_factor(st.max_pressure, e, lt, 0.0);
+        assert!((row.thermal_reduction.unwrap() - (1.0 - phi)).abs() < 1e-9);
+        // Hotter inner ring (70 °C > 60 °C): thinner inner films; cooler outer: thicker.
+        match race {
+            Race::Inner => assert!(row.min_film_m < prow.min_film_m),
+            Race::Outer => assert!(row.min_film_m > prow.min_film_m),
+        }
+        thinner += 1;
+    }
+    assert_eq!(thinner, 22);
+    // α given (at temperature_c): the rings keep its Roelands Z, so α follows η0 (Z·(ln η0 +
+    // 9.67)/p0) instead of staying at the given value.
+    let given = case(
+        &format!("{oil}\npressure_viscosity_1_pa = 2.0e-8"),
+        "temperature_c = 60.0\ninner_ring_temperature_c = 70.0\nouter_ring_temperature_c = 55.0",
+        rough,
+    )
+    .unwrap();
+    let z = given.oil.as_ref().unwrap().roelands_z;
+    for o in [
+        &given.ring_oils.as_ref().unwrap().inner,
+        &given.ring_oils.as_ref().unwrap().outer,
+    ] {
+        assert!(rel(o.roelands_z, z) < 1e-12);
+        let want = z * (o.viscosity_pa_s.ln() + ROELANDS_LN_ETA_INF) / ROELANDS_P0;
+        assert!(rel(o.pressure_viscosity_1_pa, want) < 1e-12);
+        assert!(o
+            .sources
+            .iter()
+            .any(|s| s.quantity == "roelands_z" && s.source.contains("α given")));
+    }
+    let ring = given.ring_oils.as_ref().unwrap();
+    assert!(
+        ring.inner.pressure_viscosity_1_pa < 2.0e-8 && ring.outer.pressure_viscosity_1_pa > 2.0e-8
+    );
+    // Ring temperatures equal to temperature_c: the same figures as without them.
+    let same = case(
+        oil,
+        "temperature_c = 60.0\ninner_ring_temperature_c = 60.0\nouter_ring_temperature_c = 60.0",
+        rough,
+    )
+    .unwrap();
+    let s = assess(&same, &states);
+    for (a, b) in s.contacts.iter().zip(&p.contacts) {
+        assert_eq!(
+            (
+                a.min_film_m,
+                a.central_film_m,
+                a.lambda,
+                a.thermal_reduction
+            ),
+            (
+                b.min_film_m,
+                b.central_film_m,
+                b.lambda,
+                b.thermal_reduction
+            )
+        );
+    }
+}
+
+/// Invalid ring temperatures: one without the other, with a lubricant given by its constants,
+/// outside the range (or where the oil's ν < 1 mm²/s), and without `temperature_c` — each message
+/// names the key, and the value and range where there is one.
+#[test]
+fn invalid_ring_temperatures_name_key_value_and_range() {
+    let oil = "iso_vg = 32\nviscosity_index = 100.0\ndensity_15c_kg_m3 = 870.0";
+    let cases: [(&str, &str, &[&str]); 6] = [
+        (
+            oil,
+            "temperature_c = 60.0\ninner_ring_temperature_c = 70.0",
+            &["operating.outer_ring_temperature_c", "both ring temperatures"],
+        ),
+        (
+            oil,
+            "temperature_c = 60.0\nouter_ring_temperature_c = 70.0",
+            &["operating.inner_ring_temperature_c", "both ring temperatures"],
+        ),
+        (
+            "viscosity_pa_s = 0.04",
+            "inner_ring_temperature_c = 70.0\nouter_ring_temperature_c = 60.0",
+            &["operating.inner_ring_temperature_c", "70", "constants"],
+        ),
+        (
+            oil,
+            "temperature_c = 60.0\ninner_ring_temperature_c = 250.0\nouter_ring_temperature_c = 60.0",
+            &["operating.inner_ring_temperature_c", "250", "200 °C"],
+        ),
+        (
+            "iso_vg = 7\nviscosity_index = 100.0\ndensity_15c_kg_m3 = 870.0",
+            "temperature_c = 40.0\ninner_ring_temperature_c = 40.0\nouter_ring_temperature_c = 190.0",
+            &["operating.outer_ring_temperature_c", "190", "ν ≥ 1 mm²/s"],
+        ),
+        (
+            oil,
+            "inner_ring_temperature_c = 70.0\nouter_ring_temperature_c = 60.0",
+            &["operating.temperature_c"],
+        ),
+    ];
+    for (lub, op, want) in cases {
+        let e = err(lub, op, "");
+        for w in want {
+            assert!(e.contains(w), "{lub} | {op}\n  → {e}\n  missing {w}");
+        }
+    }
+}

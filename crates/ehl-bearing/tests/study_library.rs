@@ -342,3 +342,253 @@ fn finishing_over_another_studys_points_names_them() {
         Ok(_) => panic!("expected ForeignPoints, got outputs"),
     }
 }
+
+/// A CSV text as a header and rows of cells (no quoted cells in the study files).
+fn csv_table(text: &str) -> (Vec<String>, Vec<Vec<String>>) {
+    let mut lines = text.lines();
+    let header = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    let rows = lines
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    (header, rows)
+}
+
+fn cell(header: &[String], row: &[String], name: &str) -> String {
+    let i = header
+        .iter()
+        .position(|h| h == name)
+        .unwrap_or_else(|| panic!("no column {name}"));
+    row[i].clone()
+}
+
+fn opt_num(s: &str) -> Option<f64> {
+    (!s.is_empty()).then(|| s.parse().unwrap())
+}
+
+/// A study whose case describes its oil and gives roughness carries the lubrication figures of
+/// each point (the report in the point file, at the final equilibrium) in `results.csv` (per
+/// contact) and `points.csv` (per point: κ, the smallest Λ and where, the largest thermal
+/// reduction, the warnings); the same study with the oil given by its constants and no roughness
+/// has none of these columns.
+#[test]
+fn lubricated_studies_carry_the_lubrication_figures() {
+    use ehl_bearing::study::{POINTS_CSV_HEADER, POINTS_CSV_LUBRICATION_HEADER};
+    let examples = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples"));
+    let text = "case = \"7006_vg46.toml\"\nmethod = \"synthetic\"\ninner_speeds_rpm = [3000, 5000]\nload_scales = [0.5, 2.0]\n";
+    let s = parse_study(text, "test.toml", examples).unwrap();
+    let store = MemoryStore::default();
+    run(&s, &store, Shard::ALL);
+    let out = finish_study(&s, &store).unwrap();
+    let outputs = store.outputs.lock().unwrap().clone();
+    let results = String::from_utf8(outputs["results.csv"].clone()).unwrap();
+    let points = String::from_utf8(outputs["points.csv"].clone()).unwrap();
+
+    // results.csv: the five columns appended after the contact's, equal to the point file's.
+    let (h, rows) = csv_table(&results);
+    let tail: Vec<&str> = h[h.len() - 5..].iter().map(|x| x.as_str()).collect();
+    assert_eq!(
+        tail,
+        [
+            "central_film_m",
+            "min_film_m",
+            "lambda",
+            "thermal_reduction",
+            "min_film_thermal_m"
+        ]
+    );
+    assert_eq!(rows.len(), out.rows.len());
+    let mut checked = 0;
+    for row in &rows {
+        let rpm: f64 = cell(&h, row, "speed_rpm").parse().unwrap();
+        let scale: f64 = cell(&h, row, "load_scale").parse().unwrap();
+        let ball: usize = cell(&h, row, "ball").parse().unwrap();
+        let race = cell(&h, row, "race");
+        let rec = out
+            .records
+            .iter()
+            .find(|r| r.spec.inner_speed_rpm == rpm && r.spec.load_scale == scale)
+            .unwrap();
+        let lub = rec.result.as_ref().unwrap().lubrication.as_ref().unwrap();
+        let c = lub
+            .contacts
+            .iter()
+            .find(|c| c.ball == ball && c.race == race)
+            .unwrap();
+        assert_eq!(opt_num(&cell(&h, row, "central_film_m")), c.central_film_m);
+        assert_eq!(opt_num(&cell(&h, row, "min_film_m")), c.min_film_m);
+        assert_eq!(opt_num(&cell(&h, row, "lambda")), c.lambda);
+        assert_eq!(
+            opt_num(&cell(&h, row, "thermal_reduction")),
+            c.thermal_reduction
+        );
+        assert_eq!(
+            opt_num(&cell(&h, row, "min_film_thermal_m")),
+            c.min_film_thermal_m
+        );
+        // The seed's loaded contacts have every figure (oil described, roughness given).
+        if c.load_n > 1.0 {
+            assert!(c.lambda.is_some() && c.thermal_reduction.is_some());
+            checked += 1;
+        }
+    }
+    assert!(checked > 20, "{checked}");
+
+    // points.csv: the lubrication columns after the usual ones.
+    let (h, rows) = csv_table(&points);
+    assert_eq!(
+        h.join(","),
+        format!("{POINTS_CSV_HEADER},{POINTS_CSV_LUBRICATION_HEADER}")
+    );
+    assert_eq!(rows.len(), 4);
+    for (row, rec) in rows.iter().zip(&out.records) {
+        let lub = rec.result.as_ref().unwrap().lubrication.as_ref().unwrap();
+        let min_lambda = opt_num(&cell(&h, row, "min_lambda")).unwrap();
+        assert_eq!(Some(min_lambda), lub.min_lambda);
+        // The named contact has that Λ, and no contact has less.
+        let ball: usize = cell(&h, row, "min_lambda_ball").parse().unwrap();
+        let race = cell(&h, row, "min_lambda_race");
+        let at = lub
+            .contacts
+            .iter()
+            .find(|c| c.ball == ball && c.race == race)
+            .unwrap();
+        assert_eq!(at.lambda, Some(min_lambda));
+        assert!(lub
+            .contacts
+            .iter()
+            .all(|c| c.lambda.iter().all(|&l| l >= min_lambda)));
+        let min_film = lub
+            .contacts
+            .iter()
+            .filter_map(|c| c.min_film_m)
+            .fold(f64::INFINITY, f64::min);
+        assert_eq!(opt_num(&cell(&h, row, "min_film_m")), Some(min_film));
+        assert_eq!(opt_num(&cell(&h, row, "kappa")), lub.kappa);
+        assert_eq!(
+            opt_num(&cell(&h, row, "kinematic_viscosity_mm2_s")),
+            Some(lub.kinematic_viscosity_mm2_s)
+        );
+        assert_eq!(
+            opt_num(&cell(&h, row, "max_thermal_reduction")),
+            lub.max_thermal_reduction
+        );
+        assert_eq!(
+            cell(&h, row, "lubrication_warnings"),
+            lub.warnings.len().to_string()
+        );
+    }
+    // The study's summary: the extremes over every point and contact, where they occur.
+    let sum = out.lubrication_summary().unwrap();
+    assert_eq!(sum.points, 4);
+    let all: Vec<(f64, f64, &ehl_bearing::lubrication::ContactFilm)> = out
+        .records
+        .iter()
+        .flat_map(|r| {
+            let l = r.result.as_ref().unwrap().lubrication.as_ref().unwrap();
+            l.contacts
+                .iter()
+                .map(move |c| (r.spec.inner_speed_rpm, r.spec.load_scale, c))
+        })
+        .collect();
+    let lam = sum.min_lambda.as_ref().unwrap();
+    assert!(all
+        .iter()
+        .all(|(_, _, c)| c.lambda.iter().all(|&l| l >= lam.value)));
+    assert!(all.iter().any(|(n, s, c)| *n == lam.inner_speed_rpm
+        && *s == lam.load_scale
+        && c.ball == lam.ball
+        && c.race == lam.race
+        && c.lambda == Some(lam.value)));
+    let hot = sum.max_thermal_reduction.as_ref().unwrap();
+    assert!(all
+        .iter()
+        .all(|(_, _, c)| c.thermal_reduction.iter().all(|&t| t <= hot.value)));
+    assert!(all.iter().any(|(n, s, c)| *n == hot.inner_speed_rpm
+        && *s == hot.load_scale
+        && c.ball == hot.ball
+        && c.race == hot.race
+        && c.thermal_reduction == Some(hot.value)));
+    let warned = out
+        .records
+        .iter()
+        .filter(|r| {
+            !r.result
+                .as_ref()
+                .unwrap()
+                .lubrication
+                .as_ref()
+                .unwrap()
+                .warnings
+                .is_empty()
+        })
+        .count();
+    assert_eq!(sum.points_with_warnings, warned);
+    // The thermal reduction grows with speed (VG 46 at 40 °C: η0·β·u²).
+    let red = |i: usize| opt_num(&cell(&h, &rows[i], "max_thermal_reduction")).unwrap();
+    let rpm = |i: usize| out.records[i].spec.inner_speed_rpm;
+    let (slow, fast) = (
+        (0..4).find(|&i| rpm(i) == 3000.0),
+        (0..4).find(|&i| rpm(i) == 5000.0),
+    );
+    assert!(red(fast.unwrap()) > red(slow.unwrap()));
+
+    // The seed case with constants and no roughness: no lubrication columns.
+    let plain = study("synthetic", "");
+    let store = MemoryStore::default();
+    run(&plain, &store, Shard::new(1, 9).unwrap());
+    let rec =
+        PointRecord::from_json(store.points.lock().unwrap().values().next().unwrap()).unwrap();
+    assert!(!rec.spec.has_lubrication());
+    let plain_out = ehl_bearing::study::StudyOutputs {
+        records: vec![rec.clone()],
+        rows: Vec::new(),
+        trends: Err(String::new()),
+        trend_errors: vec![None],
+        failed: Vec::new(),
+    };
+    assert!(plain_out.lubrication_summary().is_none());
+    let csv = ehl_bearing::study::points_csv(std::slice::from_ref(&rec), &[None]);
+    assert_eq!(csv.lines().next().unwrap(), POINTS_CSV_HEADER);
+    let rows = rec.rows();
+    assert!(rows.iter().all(|r| r.lubrication.is_none()));
+    let header = ehl_bearing::study::results_csv(&rows);
+    assert!(header
+        .lines()
+        .next()
+        .unwrap()
+        .ends_with(",outside_fit_range"));
+}
+
+/// The roughness and the oil description are part of a point's spec: the point files of a study
+/// without them are another study's for the same study with them (recomputed, not reused without
+/// their lubrication figures), and the spec without them is written as before (no new keys).
+#[test]
+fn roughness_and_oil_description_are_part_of_the_point_spec() {
+    let examples = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples"));
+    let text = |case: &str| {
+        format!("case = \"{case}\"\nmethod = \"synthetic\"\ninner_speeds_rpm = [3000]\nload_scales = [1.0]\n")
+    };
+    let described = parse_study(&text("7006_vg46.toml"), "a.toml", examples).unwrap();
+    let p = described.points()[0];
+    let spec = described.point_spec(&p);
+    assert!(spec.oil.is_some() && spec.roughness.is_some());
+    // The same case with the roughness removed: a different spec.
+    let mut smooth = described.clone();
+    smooth.case.roughness = None;
+    let store = MemoryStore::default();
+    run(&smooth, &store, Shard::ALL);
+    let err = run_study(&described, &store, &RunOptions::default(), &|_| {}).unwrap_err();
+    assert!(
+        matches!(&err, StudyError::ForeignPoints { difference, .. } if difference.contains("roughness")),
+        "{err}"
+    );
+    // The seed's spec (constants, no roughness) has neither key.
+    let plain = study("synthetic", "");
+    let json = serde_json::to_string(&plain.point_spec(&plain.points()[0])).unwrap();
+    assert!(!json.contains("\"oil\"") && !json.contains("\"roughness\""));
+}

@@ -48,6 +48,8 @@
 //! tilt_z_deg = 0.001             # or moment_z_nm
 //! race_control = "outer"         # "inner", "none", "no-gyroscopic"; default "outer"
 //! temperature_c = 60.0           # operating oil temperature, °C (described lubricant only)
+//! # inner_ring_temperature_c = 70.0  # optional, both or neither (described lubricant only):
+//! # outer_ring_temperature_c = 55.0  # each raceway's lubrication figures at its ring's oil
 //!
 //! [equilibrium]                  # optional solver settings
 //! tolerance = 1e-11              # relative force tolerance
@@ -63,7 +65,7 @@ use super::InputError;
 use crate::bearing::{
     Bearing, BearingGeometry, Control, EquilibriumSettings, Kinematics, OperatingPoint, RaceControl,
 };
-use crate::lubrication::Roughness;
+use crate::lubrication::{RingOils, Roughness};
 use crate::material::{DensityModel, Lubricant, Solid, ViscosityModel};
 use crate::oil::{BaseOil, OilDescription, OilProperties};
 use serde::Deserialize;
@@ -86,6 +88,11 @@ pub struct Case {
     pub oil: Option<OilProperties>,
     /// Surface roughness of balls and rings (None: not given).
     pub roughness: Option<Roughness>,
+    /// The described lubricant's constants at the inner and outer ring temperatures
+    /// (`operating.inner_ring_temperature_c`, `operating.outer_ring_temperature_c`; None: not
+    /// given). Used by the lubrication figures of each raceway's contacts only: the EHL solves
+    /// and laws use the oil at `operating.temperature_c` (docs/lubricant.md §3).
+    pub ring_oils: Option<RingOils>,
     /// Speeds, loads and race control.
     pub operating: OperatingPoint,
     /// Equilibrium solver settings.
@@ -235,6 +242,8 @@ struct RawOperating {
     tilt_z_deg: Option<f64>,
     race_control: Option<RaceControl>,
     temperature_c: Option<f64>,
+    inner_ring_temperature_c: Option<f64>,
+    outer_ring_temperature_c: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -374,7 +383,8 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
     let ball_material = solid(raw.ball_material.as_ref(), "ball_material")?;
     let ring_material = solid(raw.ring_material.as_ref(), "ring_material")?;
     let temperature = raw.operating.as_ref().and_then(|o| o.temperature_c);
-    let (lubricant, lubricant_given, oil) = match raw.lubricant.as_ref() {
+    let ring_temperatures = ring_temperatures(raw.operating.as_ref())?;
+    let (lubricant, lubricant_given, oil, ring_oils) = match raw.lubricant.as_ref() {
         Some(l) if l.description_key().is_some() => {
             let t = temperature.ok_or_else(|| InputError::Missing {
                 field: "operating.temperature_c".into(),
@@ -382,12 +392,50 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
                        oil temperature in °C"
                     .into(),
             })?;
-            let (lub, oil) = described_lubricant(l, t)?;
-            (lub, true, Some(oil))
+            let (lub, oil, desc) = described_lubricant(l, t)?;
+            // A given α holds at temperature_c: at the rings, its Z (Roelands, constant with
+            // temperature) carries it, as for a given Z.
+            let ring_desc = OilDescription {
+                pressure_viscosity_1_pa: None,
+                pressure_viscosity_index_z: Some(oil.roelands_z),
+                ..desc
+            };
+            let at_ring = |t: f64, key: &str| -> Result<OilProperties, InputError> {
+                let mut o = oil_at(&ring_desc, t, key)?;
+                if desc.pressure_viscosity_1_pa.is_some() {
+                    for s in o.sources.iter_mut().filter(|s| s.quantity == "roelands_z") {
+                        s.source = "Z = α·p0/(ln η0 + 9.67) of the α given at \
+                                    operating.temperature_c, Roelands (1966), constant with \
+                                    temperature"
+                            .into();
+                    }
+                } else if desc.pressure_viscosity_index_z.is_none() {
+                    // The built-in Z: the same sources as at temperature_c.
+                    o.sources.clone_from(&oil.sources);
+                }
+                Ok(o)
+            };
+            let ring_oils = match ring_temperatures {
+                None => None,
+                Some((ti, to)) => Some(RingOils {
+                    inner: at_ring(ti, "operating.inner_ring_temperature_c")?,
+                    outer: at_ring(to, "operating.outer_ring_temperature_c")?,
+                }),
+            };
+            (lub, true, Some(oil), ring_oils)
         }
-        Some(l) => (lubricant(l, "lubricant")?, true, None),
-        None => (Lubricant::DEFAULT_MINERAL_OIL, false, None),
+        Some(l) => (lubricant(l, "lubricant")?, true, None, None),
+        None => (Lubricant::DEFAULT_MINERAL_OIL, false, None, None),
     };
+    if let (Some((ti, _)), None) = (ring_temperatures, &oil) {
+        return Err(InputError::field(
+            "operating.inner_ring_temperature_c",
+            ti,
+            "no ring temperatures with a lubricant given by its constants (or the default): \
+             describe the lubricant (lubricant.iso_vg or lubricant.viscosity_40c_mm2_s, …; \
+             docs/lubricant.md) for the temperatures to matter",
+        ));
+    }
     if let (Some(t), None) = (temperature, &oil) {
         return Err(InputError::field(
             "operating.temperature_c",
@@ -460,6 +508,7 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
         lubricant_given,
         oil,
         roughness,
+        ring_oils,
         operating,
         settings,
         method,
@@ -607,10 +656,52 @@ fn roughness(
 
 /// A described lubricant (grade or viscosities, base oil, density at 15 °C) at `t_c` °C: the
 /// constants for the models and their derivation.
+/// The inner and outer ring temperatures of `[operating]`, °C: both or neither.
+fn ring_temperatures(raw: Option<&RawOperating>) -> Result<Option<(f64, f64)>, InputError> {
+    let Some(o) = raw else { return Ok(None) };
+    match (o.inner_ring_temperature_c, o.outer_ring_temperature_c) {
+        (None, None) => Ok(None),
+        (Some(ti), Some(to)) => Ok(Some((ti, to))),
+        (Some(_), None) => Err(InputError::Missing {
+            field: "operating.outer_ring_temperature_c".into(),
+            hint: "operating.inner_ring_temperature_c is given: give both ring temperatures, °C"
+                .into(),
+        }),
+        (None, Some(_)) => Err(InputError::Missing {
+            field: "operating.inner_ring_temperature_c".into(),
+            hint: "operating.outer_ring_temperature_c is given: give both ring temperatures, °C"
+                .into(),
+        }),
+    }
+}
+
+/// The described oil's constants at `t_c` °C, a ring temperature given by `key`.
+fn oil_at(desc: &OilDescription, t_c: f64, key: &str) -> Result<OilProperties, InputError> {
+    crate::oil::derive(desc, t_c).map_err(|e| match e {
+        crate::oil::OilError::Range {
+            quantity,
+            value,
+            expected,
+        } => InputError::field(
+            if quantity == "operating.temperature_c" {
+                key
+            } else {
+                &quantity
+            },
+            value,
+            expected,
+        ),
+        crate::oil::OilError::Missing { quantity, hint } => InputError::Missing {
+            field: quantity,
+            hint,
+        },
+    })
+}
+
 fn described_lubricant(
     r: &RawLubricant,
     t_c: f64,
-) -> Result<(Lubricant, OilProperties), InputError> {
+) -> Result<(Lubricant, OilProperties, OilDescription), InputError> {
     let key = |k: &str| format!("lubricant.{k}");
     let first = r.description_key().unwrap_or("iso_vg");
     if r.viscosity_pa_s.is_some() {
@@ -782,7 +873,7 @@ fn described_lubricant(
         viscosity_model: r.viscosity_model.unwrap_or_default(),
         density_model: r.density_model.unwrap_or_default(),
     };
-    Ok((lub, props))
+    Ok((lub, props, desc))
 }
 
 /// A lubricant from its case-file table (default mineral oil for absent keys).
@@ -844,6 +935,8 @@ fn operating(raw: Option<&RawOperating>) -> Result<OperatingPoint, InputError> {
         tilt_z_deg: None,
         race_control: None,
         temperature_c: None,
+        inner_ring_temperature_c: None,
+        outer_ring_temperature_c: None,
     };
     let o = raw.unwrap_or(&empty);
     let rpm = PI / 30.0;

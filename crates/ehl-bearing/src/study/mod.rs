@@ -23,10 +23,13 @@ mod store;
 mod trends;
 
 pub use crate::force_element::{JacobianMode, TrendEvalOptions, TrendForce, TrendForceElement};
-pub use point::{points_csv, results_csv, PointRecord, PointSpec, ResultRow, POINTS_CSV_HEADER};
+pub use point::{
+    points_csv, results_csv, ContactLubrication, PointRecord, PointSpec, ResultRow,
+    POINTS_CSV_HEADER, POINTS_CSV_LUBRICATION_HEADER,
+};
 pub use runner::{
-    finish_study, merge_points, run_point, run_study, RunOptions, StudyError, StudyEvent,
-    StudyOutputs, StudyRun,
+    finish_study, merge_points, run_point, run_study, LubricationExtreme, LubricationSummary,
+    RunOptions, StudyError, StudyEvent, StudyOutputs, StudyRun,
 };
 pub use spec::{parse_study, read_study, Shard, Study, StudyPoint};
 pub use store::{MemoryStore, PointStore, StoreError};

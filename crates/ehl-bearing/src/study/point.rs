@@ -4,8 +4,10 @@
 
 use crate::bearing::{Bearing, EquilibriumSettings, OperatingPoint};
 use crate::characterize::{CharacterizationReport, CharacterizeSettings, ContactRow};
+use crate::lubrication::{LubricationReport, RingOils, Roughness};
 use crate::material::Lubricant;
 use crate::method::Method;
+use crate::oil::OilProperties;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::f64::consts::PI;
@@ -30,6 +32,25 @@ pub struct PointSpec {
     pub operating: OperatingPoint,
     /// Equilibrium solver settings.
     pub equilibrium: EquilibriumSettings,
+    /// The described oil's derived constants (absent when the lubricant is given by its
+    /// constants): its temperature–viscosity coefficient and thermal conductivity enter the
+    /// lubrication figures.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub oil: Option<OilProperties>,
+    /// Surface roughness (absent when not given): enters Λ.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub roughness: Option<Roughness>,
+    /// The oil at the ring temperatures (absent when not given): enters each raceway's figures.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ring_oils: Option<RingOils>,
+}
+
+impl PointSpec {
+    /// Whether the point's outputs carry the lubrication figures (a described oil or roughness,
+    /// as [`crate::lubrication::wanted`]).
+    pub fn has_lubrication(&self) -> bool {
+        self.oil.is_some() || self.roughness.is_some()
+    }
 }
 
 /// One point file (`points/<stem>.json`): the spec and either the characterization (without
@@ -69,6 +90,7 @@ impl PointRecord {
             return Vec::new();
         };
         let rpm = self.spec.inner_speed_rpm;
+        let lubricated = self.spec.has_lubrication();
         r.contacts
             .iter()
             .map(|c| ResultRow {
@@ -77,8 +99,43 @@ impl PointRecord {
                 load_scale: self.spec.load_scale,
                 point_converged: r.converged,
                 contact: c.clone(),
+                lubrication: lubricated
+                    .then(|| ContactLubrication::of(r.lubrication.as_ref(), c.ball, &c.race)),
             })
             .collect()
+    }
+}
+
+/// A contact's lubrication figures in `results.csv` (crate::lubrication; SI; None where not
+/// computed: Λ without roughness, the thermal reduction without a described oil, films of an
+/// unloaded contact).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct ContactLubrication {
+    /// Isothermal central film (Hamrock–Dowson 1977 at the equilibrium contact state), m.
+    pub central_film_m: Option<f64>,
+    /// Isothermal minimum film, m.
+    pub min_film_m: Option<f64>,
+    /// Film parameter Λ = h_min/σ.
+    pub lambda: Option<f64>,
+    /// Estimated film reduction by inlet shear heating (fraction).
+    pub thermal_reduction: Option<f64>,
+    /// Minimum film with the thermal reduction applied, m.
+    pub min_film_thermal_m: Option<f64>,
+}
+
+impl ContactLubrication {
+    /// The figures of contact (`ball`, `race`) in `report` (all None if absent).
+    pub fn of(report: Option<&LubricationReport>, ball: usize, race: &str) -> Self {
+        report
+            .and_then(|l| l.contacts.iter().find(|c| c.ball == ball && c.race == race))
+            .map(|c| ContactLubrication {
+                central_film_m: c.central_film_m,
+                min_film_m: c.min_film_m,
+                lambda: c.lambda,
+                thermal_reduction: c.thermal_reduction,
+                min_film_thermal_m: c.min_film_thermal_m,
+            })
+            .unwrap_or_default()
     }
 }
 
@@ -96,6 +153,10 @@ pub struct ResultRow {
     /// The contact.
     #[serde(flatten)]
     pub contact: ContactRow,
+    /// The contact's lubrication figures, appended as columns when the study's case describes
+    /// its oil or gives roughness (None otherwise: no columns, the file as without them).
+    #[serde(flatten, default, skip_serializing_if = "Option::is_none")]
+    pub lubrication: Option<ContactLubrication>,
 }
 
 fn csv_cell(v: &Value) -> String {
@@ -129,11 +190,61 @@ pub fn results_csv(rows: &[ResultRow]) -> String {
 /// Columns of `points.csv` (SI units in the names).
 pub const POINTS_CSV_HEADER: &str = "speed_rpm,load_scale,converged,iterations,max_load_change,max_key_distance,max_load_offset,max_relative_residual,characterizations,x_m,y_m,z_m,theta_y_rad,theta_z_rad,dry_x_m,dry_y_m,dry_z_m,k_xx_n_m,k_yy_n_m,k_zz_n_m,dry_k_xx_n_m,dry_k_yy_n_m,dry_k_zz_n_m,trend_reaction_error";
 
+/// Columns appended to `points.csv` when the study's case describes its oil or gives roughness
+/// (crate::lubrication, at each point's final equilibrium; SI except ν): the operating kinematic
+/// viscosity, ISO 281's κ, the smallest minimum film over the contacts, the smallest Λ and the
+/// contact where it occurs, the largest thermal film reduction, and the number of warnings.
+pub const POINTS_CSV_LUBRICATION_HEADER: &str = "kinematic_viscosity_mm2_s,kappa,min_film_m,min_lambda,min_lambda_ball,min_lambda_race,max_thermal_reduction,lubrication_warnings";
+
+/// The cells of [`POINTS_CSV_LUBRICATION_HEADER`] for a point's report (empty cells where a
+/// figure is not computed or the report is absent).
+fn lubrication_cells(report: Option<&LubricationReport>) -> Vec<String> {
+    let n = POINTS_CSV_LUBRICATION_HEADER.split(',').count();
+    let Some(l) = report else {
+        return vec![String::new(); n];
+    };
+    let num = |x: Option<f64>| x.map(|x| Value::from(x).to_string()).unwrap_or_default();
+    let min_film = l
+        .contacts
+        .iter()
+        .filter_map(|c| c.min_film_m)
+        .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.min(v))));
+    // The first contact with the smallest Λ (the report's order: the characterization's).
+    let worst = l
+        .contacts
+        .iter()
+        .filter_map(|c| c.lambda.map(|x| (x, c)))
+        .fold(
+            None,
+            |m: Option<(f64, &crate::lubrication::ContactFilm)>, (x, c)| match m {
+                Some((y, _)) if y <= x => m,
+                _ => Some((x, c)),
+            },
+        );
+    vec![
+        num(Some(l.kinematic_viscosity_mm2_s)),
+        num(l.kappa),
+        num(min_film),
+        num(worst.map(|w| w.0)),
+        worst.map(|w| w.1.ball.to_string()).unwrap_or_default(),
+        worst.map(|w| w.1.race.clone()).unwrap_or_default(),
+        num(l.max_thermal_reduction),
+        l.warnings.len().to_string(),
+    ]
+}
+
 /// `points.csv`: one row per point (`error` in the converged column and empty cells for a failed
 /// point), with the trend force element's largest relative reaction error at that point in the
-/// last column (`trend_errors[i]`, empty where None).
+/// last column of [`POINTS_CSV_HEADER`] (`trend_errors[i]`, empty where None), followed by the
+/// columns of [`POINTS_CSV_LUBRICATION_HEADER`] when the study's case describes its oil or gives
+/// roughness (without them the file is as before).
 pub fn points_csv(records: &[PointRecord], trend_errors: &[Option<f64>]) -> String {
+    let lubricated = records.iter().any(|r| r.spec.has_lubrication());
     let mut out = String::from(POINTS_CSV_HEADER);
+    if lubricated {
+        out.push(',');
+        out.push_str(POINTS_CSV_LUBRICATION_HEADER);
+    }
     out.push('\n');
     let num = |x: f64| Value::from(x).to_string();
     for (i, p) in records.iter().enumerate() {
@@ -170,6 +281,11 @@ pub fn points_csv(records: &[PointRecord], trend_errors: &[Option<f64>]) -> Stri
                         .unwrap_or_default(),
                 );
             }
+        }
+        if lubricated {
+            cells.extend(lubrication_cells(
+                p.result.as_ref().and_then(|r| r.lubrication.as_ref()),
+            ));
         }
         out.push_str(&cells.join(","));
         out.push('\n');

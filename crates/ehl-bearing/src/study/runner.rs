@@ -172,18 +172,22 @@ fn spec_difference(record: &PointRecord, spec: &super::point::PointSpec) -> Stri
     let a = serde_json::to_value(&record.spec).unwrap_or_default();
     let b = serde_json::to_value(spec).unwrap_or_default();
     if let (Some(a), Some(b)) = (a.as_object(), b.as_object()) {
+        let short = |v: Option<&serde_json::Value>| {
+            let s = v.map(|v| v.to_string()).unwrap_or_else(|| "absent".into());
+            if s.len() > 80 {
+                format!("{}…", &s[..s.floor_char_boundary_compat(80)])
+            } else {
+                s
+            }
+        };
         for (k, va) in a {
             if b.get(k) != Some(va) {
-                let short = |v: Option<&serde_json::Value>| {
-                    let s = v.map(|v| v.to_string()).unwrap_or_else(|| "absent".into());
-                    if s.len() > 80 {
-                        format!("{}…", &s[..s.floor_char_boundary_compat(80)])
-                    } else {
-                        s
-                    }
-                };
                 return format!("{k} is {} there, {} here", short(Some(va)), short(b.get(k)));
             }
+        }
+        // A part only this study's spec has (e.g. roughness added to the case).
+        if let Some((k, vb)) = b.iter().find(|(k, _)| !a.contains_key(*k)) {
+            return format!("{k} is absent there, {} here", short(Some(vb)));
         }
     }
     "the spec differs".into()
@@ -432,6 +436,79 @@ impl StudyOutputs {
             .flatten()
             .fold(0.0, |m, &x| m.max(x))
     }
+
+    /// The lubrication figures over the study's points (None when its case describes no oil
+    /// and gives no roughness): the smallest Λ and the largest thermal reduction with where they
+    /// occur, and how many points have warnings.
+    pub fn lubrication_summary(&self) -> Option<LubricationSummary> {
+        if !self.records.iter().any(|r| r.spec.has_lubrication()) {
+            return None;
+        }
+        let mut s = LubricationSummary {
+            min_lambda: None,
+            max_thermal_reduction: None,
+            points_with_warnings: 0,
+            points: 0,
+        };
+        for r in &self.records {
+            let Some(l) = r.result.as_ref().and_then(|x| x.lubrication.as_ref()) else {
+                continue;
+            };
+            s.points += 1;
+            if !l.warnings.is_empty() {
+                s.points_with_warnings += 1;
+            }
+            let (rpm, scale) = (r.spec.inner_speed_rpm, r.spec.load_scale);
+            for c in &l.contacts {
+                let at = |value: f64| LubricationExtreme {
+                    value,
+                    inner_speed_rpm: rpm,
+                    load_scale: scale,
+                    ball: c.ball,
+                    race: c.race.clone(),
+                };
+                match (c.lambda, &s.min_lambda) {
+                    (Some(x), Some(m)) if x >= m.value => {}
+                    (Some(x), _) => s.min_lambda = Some(at(x)),
+                    (None, _) => {}
+                }
+                match (c.thermal_reduction, &s.max_thermal_reduction) {
+                    (Some(x), Some(m)) if x <= m.value => {}
+                    (Some(x), _) => s.max_thermal_reduction = Some(at(x)),
+                    (None, _) => {}
+                }
+            }
+        }
+        Some(s)
+    }
+}
+
+/// Where a lubrication figure of a study is at its extreme.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct LubricationExtreme {
+    /// The figure (Λ, or the thermal reduction as a fraction).
+    pub value: f64,
+    /// The point's inner-ring speed, rpm.
+    pub inner_speed_rpm: f64,
+    /// The point's load scale.
+    pub load_scale: f64,
+    /// Ball index.
+    pub ball: usize,
+    /// `inner` or `outer`.
+    pub race: String,
+}
+
+/// The lubrication figures over a study's points ([`StudyOutputs::lubrication_summary`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct LubricationSummary {
+    /// The smallest Λ over every point and contact (None without roughness).
+    pub min_lambda: Option<LubricationExtreme>,
+    /// The largest thermal film reduction (None without a described oil).
+    pub max_thermal_reduction: Option<LubricationExtreme>,
+    /// Points whose report has warnings (Λ < 1.5, thermal reduction above 10 %, κ < 1).
+    pub points_with_warnings: usize,
+    /// Points with a report (the failed ones have none).
+    pub points: usize,
 }
 
 /// Read every point of `study` from `store` (all must be finished, with this study's spec), fit

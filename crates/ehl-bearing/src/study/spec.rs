@@ -280,6 +280,9 @@ impl Study {
             lubricant: c.lubricant,
             operating: c.operating,
             equilibrium: c.settings,
+            oil: c.oil,
+            roughness: c.roughness,
+            ring_oils: c.ring_oils,
         }
     }
 
