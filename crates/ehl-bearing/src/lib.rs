@@ -24,6 +24,7 @@ pub mod fit;
 pub mod force_element;
 pub mod hertz;
 pub mod io;
+pub mod law_map;
 pub mod lubrication;
 pub mod material;
 pub mod method;
