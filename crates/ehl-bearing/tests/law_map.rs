@@ -254,3 +254,153 @@ fn invalid_groups_name_the_group() {
     let bad = LawGroups { m: -1.0, ..g };
     assert!(bad.validate().unwrap_err().to_string().contains("M = -1"));
 }
+
+mod map {
+    use ehl_bearing::law_map::{
+        assemble_map, generate_map, Group, LawMapError, LawMapSpec, MapAxis,
+    };
+    use ehl_bearing::material::{DensityModel, ViscosityModel};
+    use ehl_bearing::study::{MemoryStore, Shard};
+
+    /// A 3 × 3 × 3 map on grid 33 (seconds): the machinery, not the accuracy.
+    fn small() -> LawMapSpec {
+        let axis = |group, min, max, log| MapAxis {
+            group,
+            min,
+            max,
+            nodes: 3,
+            log,
+        };
+        LawMapSpec {
+            viscosity_model: ViscosityModel::Roelands,
+            density_model: DensityModel::DowsonHigginson,
+            m: None,
+            l: None,
+            ry_over_rx: None,
+            alpha_p0: Some(4.312),
+            ln_eta0_ratio: Some(0.04_f64.ln() + 9.67),
+            axes: vec![
+                axis(Group::M, 300.0, 1000.0, true),
+                axis(Group::L, 20.0, 24.0, false),
+                axis(Group::RyOverRx, 10.0, 20.0, true),
+            ],
+            amplitude: 0.2,
+            points: 7,
+            grid: 33,
+        }
+    }
+
+    /// Two shards into one store give the map; a rerun computes nothing; another spec's files are
+    /// refused; at a node of the nested half set the map returns the node's law with a zero error
+    /// estimate; outside the envelope the error names the group, its value and the range.
+    #[test]
+    fn shards_resume_assemble_and_query() {
+        let spec = small();
+        let store = MemoryStore::default();
+        let none = |_: &_| {};
+        // Assembling before every node is done says how many are missing.
+        generate_map(&spec, &store, Shard::new(1, 2).unwrap(), false, &none).unwrap();
+        match assemble_map(&spec, &store) {
+            Err(LawMapError::Incomplete { missing, total, .. }) => {
+                assert_eq!((missing, total), (13, 27))
+            }
+            other => panic!("{other:?}"),
+        }
+        let g2 = generate_map(&spec, &store, Shard::new(2, 2).unwrap(), false, &none).unwrap();
+        assert_eq!((g2.nodes, g2.computed, g2.failed), (13, 13, 0));
+        let again = generate_map(&spec, &store, Shard::ALL, false, &none).unwrap();
+        assert_eq!((again.computed, again.loaded), (0, 27));
+        let map = assemble_map(&spec, &store).unwrap();
+        let other = LawMapSpec {
+            amplitude: 0.1,
+            ..spec.clone()
+        };
+        assert!(matches!(
+            generate_map(&other, &store, Shard::ALL, false, &none),
+            Err(LawMapError::ForeignNodes { count: 27, .. })
+        ));
+        // The map file round-trips.
+        let back = ehl_bearing::law_map::LawMap::from_json(&map.to_json()).unwrap();
+        assert_eq!(back, map);
+        // Corner node 0 belongs to the half set: exact, zero estimate. The middle node 13 does
+        // not: exact, with a non-zero estimate.
+        for (k, zero) in [(0, true), (13, false), (26, true)] {
+            let q = map.query(&spec.node_groups(k)).unwrap();
+            let l = map.laws[k];
+            assert!((q.law.k_hat - l.k_hat).abs() <= 1e-14 * l.k_hat, "{k}");
+            assert!((q.law.d - l.d).abs() <= 1e-14, "{k}");
+            assert_eq!(q.force_error == 0.0, zero, "{k}: {q:?}");
+        }
+        let mut out = spec.node_groups(13);
+        out.m = 1500.0;
+        let e = map.query(&out).unwrap_err().to_string();
+        assert!(e.contains("M = 1500") && e.contains("[300, 1000]"), "{e}");
+        let mut oil = spec.node_groups(13);
+        oil.alpha_p0 = Some(3.0);
+        let e = map.query(&oil).unwrap_err().to_string();
+        assert!(e.contains("alpha_p0 = 3"), "{e}");
+    }
+
+    /// Spec files: a group needed twice or not at all, or an even node count, is refused with
+    /// the group's name.
+    #[test]
+    fn invalid_specs_are_refused() {
+        let mut s = small();
+        s.m = Some(500.0);
+        let e = s.validate().unwrap_err().to_string();
+        assert!(e.contains("group M"), "{e}");
+        let mut s = small();
+        s.ln_eta0_ratio = None;
+        assert!(s
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("ln_eta0_ratio"));
+        let mut s = small();
+        s.axes[1].nodes = 4;
+        assert!(s
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("axis L.nodes"));
+    }
+}
+
+mod embedded {
+    use super::{difference, SAME};
+    use ehl_bearing::law_map::{characterize_groups, held_out_check, LawMap, LawMapSpec};
+
+    /// The embedded map is what `law-map generate` and `assemble` give for
+    /// examples/law_map_seed_oil.toml: its spec is the file's, and nodes recomputed now (a
+    /// corner, the centre, the far corner) reproduce its stored laws to round-off (1e-9, as for
+    /// equal groups above).
+    #[test]
+    fn embedded_map_is_the_example_spec_and_reproduces_its_nodes() {
+        let map = LawMap::embedded();
+        let spec =
+            LawMapSpec::from_toml(include_str!("../../../examples/law_map_seed_oil.toml")).unwrap();
+        assert_eq!(map.spec, spec);
+        assert_eq!(map.laws.len(), 17 * 5 * 9);
+        for k in [0, 382, 764] {
+            let (l, _) = characterize_groups(&spec.node_groups(k), &spec).unwrap();
+            let diff = difference(&l, &map.laws[k]);
+            assert!(diff < SAME, "node {k}: {diff:e}");
+        }
+    }
+
+    /// Held-out points (a fresh seed, not the 200 of docs/law_map.md §5): the map against direct
+    /// characterizations at the map's grid, within the acceptance bounds (force at the nominal
+    /// approach 0.5 %, d 0.005, ΔF 3 %); the 200-point distribution's maxima are 6.1e-4, 2.0e-3
+    /// and 1.8 %.
+    #[test]
+    fn embedded_map_against_direct_characterizations() {
+        let r = held_out_check(LawMap::embedded(), 6, 20261126);
+        assert_eq!(r.len(), 6);
+        for h in &r {
+            assert!(
+                h.force_error < 5e-3 && h.d_error < 5e-3 && h.delta_f_error < 0.03,
+                "{h:?}"
+            );
+        }
+    }
+}

@@ -43,6 +43,50 @@ pub enum LawMapError {
         /// The valid range.
         expected: String,
     },
+    /// A map's spec or file that cannot be used.
+    #[error("law map: {0}")]
+    File(String),
+    /// A contact whose rheology models are not the map's.
+    #[error("the contact's models {contact} are not the map's ({map})")]
+    Models {
+        /// The contact's viscosity/density models.
+        contact: String,
+        /// The map's.
+        map: String,
+    },
+    /// A contact outside the map's envelope.
+    #[error("{group} = {value} lies outside the map's envelope [{min}, {max}]")]
+    OutsideEnvelope {
+        /// The group.
+        group: String,
+        /// Its value.
+        value: f64,
+        /// The envelope's smallest value.
+        min: f64,
+        /// The envelope's largest value.
+        max: f64,
+    },
+    /// The store holds node files of another map under this map's names.
+    #[error("{count} node file(s) hold nodes of a different map (first: {first}); nothing was overwritten — use another folder or overwrite")]
+    ForeignNodes {
+        /// How many.
+        count: usize,
+        /// The first.
+        first: String,
+    },
+    /// Nodes missing or failed when the map is assembled.
+    #[error("{missing} of {total} nodes are missing or failed (first: {first})")]
+    Incomplete {
+        /// Missing or failed nodes.
+        missing: usize,
+        /// Nodes of the map.
+        total: usize,
+        /// The first of them, with its groups and error.
+        first: String,
+    },
+    /// Reading or writing the store.
+    #[error(transparent)]
+    Store(#[from] crate::study::StoreError),
 }
 
 fn invalid(field: &str, value: f64, expected: &str) -> LawMapError {
@@ -278,3 +322,12 @@ impl DimensionlessLaw {
         Ok(FittedLaw::new(k, d, df, lo, hi)?)
     }
 }
+
+mod generate;
+mod map;
+
+pub use generate::{
+    assemble_map, characterize_groups, generate_map, held_out_check, HeldOutPoint, MapGeneration,
+    NodeRecord,
+};
+pub use map::{Group, LawMap, LawMapSpec, MapAxis, MapQuery, NodeQuality};
