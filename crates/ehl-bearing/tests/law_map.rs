@@ -404,3 +404,81 @@ mod embedded {
         }
     }
 }
+
+mod bearing {
+    use ehl_bearing::characterize::{characterize_bearing, CharacterizeSettings};
+    use ehl_bearing::io::read_case;
+    use ehl_bearing::law_map::LawMap;
+    use ehl_bearing::method::{MapSettings, Method};
+
+    /// The seed bearing (examples/7006.toml) at 3000, 4000 and 5000 rpm characterized by the
+    /// map (with the quasi-static fallback for the contacts outside its envelope) against the
+    /// quasi-static method at the map's settings (grid 65²): contact loads within 0.2 % and the
+    /// stiffness diagonal within 0.5 % (the acceptance bounds of docs/law_map.md §6; measured
+    /// 4.0e-4 and 1.1e-4 at 5000 rpm).
+    #[test]
+    fn seed_bearing_by_map_against_quasi_static() {
+        let mut case = read_case(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../examples/7006.toml"
+        )))
+        .unwrap();
+        for rpm in [3000.0, 4000.0, 5000.0] {
+            case.operating.inner_speed = rpm * std::f64::consts::PI / 30.0;
+            let s = CharacterizeSettings::default();
+            let qs = Method::QuasiStatic(LawMap::embedded().spec.settings());
+            let t0 = std::time::Instant::now();
+            let a = characterize_bearing(&case, &qs, &s).unwrap();
+            let ta = t0.elapsed().as_secs_f64();
+            let t0 = std::time::Instant::now();
+            let map = Method::Map(MapSettings { fallback: true });
+            let b = characterize_bearing(&case, &map, &s).unwrap();
+            let tb = t0.elapsed().as_secs_f64();
+            let fallbacks = b
+                .contacts
+                .iter()
+                .filter(|c| c.characterized.method != "map")
+                .count();
+            let mut worst_load = 0.0_f64;
+            for (x, y) in a.equilibrium.balls.iter().zip(&b.equilibrium.balls) {
+                for (p, q) in [(x.inner, y.inner), (x.outer, y.outer)] {
+                    worst_load = worst_load.max((q.load - p.load).abs() / p.load);
+                }
+            }
+            let mut worst_k = 0.0_f64;
+            for i in 0..5 {
+                let (p, q) = (a.equilibrium.stiffness[i][i], b.equilibrium.stiffness[i][i]);
+                worst_k = worst_k.max((q - p).abs() / p.abs());
+            }
+            eprintln!(
+                "seed {rpm} rpm: {fallbacks} fallbacks of {}; loads {worst_load:.3e}, stiffness \
+                 diagonal {worst_k:.3e}; quasi-static {ta:.2} s, map {tb:.3} s",
+                b.contacts.len()
+            );
+            assert!(a.converged && b.converged, "{rpm}");
+            assert!(worst_load < 2e-3, "{rpm}: {worst_load}");
+            assert!(worst_k < 5e-3, "{rpm}: {worst_k}");
+        }
+    }
+
+    /// Without the fallback, a contact outside the envelope is an error naming the group.
+    #[test]
+    fn outside_the_envelope_without_fallback_names_the_group() {
+        let case = read_case(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../examples/7006.toml"
+        )))
+        .unwrap();
+        let e = characterize_bearing(
+            &case,
+            &Method::Map(MapSettings { fallback: false }),
+            &CharacterizeSettings::default(),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("M = ") && e.contains("outside the map's envelope"),
+            "{e}"
+        );
+    }
+}

@@ -441,6 +441,10 @@ pub struct MapQuery {
     /// Largest RMS fit residual over w0 among the nodes the query's cell touches (the map's
     /// fit quality there).
     pub node_rms_hat: f64,
+    /// Smallest coefficient of determination of the fit among those nodes.
+    pub node_r_squared: f64,
+    /// Whether all those nodes converged.
+    pub nodes_converged: bool,
 }
 
 fn law_of(v: &[f64; 6]) -> DimensionlessLaw {
@@ -557,6 +561,8 @@ impl LawMap {
         let mut vf = [0.0; 6];
         let mut vh = [0.0; 6];
         let mut rms = 0.0_f64;
+        let mut r2 = 1.0_f64;
+        let mut conv = true;
         for index in 0..self.spec.node_count() {
             let mi = self.spec.multi_index(index);
             let wf: f64 = mi.iter().enumerate().map(|(k, &j)| full[k][j]).product();
@@ -570,7 +576,10 @@ impl LawMap {
                 vh[c] += wh * v[c];
             }
             if mi.iter().zip(&near).all(|(&j, n)| n.contains(&j)) {
-                rms = rms.max(self.quality[index].rms_hat);
+                let q = &self.quality[index];
+                rms = rms.max(q.rms_hat);
+                r2 = r2.min(q.r_squared);
+                conv &= q.converged;
             }
         }
         let law = law_of(&vf);
@@ -585,6 +594,8 @@ impl LawMap {
             error: law_of(&err),
             force_error: (law.force_hat(a0) - coarse.force_hat(a0)).abs(),
             node_rms_hat: rms,
+            node_r_squared: r2,
+            nodes_converged: conv,
         })
     }
 }

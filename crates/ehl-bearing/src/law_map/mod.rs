@@ -323,8 +323,11 @@ impl DimensionlessLaw {
     }
 }
 
+mod characterizer;
 mod generate;
 mod map;
+
+pub use characterizer::MapCharacterizer;
 
 pub use generate::{
     assemble_map, characterize_groups, generate_map, held_out_check, HeldOutPoint, MapGeneration,
