@@ -386,6 +386,17 @@ mod embedded {
             let diff = difference(&l, &map.laws[k]);
             assert!(diff < SAME, "node {k}: {diff:e}");
         }
+        let high = &LawMap::embedded_maps()[1];
+        let spec = LawMapSpec::from_toml(include_str!(
+            "../../../examples/law_map_seed_oil_high_l.toml"
+        ))
+        .unwrap();
+        assert_eq!(high.spec, spec);
+        for k in [4, 764] {
+            let (l, _) = characterize_groups(&spec.node_groups(k), &spec).unwrap();
+            let diff = difference(&l, &high.laws[k]);
+            assert!(diff < SAME, "high-L node {k}: {diff:e}");
+        }
     }
 
     /// Held-out points (a fresh seed, not the 200 of docs/law_map.md §5): the map against direct
@@ -459,6 +470,45 @@ mod bearing {
             assert!(worst_load < 2e-3, "{rpm}: {worst_load}");
             assert!(worst_k < 5e-3, "{rpm}: {worst_k}");
         }
+    }
+
+    /// The 218 example (examples/218_high_speed.toml, 15000 rpm, L ≈ 31.5: the second embedded
+    /// map) by the map alone (no fallback) against the quasi-static method at the map's settings.
+    #[test]
+    fn high_speed_218_by_map_against_quasi_static() {
+        let case = read_case(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../examples/218_high_speed.toml"
+        )))
+        .unwrap();
+        let s = CharacterizeSettings::default();
+        let qs = Method::QuasiStatic(LawMap::embedded().spec.settings());
+        let t0 = std::time::Instant::now();
+        let a = characterize_bearing(&case, &qs, &s).unwrap();
+        let ta = t0.elapsed().as_secs_f64();
+        let t0 = std::time::Instant::now();
+        let b =
+            characterize_bearing(&case, &Method::Map(MapSettings { fallback: false }), &s).unwrap();
+        let tb = t0.elapsed().as_secs_f64();
+        let mut worst_load = 0.0_f64;
+        for (x, y) in a.equilibrium.balls.iter().zip(&b.equilibrium.balls) {
+            for (p, q) in [(x.inner, y.inner), (x.outer, y.outer)] {
+                worst_load = worst_load.max((q.load - p.load).abs() / p.load);
+            }
+        }
+        let mut worst_k = 0.0_f64;
+        for i in 0..5 {
+            let (p, q) = (a.equilibrium.stiffness[i][i], b.equilibrium.stiffness[i][i]);
+            worst_k = worst_k.max((q - p).abs() / p.abs());
+        }
+        eprintln!(
+            "218 15000 rpm: loads {worst_load:.3e}, stiffness diagonal {worst_k:.3e}; \
+             quasi-static {ta:.2} s, map {tb:.4} s"
+        );
+        assert!(a.converged && b.converged);
+        assert!(b.contacts.iter().all(|c| c.characterized.method == "map"));
+        assert!(worst_load < 2e-3, "{worst_load}");
+        assert!(worst_k < 5e-3, "{worst_k}");
     }
 
     /// Without the fallback, a contact outside the envelope is an error naming the group.

@@ -10,7 +10,8 @@ use crate::method::{
 use crate::ContactLaw;
 use std::time::Instant;
 
-/// The map method as a [`ContactCharacterizer`] (with the embedded map, [`LawMap::embedded`]).
+/// The map method as a [`ContactCharacterizer`] (with the embedded maps,
+/// [`LawMap::embedded_maps`]; they share the quasi-static settings of the fallback).
 ///
 /// Inside the envelope the result is the map's law made dimensional for the contact: K, d, ΔF
 /// and the fitted range as the map gives them, `max_residual` the map's error estimate of the
@@ -29,14 +30,13 @@ pub struct MapCharacterizer {
 impl ContactCharacterizer for MapCharacterizer {
     fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error> {
         let t0 = Instant::now();
-        let map = LawMap::embedded();
         let ehl = c.ehl_contact();
         let groups = LawGroups::of(&ehl)?;
-        let q = match map.query(&groups) {
-            Ok(q) => q,
+        let q = match LawMap::query_embedded(&groups) {
+            Ok((q, _)) => q,
             Err(e) if self.settings.fallback => {
                 let mut r = QuasiStaticCharacterizer {
-                    settings: map.spec.settings(),
+                    settings: LawMap::embedded().spec.settings(),
                 }
                 .characterize(c)?;
                 r.method = format!("quasi-static (outside the map: {e})");

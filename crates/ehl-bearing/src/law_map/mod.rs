@@ -66,6 +66,12 @@ pub enum LawMapError {
         /// The envelope's largest value.
         max: f64,
     },
+    /// A contact outside every embedded map.
+    #[error("outside every embedded map: {reasons}")]
+    OutsideEveryMap {
+        /// Each map's refusal.
+        reasons: String,
+    },
     /// The store holds node files of another map under this map's names.
     #[error("{count} node file(s) hold nodes of a different map (first: {first}); nothing was overwritten — use another folder or overwrite")]
     ForeignNodes {
