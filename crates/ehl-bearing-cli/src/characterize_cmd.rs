@@ -204,6 +204,10 @@ pub fn with_amplitude(method: Method, amplitude: Option<f64>) -> anyhow::Result<
         Method::Harmonic(s) => Method::Harmonic(HarmonicSettings { amplitude: a, ..s }),
         Method::Hertz(s) => Method::Hertz(HertzCharacterizer { amplitude: a, ..s }),
         Method::Synthetic(s) => Method::Synthetic(SyntheticCharacterizer { amplitude: a, ..s }),
+        Method::Map(_) => anyhow::bail!(
+            "--amplitude = {a}: the map method's amplitude is the map's (docs/law_map.md); \
+             give no --amplitude"
+        ),
     };
     m.validate()
         .map_err(|e| anyhow::anyhow!(option_names(&e.to_string())))?;

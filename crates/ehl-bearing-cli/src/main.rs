@@ -5,6 +5,7 @@ mod coefficients_cmd;
 mod contact_cmd;
 mod ehl_cmd;
 mod equilibrium_cmd;
+mod law_map_cmd;
 mod plot;
 mod progress;
 mod slurm_cmd;
@@ -35,6 +36,9 @@ enum Command {
     Contact(contact_cmd::ContactArgs),
     /// Linearized 5×5 stiffness and damping of the lubricated bearing over speed (JSON, CSV, ROSS table).
     Coefficients(coefficients_cmd::CoefficientsArgs),
+    /// Map of the dimensionless quasi-static law over the groups: generate (resumable,
+    /// shardable), assemble, check against direct characterizations.
+    LawMap(law_map_cmd::LawMapArgs),
 }
 
 fn main() -> ExitCode {
@@ -54,6 +58,7 @@ fn main() -> ExitCode {
         Command::Ehl(a) => ehl_cmd::run(a),
         Command::Contact(a) => contact_cmd::run(a),
         Command::Coefficients(a) => coefficients_cmd::run(a),
+        Command::LawMap(a) => law_map_cmd::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

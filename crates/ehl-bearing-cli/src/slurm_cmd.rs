@@ -44,7 +44,7 @@ pub struct SbatchArgs {
     /// compute nodes.
     #[arg(long)]
     pub bin: Option<PathBuf>,
-    /// Override the study file's method (quasi-static, harmonic, hertz), for the tasks and the merge.
+    /// Override the study file's method (quasi-static, harmonic, hertz, map), for the tasks and the merge.
     #[arg(long)]
     pub method: Option<String>,
     /// Submit the array and the dependent merge job with sbatch; only the shards with points

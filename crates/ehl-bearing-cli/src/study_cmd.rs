@@ -42,7 +42,7 @@ pub struct StudyArgs {
     /// Output folder (created if needed; an existing one of the same study is resumed).
     #[arg(short = 'o', long = "output", required = true)]
     pub output: Option<PathBuf>,
-    /// Override the study file's method (quasi-static, harmonic, hertz); the file's
+    /// Override the study file's method (quasi-static, harmonic, hertz, map); the file's
     /// [method_options] apply only to its own method.
     #[arg(long)]
     pub method: Option<String>,

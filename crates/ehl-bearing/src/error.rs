@@ -29,6 +29,9 @@ pub enum Error {
     /// Rotor model and time response.
     #[error(transparent)]
     Rotor(#[from] crate::rotor::RotorError),
+    /// Dimensionless laws and their map.
+    #[error(transparent)]
+    LawMap(#[from] crate::law_map::LawMapError),
     /// Running, merging and storing studies.
     #[error(transparent)]
     Study(#[from] crate::study::StudyError),

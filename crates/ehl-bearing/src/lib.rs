@@ -4,7 +4,8 @@
 //! ([`bearing`]), Hertz elliptical contacts ([`hertz`]), an elastohydrodynamic point-contact solver
 //! ([`ehl`]), a Levenberg–Marquardt fit of the nonlinear contact law Q = K·δ^d + ΔF ([`fit`]), the
 //! characterization methods ([`method`]) and the coupled loop ([`characterize`]), load × speed
-//! studies ([`study`]), the bearing as a force element for rotor simulations ([`force_element`])
+//! studies ([`study`]), the contact law made dimensionless and its map over the groups
+//! ([`law_map`]), the bearing as a force element for rotor simulations ([`force_element`])
 //! and its linearized coefficients over speed ([`coefficients`]), and case files ([`io`]).
 //! [`prelude`] has what a typical program needs.
 //!
@@ -24,6 +25,7 @@ pub mod fit;
 pub mod force_element;
 pub mod hertz;
 pub mod io;
+pub mod law_map;
 pub mod lubrication;
 pub mod material;
 pub mod method;

@@ -664,6 +664,25 @@ pub enum Method {
     /// Test fixture with known parameters ([`SyntheticCharacterizer`]); accepted by name but not
     /// listed in [`Method::NAMES`] or in the command line's help.
     Synthetic(SyntheticCharacterizer),
+    /// The quasi-static law from the embedded map of the dimensionless law
+    /// ([`crate::law_map::MapCharacterizer`], docs/law_map.md).
+    Map(MapSettings),
+}
+
+/// Settings of the `map` method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub struct MapSettings {
+    /// Outside the map's envelope, characterize the contact by the quasi-static method with the
+    /// map's settings (true; the contact's `method` then says so) or fail with an error naming
+    /// the group, its value and the envelope (false, the default).
+    pub fallback: bool,
+}
+
+/// Options of `map` as a user gives them.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MapOptions {
+    fallback: Option<bool>,
 }
 
 impl Default for Method {
@@ -759,7 +778,7 @@ pub const GRID_RANGE: (usize, usize) = (17, 1025);
 
 impl Method {
     /// The names a user may give (`--method`, `method = "…"`), default first.
-    pub const NAMES: [&'static str; 3] = ["quasi-static", "harmonic", "hertz"];
+    pub const NAMES: [&'static str; 4] = ["quasi-static", "harmonic", "hertz", "map"];
 
     /// The method's name.
     pub fn name(&self) -> &'static str {
@@ -768,6 +787,7 @@ impl Method {
             Method::QuasiStatic(_) => "quasi-static",
             Method::Harmonic(_) => "harmonic",
             Method::Synthetic(_) => "synthetic",
+            Method::Map(_) => "map",
         }
     }
 
@@ -837,6 +857,12 @@ impl Method {
                     speed_ref: o.speed_ref.unwrap_or(d.speed_ref),
                     samples: o.samples.unwrap_or(d.samples),
                     amplitude: o.amplitude.unwrap_or(d.amplitude),
+                })
+            }
+            "map" => {
+                let o: MapOptions = options(name, table)?;
+                Method::Map(MapSettings {
+                    fallback: o.fallback.unwrap_or(false),
                 })
             }
             other => {
@@ -934,6 +960,7 @@ impl Method {
                 }
                 grid(&s.ehl)
             }
+            Method::Map(_) => Ok(()),
         }
     }
 
@@ -970,6 +997,7 @@ impl ContactCharacterizer for Method {
             Method::Synthetic(s) => s.characterize(c),
             Method::QuasiStatic(s) => QuasiStaticCharacterizer { settings: *s }.characterize(c),
             Method::Harmonic(s) => HarmonicCharacterizer { settings: *s }.characterize(c),
+            Method::Map(s) => crate::law_map::MapCharacterizer { settings: *s }.characterize(c),
         }
     }
 
@@ -984,7 +1012,7 @@ impl ContactCharacterizer for Method {
     fn predictor(&self) -> Option<&dyn LoadPredictor> {
         match self {
             Method::QuasiStatic(_) | Method::Harmonic(_) => Some(self),
-            Method::Hertz(_) | Method::Synthetic(_) => None,
+            Method::Hertz(_) | Method::Synthetic(_) | Method::Map(_) => None,
         }
     }
 }

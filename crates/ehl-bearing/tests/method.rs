@@ -13,7 +13,7 @@ fn parse(name: &str, options: &str) -> Result<Method, MethodError> {
 
 #[test]
 fn names_defaults_and_options() {
-    assert_eq!(Method::NAMES, ["quasi-static", "harmonic", "hertz"]);
+    assert_eq!(Method::NAMES, ["quasi-static", "harmonic", "hertz", "map"]);
     assert_eq!(Method::default().name(), "quasi-static");
     for name in Method::NAMES {
         let m = Method::parse(name, None).unwrap();

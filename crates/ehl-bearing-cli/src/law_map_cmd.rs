@@ -1,0 +1,245 @@
+//! `ehl-bearing law-map generate SPEC.toml -o DIR [--shard i/N]`, `law-map assemble SPEC.toml -o
+//! DIR --map FILE` and `law-map check FILE --points N`: the map of the dimensionless quasi-static
+//! law over the groups (`ehl_bearing::law_map`, docs/law_map.md). The nodes are point files in
+//! DIR/points (atomic, resumable, shardable as a study's); `assemble` writes the map file from
+//! them; `check` compares the map with direct characterizations at random held-out points.
+
+use anyhow::Context;
+use ehl_bearing::io::FsStore;
+use ehl_bearing::law_map::{
+    assemble_map, generate_map, held_out_check, LawMap, LawMapSpec, NodeRecord,
+};
+use ehl_bearing::study::Shard;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+/// Arguments of `law-map`.
+#[derive(clap::Args)]
+pub struct LawMapArgs {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: LawMapCommand,
+}
+
+/// Subcommands of `law-map`.
+#[derive(clap::Subcommand)]
+pub enum LawMapCommand {
+    /// Characterize the map's nodes (those of one shard with --shard) into DIR/points.
+    Generate {
+        /// Map spec (TOML), e.g. examples/law_map_seed_oil.toml.
+        spec: PathBuf,
+        /// Output folder (created if needed; an existing one of the same map is resumed).
+        #[arg(short = 'o', long = "output")]
+        output: PathBuf,
+        /// Run only shard i of N (1-based): the nodes whose index k has k mod N = i − 1.
+        #[arg(long)]
+        shard: Option<Shard>,
+        /// Recompute node files of another map instead of refusing.
+        #[arg(long)]
+        overwrite: bool,
+        /// Threads (default: RAYON_NUM_THREADS or the number of cores).
+        #[arg(long)]
+        threads: Option<usize>,
+    },
+    /// Build the map file from the node files (every node must be done).
+    Assemble {
+        /// Map spec (TOML).
+        spec: PathBuf,
+        /// The folder the nodes were generated into.
+        #[arg(short = 'o', long = "output")]
+        output: PathBuf,
+        /// The map file to write (JSON).
+        #[arg(long)]
+        map: PathBuf,
+    },
+    /// Compare the map with direct characterizations at random points inside its envelope.
+    Check {
+        /// Map file (JSON).
+        map: PathBuf,
+        /// Number of random points.
+        #[arg(long, default_value_t = 200)]
+        points: usize,
+        /// Seed of the random points.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Write one CSV row per point here.
+        #[arg(long)]
+        csv: Option<PathBuf>,
+        /// Threads (default: RAYON_NUM_THREADS or the number of cores).
+        #[arg(long)]
+        threads: Option<usize>,
+    },
+}
+
+fn pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
+    let mut b = rayon::ThreadPoolBuilder::new();
+    if let Some(t) = threads {
+        anyhow::ensure!(t >= 1, "--threads = {t}: expected at least 1");
+        b = b.num_threads(t);
+    }
+    Ok(b.build()?)
+}
+
+fn read_spec(p: &PathBuf) -> anyhow::Result<LawMapSpec> {
+    let text = std::fs::read_to_string(p).with_context(|| format!("reading {}", p.display()))?;
+    LawMapSpec::from_toml(&text).with_context(|| format!("in {}", p.display()))
+}
+
+/// Quantiles of `v` (sorted copy): (median, 95 %, max).
+fn quantiles(v: &[f64]) -> (f64, f64, f64) {
+    let mut s = v.to_vec();
+    s.sort_by(f64::total_cmp);
+    let at = |q: f64| s[((s.len() - 1) as f64 * q).round() as usize];
+    (at(0.5), at(0.95), s[s.len() - 1])
+}
+
+/// Runs `law-map`.
+pub fn run(a: &LawMapArgs) -> anyhow::Result<()> {
+    match &a.command {
+        LawMapCommand::Generate {
+            spec,
+            output,
+            shard,
+            overwrite,
+            threads,
+        } => {
+            let s = read_spec(spec)?;
+            let store = FsStore::create(output)?;
+            let shard = shard.unwrap_or(Shard::ALL);
+            let total = s.node_count().div_ceil(shard.count);
+            let done = AtomicUsize::new(0);
+            let t0 = Instant::now();
+            let quiet = !std::io::IsTerminal::is_terminal(&std::io::stderr());
+            let on_node = |r: &NodeRecord| {
+                let k = done.fetch_add(1, Ordering::Relaxed) + 1;
+                if !quiet || r.law.is_none() {
+                    eprintln!(
+                        "node {} ({k} of ≤ {total}) M = {:.4} L = {:.4} Ry/Rx = {:.4}: {} ({:.2} s)",
+                        r.index,
+                        r.groups.m,
+                        r.groups.l,
+                        r.groups.ry_over_rx,
+                        r.error.as_deref().unwrap_or("ok"),
+                        r.seconds
+                    );
+                }
+            };
+            let g = pool(*threads)?
+                .install(|| generate_map(&s, &store, shard, *overwrite, &on_node))?;
+            println!(
+                "shard {shard}: {} nodes, {} computed ({} failed), {} already done; {:.1} CPU s, {:.1} s wall",
+                g.nodes,
+                g.computed,
+                g.failed,
+                g.loaded,
+                g.cpu_seconds,
+                t0.elapsed().as_secs_f64()
+            );
+            if g.failed > 0 {
+                anyhow::bail!(
+                    "{} node(s) failed (their files hold the error; a rerun retries them)",
+                    g.failed
+                );
+            }
+            Ok(())
+        }
+        LawMapCommand::Assemble { spec, output, map } => {
+            let s = read_spec(spec)?;
+            let store = FsStore::open(output)?;
+            let m = assemble_map(&s, &store)?;
+            let text = m.to_json();
+            ehl_bearing::io::write_atomic(map, text.as_bytes())?;
+            let worst = m.quality.iter().map(|q| q.rms_hat).fold(0.0, f64::max);
+            println!(
+                "{}: {} nodes, {} bytes, {:.1} CPU hours ({:.0} s), worst node fit RMS/w0 {:.2e}, {} not converged",
+                map.display(),
+                m.laws.len(),
+                text.len(),
+                m.cpu_seconds / 3600.0,
+                m.cpu_seconds,
+                worst,
+                m.quality.iter().filter(|q| !q.converged).count()
+            );
+            Ok(())
+        }
+        LawMapCommand::Check {
+            map,
+            points,
+            seed,
+            csv,
+            threads,
+        } => {
+            let text = std::fs::read_to_string(map)
+                .with_context(|| format!("reading {}", map.display()))?;
+            let m = LawMap::from_json(&text)?;
+            let t0 = Instant::now();
+            let r = pool(*threads)?.install(|| held_out_check(&m, *points, *seed));
+            anyhow::ensure!(!r.is_empty(), "no held-out point could be characterized");
+            if let Some(p) = csv {
+                let mut out = String::from(
+                    "m,l,ry_over_rx,force_error,d_error,delta_f_error,delta_f_error_over_load,\
+                     estimate_force,estimate_d,estimate_delta_f_over_load,k_hat,d,delta_f_hat\n",
+                );
+                for h in &r {
+                    out.push_str(&format!(
+                        "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{}\n",
+                        h.groups.m,
+                        h.groups.l,
+                        h.groups.ry_over_rx,
+                        h.force_error,
+                        h.d_error,
+                        h.delta_f_error,
+                        h.delta_f_error_hat,
+                        h.map.force_error,
+                        h.map.error.d,
+                        h.map.error.delta_f_hat,
+                        h.direct.k_hat,
+                        h.direct.d,
+                        h.direct.delta_f_hat
+                    ));
+                }
+                ehl_bearing::io::write_atomic(p, out.as_bytes())?;
+            }
+            println!(
+                "{} of {points} held-out points characterized ({:.1} s wall)",
+                r.len(),
+                t0.elapsed().as_secs_f64()
+            );
+            println!("quantity: median / 95 % / max");
+            let rows: [(&str, Vec<f64>); 7] = [
+                (
+                    "force at δ0, relative",
+                    r.iter().map(|h| h.force_error).collect(),
+                ),
+                ("d, absolute", r.iter().map(|h| h.d_error).collect()),
+                ("ΔF, relative", r.iter().map(|h| h.delta_f_error).collect()),
+                (
+                    "ΔF over w0",
+                    r.iter().map(|h| h.delta_f_error_hat).collect(),
+                ),
+                (
+                    "estimate: force over w0",
+                    r.iter().map(|h| h.map.force_error).collect(),
+                ),
+                ("estimate: d", r.iter().map(|h| h.map.error.d).collect()),
+                (
+                    "estimate / actual, force",
+                    r.iter()
+                        .map(|h| h.map.force_error / h.force_error.max(1e-300))
+                        .collect(),
+                ),
+            ];
+            for (name, v) in rows {
+                let (a, b, c) = quantiles(&v);
+                println!("  {name}: {a:.2e} / {b:.2e} / {c:.2e}");
+            }
+            let under = r
+                .iter()
+                .filter(|h| h.map.force_error < h.force_error)
+                .count();
+            println!("  points where the estimate is below the actual force error: {under}");
+            Ok(())
+        }
+    }
+}

@@ -1,0 +1,80 @@
+//! The `map` characterization method: the quasi-static law of a contact from the embedded map
+//! of the dimensionless law, with the map's error estimate, or — outside the map's envelope — an
+//! error naming the group, or with `fallback` the quasi-static method itself.
+
+use super::{hertz_deflection, LawGroups, LawMap};
+use crate::method::{
+    CharacterizedContact, ContactCharacterizer, ContactConditions, MapSettings, Method,
+    QuasiStaticCharacterizer,
+};
+use crate::ContactLaw;
+use std::time::Instant;
+
+/// The map method as a [`ContactCharacterizer`] (with the embedded maps,
+/// [`LawMap::embedded_maps`]; they share the quasi-static settings of the fallback).
+///
+/// Inside the envelope the result is the map's law made dimensional for the contact: K, d, ΔF
+/// and the fitted range as the map gives them, `max_residual` the map's error estimate of the
+/// force at the nominal approach plus the nodes' own fit residual (N), `std_errors` the error
+/// estimates of (K, d, ΔF) (the difference of the two interpolants, not standard errors),
+/// `rms_residual` and `r_squared` those of the nearest nodes' fits, `samples` 0, `method`
+/// "map". Outside it, with `fallback`, the quasi-static method with the map's settings
+/// characterizes the contact and its `method` reads "quasi-static (outside the map: …)" with the
+/// reason; without, the error names the group, its value and the envelope.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct MapCharacterizer {
+    /// Settings of the method.
+    pub settings: MapSettings,
+}
+
+impl ContactCharacterizer for MapCharacterizer {
+    fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error> {
+        let t0 = Instant::now();
+        let ehl = c.ehl_contact();
+        let groups = LawGroups::of(&ehl)?;
+        let q = match LawMap::query_embedded(&groups) {
+            Ok((q, _)) => q,
+            Err(e) if self.settings.fallback => {
+                let mut r = QuasiStaticCharacterizer {
+                    settings: LawMap::embedded().spec.settings(),
+                }
+                .characterize(c)?;
+                r.method = format!("quasi-static (outside the map: {e})");
+                return Ok(r);
+            }
+            Err(e) => return Err(e.into()),
+        };
+        let law = q.law.law(&ehl)?;
+        let dh = hertz_deflection(&ehl)?;
+        let w0 = c.load;
+        let approach = law.approach_at(w0).unwrap_or(q.law.approach_hat * dh);
+        let moes = c.moes();
+        Ok(CharacterizedContact {
+            law,
+            k: law.k(),
+            d: law.d(),
+            delta_f: law.delta_f(),
+            load: w0,
+            approach,
+            moes_m: moes.m,
+            moes_l: moes.l,
+            ry_over_rx: c.ry_over_rx(),
+            r_squared: q.node_r_squared,
+            rms_residual: q.node_rms_hat * w0,
+            max_residual: (q.force_error + q.node_rms_hat) * w0,
+            std_errors: [
+                q.error.k_hat * w0 / dh.powf(q.law.d),
+                q.error.d,
+                q.error.delta_f_hat * w0,
+            ],
+            converged: q.nodes_converged,
+            method: "map".into(),
+            seconds: t0.elapsed().as_secs_f64(),
+            samples: 0,
+        })
+    }
+
+    fn method(&self) -> Method {
+        Method::Map(self.settings)
+    }
+}

@@ -1,0 +1,299 @@
+//! Generating a map through the study machinery: every node is one point file in a
+//! [`PointStore`] (written atomically as soon as it is done), a rerun skips the nodes whose file
+//! holds the same spec and groups (resumable), a [`Shard`] runs every count-th node (round robin,
+//! as study shards; a Slurm job array runs one shard per task), and [`assemble_map`] builds the
+//! map from the node files alone, so the map is byte for byte the same however it was run.
+
+use super::map::{LawMap, LawMapSpec, NodeQuality, FORMAT};
+use super::{DimensionlessLaw, LawGroups, LawMapError};
+use crate::contact::characterize_quasi_static;
+use crate::study::{PointStore, Shard};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::time::Instant;
+
+/// Curvature radius and reduced modulus of the contacts the nodes are solved on (any values
+/// give the same dimensionless law, docs/law_map.md §4): a steel pair's E′ and Rx = 5 mm.
+const NODE_RX: f64 = 5e-3;
+const NODE_E: f64 = 2.286e11;
+
+/// One node's file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct NodeRecord {
+    /// Node index (the last axis fastest).
+    pub index: usize,
+    /// The spec the node belongs to.
+    pub spec: LawMapSpec,
+    /// The node's groups.
+    pub groups: LawGroups,
+    /// The dimensionless law (None if the characterization failed).
+    pub law: Option<DimensionlessLaw>,
+    /// The fit's quality.
+    pub quality: Option<NodeQuality>,
+    /// The characterization's error, if it failed.
+    pub error: Option<String>,
+    /// Wall time of the characterization (one thread), s.
+    pub seconds: f64,
+}
+
+fn stem(index: usize) -> String {
+    format!("node_{index:06}")
+}
+
+/// The dimensionless law at `g` by a direct quasi-static characterization with the spec's
+/// settings (on a contact with Rx = 5 mm and a steel pair's E′), with its fit quality.
+pub fn characterize_groups(
+    g: &LawGroups,
+    spec: &LawMapSpec,
+) -> Result<(DimensionlessLaw, NodeQuality), crate::Error> {
+    let c = g.contact(NODE_RX, NODE_E)?;
+    let fit = characterize_quasi_static(&c, &spec.settings())?;
+    let law = DimensionlessLaw::of_fit(&fit, &c)?;
+    Ok((
+        law,
+        NodeQuality {
+            r_squared: fit.r_squared,
+            rms_hat: fit.rms_residual / c.load,
+            converged: fit.converged,
+        },
+    ))
+}
+
+fn compute(index: usize, spec: &LawMapSpec) -> NodeRecord {
+    let t0 = Instant::now();
+    let groups = spec.node_groups(index);
+    let (law, quality, error) = match characterize_groups(&groups, spec) {
+        Ok((l, q)) => (Some(l), Some(q), None),
+        Err(e) => (None, None, Some(e.to_string())),
+    };
+    NodeRecord {
+        index,
+        spec: spec.clone(),
+        groups,
+        law,
+        quality,
+        error,
+        seconds: t0.elapsed().as_secs_f64(),
+    }
+}
+
+/// What [`generate_map`] did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MapGeneration {
+    /// Nodes of the shard.
+    pub nodes: usize,
+    /// Nodes computed in this run.
+    pub computed: usize,
+    /// Nodes found finished in the store.
+    pub loaded: usize,
+    /// Nodes (computed in this run) whose characterization failed.
+    pub failed: usize,
+    /// Sum of the computed nodes' times, s.
+    pub cpu_seconds: f64,
+}
+
+/// Computes the nodes of `shard` that the store does not hold yet (in parallel over the rayon
+/// pool), each saved as soon as it is done; `on_node` is called after each save. A store file of
+/// another spec under a node's name stops the run before anything is computed unless
+/// `overwrite`. Failed nodes are saved with their error (a rerun retries them).
+pub fn generate_map(
+    spec: &LawMapSpec,
+    store: &dyn PointStore,
+    shard: Shard,
+    overwrite: bool,
+    on_node: &(dyn Fn(&NodeRecord) + Sync),
+) -> Result<MapGeneration, LawMapError> {
+    spec.validate()?;
+    let mine: Vec<usize> = (0..spec.node_count())
+        .filter(|&k| shard.contains(k))
+        .collect();
+    let mut todo = Vec::new();
+    let mut foreign = Vec::new();
+    let mut loaded = 0;
+    for &k in &mine {
+        match store.load_point(&stem(k))? {
+            None => todo.push(k),
+            Some(text) => match serde_json::from_str::<NodeRecord>(&text) {
+                Ok(r) if r.spec == *spec && r.index == k => {
+                    if r.law.is_some() {
+                        loaded += 1;
+                    } else {
+                        todo.push(k);
+                    }
+                }
+                Ok(_) => {
+                    foreign.push(store.point_location(&stem(k)));
+                    todo.push(k);
+                }
+                // Unreadable (truncated by a crash before atomic writes, or edited): redo.
+                Err(_) => todo.push(k),
+            },
+        }
+    }
+    if !foreign.is_empty() && !overwrite {
+        return Err(LawMapError::ForeignNodes {
+            count: foreign.len(),
+            first: foreign[0].clone(),
+        });
+    }
+    let results: Vec<Result<NodeRecord, LawMapError>> = todo
+        .par_iter()
+        .map(|&k| {
+            let r = compute(k, spec);
+            let text = serde_json::to_string_pretty(&r).expect("record serializes");
+            store.save_point(&stem(k), &text)?;
+            on_node(&r);
+            Ok(r)
+        })
+        .collect();
+    let mut failed = 0;
+    let mut cpu = 0.0;
+    for r in results {
+        let r = r?;
+        failed += r.law.is_none() as usize;
+        cpu += r.seconds;
+    }
+    Ok(MapGeneration {
+        nodes: mine.len(),
+        computed: todo.len(),
+        loaded,
+        failed,
+        cpu_seconds: cpu,
+    })
+}
+
+/// The map from the store's node files (every node must be present and characterized).
+pub fn assemble_map(spec: &LawMapSpec, store: &dyn PointStore) -> Result<LawMap, LawMapError> {
+    spec.validate()?;
+    let n = spec.node_count();
+    let mut laws = Vec::with_capacity(n);
+    let mut quality = Vec::with_capacity(n);
+    let mut cpu = 0.0;
+    let mut missing = Vec::new();
+    for k in 0..n {
+        let rec = store
+            .load_point(&stem(k))?
+            .and_then(|t| serde_json::from_str::<NodeRecord>(&t).ok())
+            .filter(|r| r.spec == *spec && r.index == k);
+        match rec {
+            Some(NodeRecord {
+                law: Some(l),
+                quality: Some(q),
+                seconds,
+                ..
+            }) => {
+                laws.push(l);
+                quality.push(q);
+                cpu += seconds;
+            }
+            other => {
+                let why = match other {
+                    Some(r) => format!(
+                        "failed at M = {}, L = {}, Ry/Rx = {}: {}",
+                        r.groups.m,
+                        r.groups.l,
+                        r.groups.ry_over_rx,
+                        r.error.unwrap_or_default()
+                    ),
+                    None => "missing".into(),
+                };
+                missing.push(format!("{}: {why}", store.point_location(&stem(k))));
+            }
+        }
+    }
+    if !missing.is_empty() {
+        return Err(LawMapError::Incomplete {
+            missing: missing.len(),
+            total: n,
+            first: missing[0].clone(),
+        });
+    }
+    Ok(LawMap {
+        format: FORMAT.into(),
+        spec: spec.clone(),
+        laws,
+        quality,
+        cpu_seconds: cpu,
+    })
+}
+
+/// One held-out point: the map's law against a direct characterization at the same groups.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct HeldOutPoint {
+    /// The groups.
+    pub groups: LawGroups,
+    /// The map's law and error estimate.
+    pub map: super::MapQuery,
+    /// The direct characterization's law.
+    pub direct: DimensionlessLaw,
+    /// Relative error of the map's force at the direct nominal approach: |Q̂_map(δ̂0) −
+    /// Q̂_direct(δ̂0)|/Q̂_direct(δ̂0).
+    pub force_error: f64,
+    /// |d_map − d_direct|.
+    pub d_error: f64,
+    /// |ΔF̂_map − ΔF̂_direct|/|ΔF̂_direct|.
+    pub delta_f_error: f64,
+    /// |ΔF̂_map − ΔF̂_direct| (ΔF error over the load).
+    pub delta_f_error_hat: f64,
+}
+
+/// `count` points drawn uniformly in the axes' coordinates inside the map's envelope
+/// (splitmix64 from `seed`), each characterized directly with the map's settings and compared
+/// with the map. Points whose direct characterization fails are left out (the count returned
+/// says how many remain).
+pub fn held_out_check(map: &LawMap, count: usize, seed: u64) -> Vec<HeldOutPoint> {
+    let spec = &map.spec;
+    let mut state = seed;
+    let mut next = move || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let points: Vec<LawGroups> = (0..count)
+        .map(|_| {
+            let mut g = spec.node_groups(0);
+            for a in &spec.axes {
+                let (lo, hi) = if a.log {
+                    (a.min.ln(), a.max.ln())
+                } else {
+                    (a.min, a.max)
+                };
+                let t = lo + (hi - lo) * next();
+                let v = if a.log { t.exp() } else { t };
+                set_group(&mut g, a.group, v.clamp(a.min, a.max));
+            }
+            g
+        })
+        .collect();
+    points
+        .par_iter()
+        .filter_map(|g| {
+            let q = map.query(g).ok()?;
+            let (direct, _) = characterize_groups(g, spec).ok()?;
+            let a0 = direct.approach_hat;
+            let qd = direct.force_hat(a0);
+            Some(HeldOutPoint {
+                groups: *g,
+                map: q,
+                direct,
+                force_error: (q.law.force_hat(a0) - qd).abs() / qd,
+                d_error: (q.law.d - direct.d).abs(),
+                delta_f_error: (q.law.delta_f_hat - direct.delta_f_hat).abs()
+                    / direct.delta_f_hat.abs(),
+                delta_f_error_hat: (q.law.delta_f_hat - direct.delta_f_hat).abs(),
+            })
+        })
+        .collect()
+}
+
+fn set_group(g: &mut LawGroups, grp: super::Group, v: f64) {
+    match grp {
+        super::Group::M => g.m = v,
+        super::Group::L => g.l = v,
+        super::Group::RyOverRx => g.ry_over_rx = v,
+        super::Group::AlphaP0 => g.alpha_p0 = Some(v),
+        super::Group::LnEta0Ratio => g.ln_eta0_ratio = Some(v),
+    }
+}

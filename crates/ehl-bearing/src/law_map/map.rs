@@ -1,0 +1,629 @@
+//! The map of the dimensionless law over the groups: its specification (axes and fixed groups),
+//! the map file (the law at every node and the fit's quality there), and the interpolant with its
+//! error estimate (docs/law_map.md §5).
+//!
+//! Interpolation: tensor-product polynomial interpolation in barycentric form on
+//! Chebyshev–Gauss–Lobatto nodes of each axis's coordinate (ln of the group for `log` axes, the
+//! group itself otherwise). Each axis has an odd number of nodes n, so every other node is itself
+//! the Chebyshev–Gauss–Lobatto set of order (n − 1)/2: the error estimate of a query is the
+//! difference between the interpolants on all nodes and on that nested half set. It estimates the
+//! error of the coarser interpolant and so, where the interpolation converges, bounds that of
+//! the finer one from above (measured against direct characterizations in the docs).
+
+use super::{DimensionlessLaw, LawGroups, LawMapError};
+use crate::contact::QuasiStaticSettings;
+use crate::ehl::EhlSettings;
+use crate::material::{DensityModel, ViscosityModel};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+
+/// The map file's format tag.
+pub const FORMAT: &str = "ehl-bearing law map 1";
+
+/// A dimensionless group, as an axis or a fixed value of a map.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Group {
+    /// Moes' M.
+    M,
+    /// Moes' L.
+    L,
+    /// Ry/Rx.
+    RyOverRx,
+    /// α·p0.
+    AlphaP0,
+    /// ln(η0/η∞).
+    LnEta0Ratio,
+}
+
+impl Group {
+    /// All groups.
+    pub const ALL: [Group; 5] = [
+        Group::M,
+        Group::L,
+        Group::RyOverRx,
+        Group::AlphaP0,
+        Group::LnEta0Ratio,
+    ];
+
+    /// The group's name as in messages and files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Group::M => "M",
+            Group::L => "L",
+            Group::RyOverRx => "Ry/Rx",
+            Group::AlphaP0 => "alpha_p0",
+            Group::LnEta0Ratio => "ln_eta0_ratio",
+        }
+    }
+
+    /// The group's value in `g` (None where the models do not need it).
+    pub fn get(self, g: &LawGroups) -> Option<f64> {
+        match self {
+            Group::M => Some(g.m),
+            Group::L => Some(g.l),
+            Group::RyOverRx => Some(g.ry_over_rx),
+            Group::AlphaP0 => g.alpha_p0,
+            Group::LnEta0Ratio => g.ln_eta0_ratio,
+        }
+    }
+
+    fn set(self, g: &mut LawGroups, v: f64) {
+        match self {
+            Group::M => g.m = v,
+            Group::L => g.l = v,
+            Group::RyOverRx => g.ry_over_rx = v,
+            Group::AlphaP0 => g.alpha_p0 = Some(v),
+            Group::LnEta0Ratio => g.ln_eta0_ratio = Some(v),
+        }
+    }
+
+    fn needed(self, v: ViscosityModel, d: DensityModel) -> bool {
+        match self {
+            Group::M | Group::L | Group::RyOverRx => true,
+            Group::AlphaP0 => v == ViscosityModel::Roelands || d == DensityModel::DowsonHigginson,
+            Group::LnEta0Ratio => v == ViscosityModel::Roelands,
+        }
+    }
+}
+
+/// One axis of a map: a group sampled on `nodes` Chebyshev–Gauss–Lobatto nodes between `min`
+/// and `max`, in ln(group) when `log`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MapAxis {
+    /// The group.
+    pub group: Group,
+    /// Smallest value (> 0 for log axes).
+    pub min: f64,
+    /// Largest value (> min).
+    pub max: f64,
+    /// Number of nodes (odd, 3 to 65).
+    pub nodes: usize,
+    /// Interpolate in ln(group).
+    pub log: bool,
+}
+
+impl MapAxis {
+    fn coord(&self, v: f64) -> f64 {
+        if self.log {
+            v.ln()
+        } else {
+            v
+        }
+    }
+
+    fn value(&self, t: f64) -> f64 {
+        if self.log {
+            t.exp()
+        } else {
+            t
+        }
+    }
+
+    /// The node coordinates, ascending (the ends exactly at min and max).
+    fn node_coords(&self) -> Vec<f64> {
+        let (a, b) = (self.coord(self.min), self.coord(self.max));
+        let n = self.nodes;
+        (0..n)
+            .map(|j| {
+                if j == 0 {
+                    a
+                } else if j == n - 1 {
+                    b
+                } else {
+                    0.5 * (a + b) - 0.5 * (b - a) * (PI * j as f64 / (n - 1) as f64).cos()
+                }
+            })
+            .collect()
+    }
+
+    /// The group's values at the nodes, ascending.
+    pub fn node_values(&self) -> Vec<f64> {
+        let mut v: Vec<f64> = self
+            .node_coords()
+            .into_iter()
+            .map(|t| self.value(t))
+            .collect();
+        // The ends exactly.
+        v[0] = self.min;
+        let n = v.len();
+        v[n - 1] = self.max;
+        v
+    }
+
+    /// Barycentric Lagrange basis at coordinate `t` on every `step`-th node (1: all, 2: the
+    /// nested half set); zero on the skipped nodes.
+    fn basis(&self, t: f64, step: usize) -> Vec<f64> {
+        let x = self.node_coords();
+        let n = x.len();
+        let mut out = vec![0.0; n];
+        let idx: Vec<usize> = (0..n).step_by(step).collect();
+        let last = idx.len() - 1;
+        if let Some(&hit) = idx.iter().find(|&&j| t == x[j]) {
+            out[hit] = 1.0;
+            return out;
+        }
+        let mut sum = 0.0;
+        for (i, &j) in idx.iter().enumerate() {
+            let mut w = if i % 2 == 0 { 1.0 } else { -1.0 };
+            if i == 0 || i == last {
+                w *= 0.5;
+            }
+            let v = w / (t - x[j]);
+            out[j] = v;
+            sum += v;
+        }
+        for v in &mut out {
+            *v /= sum;
+        }
+        out
+    }
+}
+
+/// What a map samples: the models, the fixed groups, the axes, and the quasi-static method's
+/// dimensionless settings. Read from a TOML file (docs/law_map.md §5) or from a map file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LawMapSpec {
+    /// Viscosity model.
+    pub viscosity_model: ViscosityModel,
+    /// Density model.
+    pub density_model: DensityModel,
+    /// Fixed value of M (when M is not an axis).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub m: Option<f64>,
+    /// Fixed value of L (when L is not an axis).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub l: Option<f64>,
+    /// Fixed value of Ry/Rx (when it is not an axis).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ry_over_rx: Option<f64>,
+    /// Fixed value of α·p0 (when the models need it and it is not an axis).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub alpha_p0: Option<f64>,
+    /// Fixed value of ln(η0/η∞) (Roelands, when it is not an axis).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ln_eta0_ratio: Option<f64>,
+    /// The axes (the first varies slowest in the node order).
+    #[serde(rename = "axis")]
+    pub axes: Vec<MapAxis>,
+    /// The quasi-static method's relative load amplitude ε.
+    pub amplitude: f64,
+    /// The quasi-static method's number of steady solutions.
+    pub points: usize,
+    /// The steady solutions' grid (points per side).
+    pub grid: usize,
+}
+
+impl LawMapSpec {
+    /// Parses and validates a spec file's text.
+    pub fn from_toml(text: &str) -> Result<LawMapSpec, LawMapError> {
+        let s: LawMapSpec = toml::from_str(text).map_err(|e| LawMapError::File(e.to_string()))?;
+        s.validate()?;
+        Ok(s)
+    }
+
+    fn fixed(&self, g: Group) -> Option<f64> {
+        match g {
+            Group::M => self.m,
+            Group::L => self.l,
+            Group::RyOverRx => self.ry_over_rx,
+            Group::AlphaP0 => self.alpha_p0,
+            Group::LnEta0Ratio => self.ln_eta0_ratio,
+        }
+    }
+
+    /// Checks that every group the models need is given once (fixed or as an axis) and no other,
+    /// the axes' ranges and node counts, and the method's settings.
+    pub fn validate(&self) -> Result<(), LawMapError> {
+        let inv = |f: &str, v: f64, e: &str| LawMapError::Invalid {
+            field: f.into(),
+            value: v,
+            expected: e.into(),
+        };
+        for g in Group::ALL {
+            let axes = self.axes.iter().filter(|a| a.group == g).count();
+            let fixed = self.fixed(g).is_some() as usize;
+            let needed = g.needed(self.viscosity_model, self.density_model);
+            if needed && axes + fixed != 1 {
+                return Err(LawMapError::File(format!(
+                    "group {}: given {} time(s) (as an axis {axes}, fixed {fixed}); the models \
+                     {:?}/{:?} need it exactly once",
+                    g.name(),
+                    axes + fixed,
+                    self.viscosity_model,
+                    self.density_model
+                )));
+            }
+            if !needed && axes + fixed != 0 {
+                return Err(LawMapError::File(format!(
+                    "group {}: given, but the models {:?}/{:?} do not depend on it",
+                    g.name(),
+                    self.viscosity_model,
+                    self.density_model
+                )));
+            }
+            if let Some(v) = self.fixed(g) {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(inv(g.name(), v, "finite and > 0"));
+                }
+            }
+        }
+        if self.axes.is_empty() || self.axes.len() > 5 {
+            return Err(LawMapError::File(format!(
+                "{} axes: expected 1 to 5",
+                self.axes.len()
+            )));
+        }
+        for a in &self.axes {
+            let name = format!("axis {}", a.group.name());
+            if !(a.min.is_finite() && a.max.is_finite() && a.min > 0.0 && a.max > a.min) {
+                return Err(LawMapError::File(format!(
+                    "{name}: min = {}, max = {}: expected 0 < min < max, finite",
+                    a.min, a.max
+                )));
+            }
+            if !(3..=65).contains(&a.nodes) || a.nodes % 2 == 0 {
+                return Err(inv(
+                    &format!("{name}.nodes"),
+                    a.nodes as f64,
+                    "odd, 3 to 65 (every other node is the nested set of the error estimate)",
+                ));
+            }
+        }
+        if self.node_count() > 200_000 {
+            return Err(inv(
+                "number of nodes",
+                self.node_count() as f64,
+                "at most 200000",
+            ));
+        }
+        self.settings()
+            .ehl
+            .validate()
+            .map_err(|e| LawMapError::File(e.to_string()))?;
+        if !(self.amplitude.is_finite() && self.amplitude > 0.0 && self.amplitude <= 0.9) {
+            return Err(inv("amplitude", self.amplitude, "0 < ε ≤ 0.9"));
+        }
+        if !(4..=101).contains(&self.points) {
+            return Err(inv("points", self.points as f64, "4 to 101"));
+        }
+        // Every node's groups valid (ranges of M, L, Ry/Rx).
+        self.node_groups(0).validate()?;
+        self.node_groups(self.node_count() - 1).validate()?;
+        Ok(())
+    }
+
+    /// Number of nodes (the product of the axes' node counts).
+    pub fn node_count(&self) -> usize {
+        self.axes.iter().map(|a| a.nodes).product()
+    }
+
+    /// Node multi-index of node `index` (the last axis fastest).
+    fn multi_index(&self, mut index: usize) -> Vec<usize> {
+        let mut out = vec![0; self.axes.len()];
+        for (k, a) in self.axes.iter().enumerate().rev() {
+            out[k] = index % a.nodes;
+            index /= a.nodes;
+        }
+        out
+    }
+
+    /// The groups of node `index`.
+    pub fn node_groups(&self, index: usize) -> LawGroups {
+        let mut g = LawGroups {
+            m: self.m.unwrap_or(f64::NAN),
+            l: self.l.unwrap_or(f64::NAN),
+            ry_over_rx: self.ry_over_rx.unwrap_or(f64::NAN),
+            alpha_p0: self.alpha_p0,
+            ln_eta0_ratio: self.ln_eta0_ratio,
+            viscosity: self.viscosity_model,
+            density: self.density_model,
+        };
+        for (a, j) in self.axes.iter().zip(self.multi_index(index)) {
+            a.group.set(&mut g, a.node_values()[j]);
+        }
+        g
+    }
+
+    /// The quasi-static method's settings of the map's nodes (its grid, amplitude and number of
+    /// solutions; everything else the defaults).
+    pub fn settings(&self) -> QuasiStaticSettings {
+        let d = QuasiStaticSettings::default();
+        QuasiStaticSettings {
+            amplitude: self.amplitude,
+            points: self.points,
+            ehl: EhlSettings {
+                grid: self.grid,
+                ..d.ehl
+            },
+            ..d
+        }
+    }
+
+    /// Whether `g` lies in the map's envelope: the same models, the fixed groups equal (relative
+    /// 1e-9) and the axes' groups within their ranges. The error names the group, its value and
+    /// the range.
+    pub fn check_inside(&self, g: &LawGroups) -> Result<(), LawMapError> {
+        if (g.viscosity, g.density) != (self.viscosity_model, self.density_model) {
+            return Err(LawMapError::Models {
+                contact: format!("{:?}/{:?}", g.viscosity, g.density),
+                map: format!("{:?}/{:?}", self.viscosity_model, self.density_model),
+            });
+        }
+        for grp in Group::ALL {
+            let Some(v) = grp.get(g) else { continue };
+            if let Some(f) = self.fixed(grp) {
+                if (v - f).abs() > 1e-9 * f.abs() {
+                    return Err(LawMapError::OutsideEnvelope {
+                        group: grp.name().into(),
+                        value: v,
+                        min: f,
+                        max: f,
+                    });
+                }
+            }
+        }
+        for a in &self.axes {
+            let v = a.group.get(g).unwrap_or(f64::NAN);
+            if !(v >= a.min && v <= a.max) {
+                return Err(LawMapError::OutsideEnvelope {
+                    group: a.group.name().into(),
+                    value: v,
+                    min: a.min,
+                    max: a.max,
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The fit's quality at one node.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct NodeQuality {
+    /// Coefficient of determination of the fit.
+    pub r_squared: f64,
+    /// RMS force residual of the fit over w0.
+    pub rms_hat: f64,
+    /// Whether every steady solution and the fit converged.
+    pub converged: bool,
+}
+
+/// The map: the spec, the law at every node and the fit's quality there, and what its
+/// generation cost.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LawMap {
+    /// Format tag ([`FORMAT`]).
+    pub format: String,
+    /// What the map samples.
+    pub spec: LawMapSpec,
+    /// The dimensionless law at every node (node order: the last axis fastest).
+    pub laws: Vec<DimensionlessLaw>,
+    /// The fit's quality at every node.
+    pub quality: Vec<NodeQuality>,
+    /// Sum of the nodes' characterization times, s (one core each).
+    pub cpu_seconds: f64,
+}
+
+/// The map's answer at some groups: the interpolated law and its error estimate.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MapQuery {
+    /// The interpolated dimensionless law.
+    pub law: DimensionlessLaw,
+    /// Error estimate of each component (|all nodes − nested half set|): K̂, d, ΔF̂,
+    /// approach, range.
+    pub error: DimensionlessLaw,
+    /// Estimated error of Q/w0 at the interpolated nominal approach (the two interpolants'
+    /// laws evaluated there).
+    pub force_error: f64,
+    /// Largest RMS fit residual over w0 among the nodes the query's cell touches (the map's
+    /// fit quality there).
+    pub node_rms_hat: f64,
+    /// Smallest coefficient of determination of the fit among those nodes.
+    pub node_r_squared: f64,
+    /// Whether all those nodes converged.
+    pub nodes_converged: bool,
+}
+
+fn law_of(v: &[f64; 6]) -> DimensionlessLaw {
+    DimensionlessLaw {
+        k_hat: v[0],
+        d: v[1],
+        delta_f_hat: v[2],
+        approach_hat: v[3],
+        range_hat: [v[4], v[5]],
+    }
+}
+
+fn values_of(l: &DimensionlessLaw) -> [f64; 6] {
+    [
+        l.k_hat,
+        l.d,
+        l.delta_f_hat,
+        l.approach_hat,
+        l.range_hat[0],
+        l.range_hat[1],
+    ]
+}
+
+impl LawMap {
+    /// Parses a map file (JSON) and checks it against its spec.
+    pub fn from_json(text: &str) -> Result<LawMap, LawMapError> {
+        let m: LawMap = serde_json::from_str(text).map_err(|e| LawMapError::File(e.to_string()))?;
+        if m.format != FORMAT {
+            return Err(LawMapError::File(format!(
+                "format = {:?}: expected {FORMAT:?}",
+                m.format
+            )));
+        }
+        m.spec.validate()?;
+        let n = m.spec.node_count();
+        if m.laws.len() != n || m.quality.len() != n {
+            return Err(LawMapError::File(format!(
+                "{} laws and {} quality entries for {n} nodes",
+                m.laws.len(),
+                m.quality.len()
+            )));
+        }
+        Ok(m)
+    }
+
+    /// The map file's text (JSON, one node per line).
+    pub fn to_json(&self) -> String {
+        let mut s = String::new();
+        s.push_str("{\n");
+        s.push_str(&format!(
+            "\"format\": {},\n",
+            serde_json::to_string(&self.format).expect("string")
+        ));
+        s.push_str(&format!(
+            "\"spec\": {},\n",
+            serde_json::to_string(&self.spec).expect("spec serializes")
+        ));
+        let rows = |v: Vec<String>| v.join(",\n");
+        s.push_str(&format!(
+            "\"laws\": [\n{}\n],\n",
+            rows(
+                self.laws
+                    .iter()
+                    .map(|l| serde_json::to_string(l).expect("law"))
+                    .collect()
+            )
+        ));
+        s.push_str(&format!(
+            "\"quality\": [\n{}\n],\n",
+            rows(
+                self.quality
+                    .iter()
+                    .map(|q| serde_json::to_string(q).expect("quality"))
+                    .collect()
+            )
+        ));
+        s.push_str(&format!("\"cpu_seconds\": {}\n}}\n", self.cpu_seconds));
+        s
+    }
+
+    /// The maps embedded in the library (generated by `ehl-bearing law-map`, docs/law_map.md §5),
+    /// both for the seed's oil (Roelands and Dowson–Higginson, α·p0 = 4.312, ln(η0/η∞) = 6.451),
+    /// quasi-static ε = 0.2, 7 solutions, grid 65, 17 × 5 × 9 nodes: M 120–4000, L 19–26, Ry/Rx
+    /// 10–65 (`examples/law_map_seed_oil.toml`), and M 200–4000, L 26–34, Ry/Rx 10–65
+    /// (`examples/law_map_seed_oil_high_l.toml`). A query uses the first that holds it.
+    pub fn embedded_maps() -> &'static [LawMap] {
+        static MAPS: std::sync::OnceLock<Vec<LawMap>> = std::sync::OnceLock::new();
+        MAPS.get_or_init(|| {
+            [
+                include_str!("../../data/law_map_seed_oil_g65.json"),
+                include_str!("../../data/law_map_seed_oil_high_l_g65.json"),
+            ]
+            .iter()
+            .map(|t| {
+                LawMap::from_json(t).expect("the embedded maps are valid (checked by their test)")
+            })
+            .collect()
+        })
+    }
+
+    /// The first embedded map (M 120–4000, L 19–26, Ry/Rx 10–65).
+    pub fn embedded() -> &'static LawMap {
+        &Self::embedded_maps()[0]
+    }
+
+    /// The query of the first embedded map whose envelope holds `g`, with that map; outside all
+    /// of them an error listing why each refused.
+    pub fn query_embedded(g: &LawGroups) -> Result<(MapQuery, &'static LawMap), LawMapError> {
+        let mut reasons = Vec::new();
+        for m in Self::embedded_maps() {
+            match m.query(g) {
+                Ok(q) => return Ok((q, m)),
+                Err(e) => reasons.push(e.to_string()),
+            }
+        }
+        Err(LawMapError::OutsideEveryMap {
+            reasons: reasons.join("; "),
+        })
+    }
+
+    /// The interpolated law at `g` with its error estimate; an error if `g` lies outside the
+    /// envelope (naming the group, its value and the range) or a node the query needs failed.
+    pub fn query(&self, g: &LawGroups) -> Result<MapQuery, LawMapError> {
+        self.spec.check_inside(g)?;
+        let axes = &self.spec.axes;
+        let t: Vec<f64> = axes
+            .iter()
+            .map(|a| a.coord(a.group.get(g).unwrap_or(f64::NAN)))
+            .collect();
+        let full: Vec<Vec<f64>> = axes.iter().zip(&t).map(|(a, &t)| a.basis(t, 1)).collect();
+        let half: Vec<Vec<f64>> = axes.iter().zip(&t).map(|(a, &t)| a.basis(t, 2)).collect();
+        // The nodes next to the query on each axis (for the fit quality there).
+        let near: Vec<[usize; 2]> = axes
+            .iter()
+            .zip(&t)
+            .map(|(a, &t)| {
+                let x = a.node_coords();
+                let j = x.iter().rposition(|&xj| xj <= t).unwrap_or(0);
+                [j, (j + 1).min(x.len() - 1)]
+            })
+            .collect();
+        let mut vf = [0.0; 6];
+        let mut vh = [0.0; 6];
+        let mut rms = 0.0_f64;
+        let mut r2 = 1.0_f64;
+        let mut conv = true;
+        for index in 0..self.spec.node_count() {
+            let mi = self.spec.multi_index(index);
+            let wf: f64 = mi.iter().enumerate().map(|(k, &j)| full[k][j]).product();
+            let wh: f64 = mi.iter().enumerate().map(|(k, &j)| half[k][j]).product();
+            if wf == 0.0 && wh == 0.0 {
+                continue;
+            }
+            let v = values_of(&self.laws[index]);
+            for c in 0..6 {
+                vf[c] += wf * v[c];
+                vh[c] += wh * v[c];
+            }
+            if mi.iter().zip(&near).all(|(&j, n)| n.contains(&j)) {
+                let q = &self.quality[index];
+                rms = rms.max(q.rms_hat);
+                r2 = r2.min(q.r_squared);
+                conv &= q.converged;
+            }
+        }
+        let law = law_of(&vf);
+        let coarse = law_of(&vh);
+        let mut err = [0.0; 6];
+        for c in 0..6 {
+            err[c] = (vf[c] - vh[c]).abs();
+        }
+        let a0 = law.approach_hat;
+        Ok(MapQuery {
+            law,
+            error: law_of(&err),
+            force_error: (law.force_hat(a0) - coarse.force_hat(a0)).abs(),
+            node_rms_hat: rms,
+            node_r_squared: r2,
+            nodes_converged: conv,
+        })
+    }
+}

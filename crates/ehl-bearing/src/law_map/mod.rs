@@ -1,0 +1,342 @@
+//! The contact law in dimensionless form: the groups that fix it and the law made dimensionless.
+//!
+//! The steady EHL problem the solver works on ([`crate::ehl`], docs/ehl.md §1) contains the
+//! contact's data only through a few dimensionless groups; the quasi-static method's family is a
+//! set of such problems at the loads w0·(1 ± ε·…), and its least-squares fit is invariant under a
+//! scaling of the approaches and of the forces. So the dimensionless law
+//!
+//!   Q/w0 = K̂·(δ/δ_H)^d + ΔF̂,   K̂ = K·δ_H^d/w0,   ΔF̂ = ΔF/w0,
+//!
+//! with δ_H the Hertz deflection at w0, is a function of the groups alone (and of the method's
+//! dimensionless settings: ε, the number of solutions, the grid and the domain). The groups of
+//! each viscosity and density model are derived in docs/law_map.md:
+//!
+//! | viscosity, density | groups |
+//! |---|---|
+//! | Roelands, Dowson–Higginson or incompressible | M, L, Ry/Rx, α·p0, ln(η0/η∞) |
+//! | Barus, Dowson–Higginson | M, L, Ry/Rx, α·p0 (α·5.9e8 Pa, a fixed multiple) |
+//! | Barus, incompressible | M, L, Ry/Rx |
+//!
+//! [`LawGroups::of`] computes them for a contact, [`LawGroups::contact`] builds a contact with
+//! given groups at any curvature radius and reduced modulus (both are free: the groups fix the
+//! problem up to a size and, with the oil fixed, a modulus), [`DimensionlessLaw`] converts a
+//! fitted law to its dimensionless form and back.
+
+use crate::contact::ContactFit;
+use crate::ehl::EhlContact;
+use crate::fit::FittedLaw;
+use crate::hertz::HertzGeometry;
+use crate::material::{DensityModel, Lubricant, ViscosityModel, ROELANDS_LN_ETA_INF, ROELANDS_P0};
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// Errors of the dimensionless law and its map.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum LawMapError {
+    /// A group or a contact datum outside its valid range.
+    #[error("{field} = {value} is invalid: expected {expected}")]
+    Invalid {
+        /// The group or field.
+        field: String,
+        /// Its value.
+        value: f64,
+        /// The valid range.
+        expected: String,
+    },
+    /// A map's spec or file that cannot be used.
+    #[error("law map: {0}")]
+    File(String),
+    /// A contact whose rheology models are not the map's.
+    #[error("the contact's models {contact} are not the map's ({map})")]
+    Models {
+        /// The contact's viscosity/density models.
+        contact: String,
+        /// The map's.
+        map: String,
+    },
+    /// A contact outside the map's envelope.
+    #[error("{group} = {value} lies outside the map's envelope [{min}, {max}]")]
+    OutsideEnvelope {
+        /// The group.
+        group: String,
+        /// Its value.
+        value: f64,
+        /// The envelope's smallest value.
+        min: f64,
+        /// The envelope's largest value.
+        max: f64,
+    },
+    /// A contact outside every embedded map.
+    #[error("outside every embedded map: {reasons}")]
+    OutsideEveryMap {
+        /// Each map's refusal.
+        reasons: String,
+    },
+    /// The store holds node files of another map under this map's names.
+    #[error("{count} node file(s) hold nodes of a different map (first: {first}); nothing was overwritten — use another folder or overwrite")]
+    ForeignNodes {
+        /// How many.
+        count: usize,
+        /// The first.
+        first: String,
+    },
+    /// Nodes missing or failed when the map is assembled.
+    #[error("{missing} of {total} nodes are missing or failed (first: {first})")]
+    Incomplete {
+        /// Missing or failed nodes.
+        missing: usize,
+        /// Nodes of the map.
+        total: usize,
+        /// The first of them, with its groups and error.
+        first: String,
+    },
+    /// Reading or writing the store.
+    #[error(transparent)]
+    Store(#[from] crate::study::StoreError),
+}
+
+fn invalid(field: &str, value: f64, expected: &str) -> LawMapError {
+    LawMapError::Invalid {
+        field: field.into(),
+        value,
+        expected: expected.into(),
+    }
+}
+
+fn positive(field: &str, v: f64) -> Result<f64, LawMapError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(invalid(field, v, "finite and > 0"))
+    }
+}
+
+/// The dimensionless groups that fix a steady EHL contact and its quasi-static law, for the
+/// contact's viscosity and density models (docs/law_map.md §2).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct LawGroups {
+    /// Moes' load parameter M = W·U^(−3/4), W = w/(E′Rx²), U = η0·u_s/(E′Rx).
+    pub m: f64,
+    /// Moes' lubricant parameter L = α·E′·U^(1/4).
+    pub l: f64,
+    /// Radius ratio Ry/Rx (1 to 1000).
+    pub ry_over_rx: f64,
+    /// α·p0 with Roelands' p0 = 1.96e8 Pa; a group for Roelands (with ln(η0/η∞) it fixes z and
+    /// p_h/p0) and for Dowson–Higginson (p_h/5.9e8 Pa); `None` for Barus with incompressible
+    /// density, where α enters only through L.
+    pub alpha_p0: Option<f64>,
+    /// ln(η0/η∞) = ln η0 + 9.67 (η0 in Pa·s); a group for Roelands only.
+    pub ln_eta0_ratio: Option<f64>,
+    /// Viscosity model.
+    pub viscosity: ViscosityModel,
+    /// Density model.
+    pub density: DensityModel,
+}
+
+/// Reference density of the contacts built from groups, kg/m³ (it does not enter the steady
+/// problem: only ρ/ρ0 does).
+const REFERENCE_DENSITY: f64 = 870.0;
+/// α and η0 of the contacts built from groups where the models leave them free (the project's
+/// default oil), 1/Pa and Pa·s.
+const FREE_ALPHA: f64 = 2.2e-8;
+const FREE_ETA0: f64 = 0.04;
+
+impl LawGroups {
+    /// The groups of a contact (SI data; the rheology groups its models need).
+    pub fn of(c: &EhlContact) -> Result<LawGroups, LawMapError> {
+        let e = positive("e_reduced [Pa]", c.e_reduced)?;
+        let rx = positive("rx [m]", c.rx)?;
+        let ry = positive("ry [m]", c.ry)?;
+        let w = positive("load [N]", c.load)? / (e * rx * rx);
+        let eta0 = positive("lubricant.viscosity [Pa s]", c.lubricant.viscosity)?;
+        let u = eta0 * positive("sum_velocity [m/s]", c.sum_velocity)? / (e * rx);
+        let alpha = c.lubricant.pressure_viscosity;
+        if !(alpha.is_finite() && alpha >= 0.0) {
+            return Err(invalid(
+                "lubricant.pressure_viscosity [1/Pa]",
+                alpha,
+                "finite and ≥ 0",
+            ));
+        }
+        let roelands = c.lubricant.viscosity_model == ViscosityModel::Roelands;
+        let dh = c.lubricant.density_model == DensityModel::DowsonHigginson;
+        Ok(LawGroups {
+            m: w * u.powf(-0.75),
+            l: alpha * e * u.powf(0.25),
+            ry_over_rx: ry / rx,
+            alpha_p0: (roelands || dh).then_some(alpha * ROELANDS_P0),
+            ln_eta0_ratio: roelands.then_some(eta0.ln() + ROELANDS_LN_ETA_INF),
+            viscosity: c.lubricant.viscosity_model,
+            density: c.lubricant.density_model,
+        })
+    }
+
+    /// Checks the groups: M, L > 0, 1 ≤ Ry/Rx ≤ 1000, and the rheology groups present exactly
+    /// where the models need them, positive.
+    pub fn validate(&self) -> Result<(), LawMapError> {
+        positive("M", self.m)?;
+        positive("L", self.l)?;
+        if !(self.ry_over_rx.is_finite() && (1.0..=1000.0).contains(&self.ry_over_rx)) {
+            return Err(invalid("Ry/Rx", self.ry_over_rx, "1 ≤ Ry/Rx ≤ 1000"));
+        }
+        let roelands = self.viscosity == ViscosityModel::Roelands;
+        let dh = self.density == DensityModel::DowsonHigginson;
+        match (roelands || dh, self.alpha_p0) {
+            (true, Some(a)) => {
+                positive("alpha_p0", a)?;
+            }
+            (true, None) => {
+                return Err(invalid(
+                    "alpha_p0",
+                    f64::NAN,
+                    "a value: Roelands and Dowson–Higginson need α·p0",
+                ))
+            }
+            (false, Some(a)) => {
+                return Err(invalid(
+                    "alpha_p0",
+                    a,
+                    "none: with Barus and incompressible density α enters only through L",
+                ))
+            }
+            (false, None) => {}
+        }
+        match (roelands, self.ln_eta0_ratio) {
+            (true, Some(c)) => {
+                positive("ln_eta0_ratio", c)?;
+            }
+            (true, None) => {
+                return Err(invalid(
+                    "ln_eta0_ratio",
+                    f64::NAN,
+                    "a value: Roelands needs ln(η0/η∞)",
+                ))
+            }
+            (false, Some(c)) => {
+                return Err(invalid(
+                    "ln_eta0_ratio",
+                    c,
+                    "none: Barus does not depend on η0 apart from U",
+                ))
+            }
+            (false, None) => {}
+        }
+        Ok(())
+    }
+
+    /// α·p_h (dimensionless), which M, L and Ry/Rx fix: p_h = E′·W^(1/3)·g(Ry/Rx) and
+    /// W^(1/3) = M^(1/3)·L/(αE′), so α·p_h = M^(1/3)·L·g(Ry/Rx), independent of the size and of
+    /// E′ (docs/law_map.md §2).
+    pub fn alpha_ph(&self) -> Result<f64, LawMapError> {
+        self.validate()?;
+        // Evaluate on the unit contact E′ = 1 Pa, Rx = 1 m with U = 1: W = M, G = L.
+        let g = HertzGeometry::new(1.0, self.ry_over_rx, 1.0)
+            .map_err(|_| invalid("Ry/Rx", self.ry_over_rx, "1 ≤ Ry/Rx ≤ 1000"))?;
+        Ok(self.l * g.contact(self.m).max_pressure)
+    }
+
+    /// A contact with these groups, curvature radius `rx` (m) and reduced modulus `e_reduced`
+    /// (Pa): α and η0 from the rheology groups (the project's default oil's where the models
+    /// leave them free), U = (L/(αE′))⁴, W = M·U^(3/4), so u_s = U·E′·Rx/η0 and
+    /// w = W·E′·Rx².
+    pub fn contact(&self, rx: f64, e_reduced: f64) -> Result<EhlContact, LawMapError> {
+        self.validate()?;
+        positive("rx [m]", rx)?;
+        positive("e_reduced [Pa]", e_reduced)?;
+        let alpha = self.alpha_p0.map_or(FREE_ALPHA, |a| a / ROELANDS_P0);
+        let eta0 = self
+            .ln_eta0_ratio
+            .map_or(FREE_ETA0, |c| (c - ROELANDS_LN_ETA_INF).exp());
+        let u = (self.l / (alpha * e_reduced)).powi(4);
+        let w = self.m * u.powf(0.75);
+        Ok(EhlContact {
+            load: w * e_reduced * rx * rx,
+            rx,
+            ry: rx * self.ry_over_rx,
+            sum_velocity: u * e_reduced * rx / eta0,
+            e_reduced,
+            lubricant: Lubricant {
+                viscosity: eta0,
+                pressure_viscosity: alpha,
+                density: REFERENCE_DENSITY,
+                viscosity_model: self.viscosity,
+                density_model: self.density,
+            },
+        })
+    }
+}
+
+/// The Hertz deflection δ_H of a contact at its load, m: the approach scale of the
+/// dimensionless law.
+pub fn hertz_deflection(c: &EhlContact) -> Result<f64, LawMapError> {
+    let g = HertzGeometry::new(c.rx, c.ry, c.e_reduced)
+        .map_err(|e| invalid("rx, ry, e_reduced", c.ry / c.rx, &e.to_string()))?;
+    Ok(g.contact(positive("load [N]", c.load)?).deflection)
+}
+
+/// A quasi-static law Q = K·δ^d + ΔF made dimensionless with the operating load w0 and the
+/// Hertz deflection δ_H at w0: Q/w0 = K̂·(δ/δ_H)^d + ΔF̂.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct DimensionlessLaw {
+    /// K̂ = K·δ_H^d/w0.
+    pub k_hat: f64,
+    /// The index d.
+    pub d: f64,
+    /// ΔF̂ = ΔF/w0.
+    pub delta_f_hat: f64,
+    /// The approach at w0 over δ_H (of the steady solution at w0).
+    pub approach_hat: f64,
+    /// The fitted range of approaches over δ_H.
+    pub range_hat: [f64; 2],
+}
+
+impl DimensionlessLaw {
+    /// The dimensionless form of a fit of contact `c` (its load is the fit's w0).
+    pub fn of_fit(fit: &ContactFit, c: &EhlContact) -> Result<DimensionlessLaw, LawMapError> {
+        let dh = hertz_deflection(c)?;
+        let w0 = c.load;
+        Ok(DimensionlessLaw {
+            k_hat: fit.k * dh.powf(fit.d) / w0,
+            d: fit.d,
+            delta_f_hat: fit.delta_f / w0,
+            approach_hat: fit.approach / dh,
+            range_hat: [fit.delta_range[0] / dh, fit.delta_range[1] / dh],
+        })
+    }
+
+    /// Q/w0 at δ/δ_H = `approach_hat` (the power law, no extension).
+    pub fn force_hat(&self, approach_hat: f64) -> f64 {
+        self.k_hat * approach_hat.powf(self.d) + self.delta_f_hat
+    }
+
+    /// (K in N/m^d, d, ΔF in N, fitted range in m) of contact `c`.
+    pub fn dimensional(&self, c: &EhlContact) -> Result<(f64, f64, f64, [f64; 2]), LawMapError> {
+        let dh = hertz_deflection(c)?;
+        let w0 = c.load;
+        Ok((
+            self.k_hat * w0 / dh.powf(self.d),
+            self.d,
+            self.delta_f_hat * w0,
+            [self.range_hat[0] * dh, self.range_hat[1] * dh],
+        ))
+    }
+
+    /// The law of contact `c`, ready for the bearing model (the fitted law with its extension
+    /// below the fitted range).
+    pub fn law(&self, c: &EhlContact) -> Result<FittedLaw, crate::Error> {
+        let (k, d, df, [lo, hi]) = self.dimensional(c)?;
+        Ok(FittedLaw::new(k, d, df, lo, hi)?)
+    }
+}
+
+mod characterizer;
+mod generate;
+mod map;
+
+pub use characterizer::MapCharacterizer;
+
+pub use generate::{
+    assemble_map, characterize_groups, generate_map, held_out_check, HeldOutPoint, MapGeneration,
+    NodeRecord,
+};
+pub use map::{Group, LawMap, LawMapSpec, MapAxis, MapQuery, NodeQuality};

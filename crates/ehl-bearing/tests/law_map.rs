@@ -1,0 +1,534 @@
+//! The quasi-static law is a function of the dimensionless groups (docs/law_map.md §2–3): two
+//! contacts with different sizes, loads, speeds and moduli but equal groups give the same
+//! dimensionless law to round-off, and changing one group changes it.
+//!
+//! Tolerance of "the same": 1e-9 relative (absolute for d). The two contacts' dimensionless
+//! problems differ only by the rounding of their data (the groups agree to ~1e-15), every
+//! iteration decision (cycles, starts, warm starts) is then the same and the results differ by
+//! rounding amplified by the iterations and the fit; a result that differed by a tolerance of the
+//! solver would differ by its iteration error, ≥ 1e-7 (docs/ehl.md §2: δ within 5e-6, the film
+//! tolerance 1e-4), so 1e-9 separates round-off from a different solution. Grid 65² keeps the
+//! test to seconds; the invariance does not depend on the grid.
+
+use ehl_bearing::contact::{characterize_quasi_static, ContactFit, QuasiStaticSettings};
+use ehl_bearing::ehl::{EhlContact, EhlSettings};
+use ehl_bearing::law_map::{DimensionlessLaw, LawGroups};
+use ehl_bearing::material::{
+    reduced_modulus, DensityModel, Lubricant, Solid, ViscosityModel, ROELANDS_P0,
+};
+
+fn settings() -> QuasiStaticSettings {
+    QuasiStaticSettings {
+        ehl: EhlSettings {
+            grid: 65,
+            ..EhlSettings::default()
+        },
+        ..QuasiStaticSettings::default()
+    }
+}
+
+/// The seed's inner-race contact (7006, docs/paper.md) at 300 N and 5000 rpm (u_s = 10.85 m/s).
+fn seed_inner() -> EhlContact {
+    EhlContact {
+        load: 300.0,
+        rx: 2.9487e-3,
+        ry: 178.5e-3,
+        sum_velocity: 10.85,
+        e_reduced: reduced_modulus(&Solid::AISI_52100, &Solid::AISI_52100),
+        lubricant: Lubricant::DEFAULT_MINERAL_OIL,
+    }
+}
+
+fn fit(c: &EhlContact) -> (ContactFit, DimensionlessLaw) {
+    let f = characterize_quasi_static(c, &settings()).unwrap();
+    assert!(f.converged, "{c:?}");
+    let law = DimensionlessLaw::of_fit(&f, c).unwrap();
+    (f, law)
+}
+
+/// Largest difference between two dimensionless laws: relative for K̂, ΔF̂ and the approaches,
+/// absolute for d.
+fn difference(a: &DimensionlessLaw, b: &DimensionlessLaw) -> f64 {
+    let rel = |x: f64, y: f64| (x - y).abs() / x.abs().max(y.abs());
+    [
+        rel(a.k_hat, b.k_hat),
+        (a.d - b.d).abs(),
+        rel(a.delta_f_hat, b.delta_f_hat),
+        rel(a.approach_hat, b.approach_hat),
+        rel(a.range_hat[0], b.range_hat[0]),
+        rel(a.range_hat[1], b.range_hat[1]),
+    ]
+    .into_iter()
+    .fold(0.0, f64::max)
+}
+
+fn groups_difference(a: &LawGroups, b: &LawGroups) -> f64 {
+    let rel = |x: f64, y: f64| (x - y).abs() / x.abs().max(y.abs());
+    let opt = |x: Option<f64>, y: Option<f64>| match (x, y) {
+        (Some(x), Some(y)) => rel(x, y),
+        (None, None) => 0.0,
+        _ => f64::INFINITY,
+    };
+    assert_eq!((a.viscosity, a.density), (b.viscosity, b.density));
+    [
+        rel(a.m, b.m),
+        rel(a.l, b.l),
+        rel(a.ry_over_rx, b.ry_over_rx),
+        opt(a.alpha_p0, b.alpha_p0),
+        opt(a.ln_eta0_ratio, b.ln_eta0_ratio),
+    ]
+    .into_iter()
+    .fold(0.0, f64::max)
+}
+
+const SAME: f64 = 1e-9;
+
+/// The brief's scaling: lengths ×λ, load ×λ², sum velocity ×λ, E′, η0, α unchanged — with
+/// λ = 3.7 (a 7006 ball grown to a large spindle bearing's) and with a second family member
+/// where E′ changes (silicon nitride ball on steel, 1.35× the steel pair's E′): with the oil
+/// fixed, L fixed needs U ∝ E′⁻⁴, so u_s ∝ E′⁻³, and M fixed needs w ∝ E′⁻² (docs/law_map.md
+/// §2). Roelands and Dowson–Higginson, the library's default models.
+#[test]
+fn equal_groups_give_the_same_law_roelands_dowson_higginson() {
+    let a = seed_inner();
+    let lam = 3.7;
+    let b = EhlContact {
+        load: a.load * lam * lam,
+        rx: a.rx * lam,
+        ry: a.ry * lam,
+        sum_velocity: a.sum_velocity * lam,
+        ..a
+    };
+    let r: f64 = 1.35;
+    let c = EhlContact {
+        load: a.load * r.powi(-2) * 0.6 * 0.6,
+        rx: a.rx * 0.6,
+        ry: a.ry * 0.6,
+        sum_velocity: a.sum_velocity * r.powi(-3) * 0.6,
+        e_reduced: a.e_reduced * r,
+        ..a
+    };
+    let ga = LawGroups::of(&a).unwrap();
+    for other in [&b, &c] {
+        let g = LawGroups::of(other).unwrap();
+        assert!(groups_difference(&ga, &g) < 1e-14, "{ga:?} vs {g:?}");
+    }
+    let (fa, la) = fit(&a);
+    for other in [&b, &c] {
+        let (fo, lo) = fit(other);
+        let diff = difference(&la, &lo);
+        assert!(
+            diff < SAME,
+            "{la:?}\n{lo:?}\ndifference {diff:.3e} (dimensional K {} vs {}, ΔF {} vs {} N)",
+            fa.k,
+            fo.k,
+            fa.delta_f,
+            fo.delta_f
+        );
+        // The dimensional law differs (the test is not comparing a contact with itself).
+        assert!((fo.delta_f / fa.delta_f - 1.0).abs() > 0.1);
+    }
+}
+
+/// Barus viscosity and incompressible density: only M, L and Ry/Rx are groups, so E′, α and η0
+/// may all differ (here by factors 0.5–3) with the size, load and speed.
+#[test]
+fn equal_groups_give_the_same_law_barus_incompressible() {
+    let lub = Lubricant {
+        viscosity_model: ViscosityModel::Barus,
+        density_model: DensityModel::Incompressible,
+        ..Lubricant::DEFAULT_MINERAL_OIL
+    };
+    let g = LawGroups::of(&EhlContact {
+        lubricant: lub,
+        ..seed_inner()
+    })
+    .unwrap();
+    assert_eq!((g.alpha_p0, g.ln_eta0_ratio), (None, None));
+    let a = g.contact(2.9487e-3, 2.286e11).unwrap();
+    let mut b = g.contact(9.0e-3, 1.2e11).unwrap();
+    // Another oil: α and η0 differ; the same groups need another speed and load.
+    b.lubricant.pressure_viscosity = 1.5e-8;
+    b.lubricant.viscosity = 0.12;
+    let u = (g.l / (1.5e-8 * b.e_reduced)).powi(4);
+    b.sum_velocity = u * b.e_reduced * b.rx / 0.12;
+    b.load = g.m * u.powf(0.75) * b.e_reduced * b.rx * b.rx;
+    assert!(groups_difference(&g, &LawGroups::of(&a).unwrap()) < 1e-14);
+    assert!(groups_difference(&g, &LawGroups::of(&b).unwrap()) < 1e-14);
+    let (_, la) = fit(&a);
+    let (_, lb) = fit(&b);
+    let diff = difference(&la, &lb);
+    assert!(diff < SAME, "{la:?}\n{lb:?}\ndifference {diff:.3e}");
+}
+
+/// Each group matters: changing one of them (by 20 %, the others held) moves the dimensionless
+/// law by far more than the round-off of the tests above — so those tests can fail. The
+/// rheology groups are changed at constant M, L and Ry/Rx, i.e. only through p_h/p0 and
+/// Roelands' z.
+#[test]
+fn changing_one_group_changes_the_law() {
+    let g0 = LawGroups::of(&seed_inner()).unwrap();
+    let base = fit(&g0.contact(2.9487e-3, 2.286e11).unwrap()).1;
+    let changed = [
+        (
+            "M",
+            LawGroups {
+                m: g0.m * 1.2,
+                ..g0
+            },
+        ),
+        (
+            "L",
+            LawGroups {
+                l: g0.l * 1.2,
+                ..g0
+            },
+        ),
+        (
+            "Ry/Rx",
+            LawGroups {
+                ry_over_rx: g0.ry_over_rx * 1.2,
+                ..g0
+            },
+        ),
+        (
+            "alpha_p0",
+            LawGroups {
+                alpha_p0: g0.alpha_p0.map(|a| a * 1.2),
+                ..g0
+            },
+        ),
+        (
+            "ln_eta0_ratio",
+            LawGroups {
+                ln_eta0_ratio: g0.ln_eta0_ratio.map(|c| c * 1.2),
+                ..g0
+            },
+        ),
+    ];
+    for (name, g) in changed {
+        let l = fit(&g.contact(2.9487e-3, 2.286e11).unwrap()).1;
+        let diff = difference(&base, &l);
+        assert!(
+            diff > 1e-4,
+            "{name}: {base:?}\n{l:?}\ndifference {diff:.3e}"
+        );
+    }
+}
+
+/// α·p_h is fixed by M, L and Ry/Rx (docs/law_map.md §2), whatever the size and modulus of the
+/// contact built from the groups: checked against the Hertz pressure of two such contacts.
+#[test]
+fn alpha_ph_follows_from_m_l_and_the_radius_ratio() {
+    let g = LawGroups::of(&seed_inner()).unwrap();
+    let aph = g.alpha_ph().unwrap();
+    for (rx, e) in [(2.9487e-3, 2.286e11), (0.03, 3.1e11), (1e-3, 1.1e11)] {
+        let c = g.contact(rx, e).unwrap();
+        let h = ehl_bearing::hertz::HertzGeometry::new(c.rx, c.ry, c.e_reduced).unwrap();
+        let ph = h.contact(c.load).max_pressure;
+        let rel = (c.lubricant.pressure_viscosity * ph / aph - 1.0).abs();
+        assert!(rel < 1e-13, "{rx} {e}: {rel:e}");
+    }
+    // The seed oil at 300 N: p_h ≈ 1.5 GPa (docs/paper.md), α p_h ≈ 33.
+    let ph = aph / 2.2e-8;
+    assert!((1.2e9..1.9e9).contains(&ph), "{ph}");
+    assert!((g.alpha_p0.unwrap() - 2.2e-8 * ROELANDS_P0).abs() < 1e-12);
+}
+
+/// Invalid groups are refused with the group's name.
+#[test]
+fn invalid_groups_name_the_group() {
+    let g = LawGroups::of(&seed_inner()).unwrap();
+    let bad = LawGroups {
+        ry_over_rx: 0.5,
+        ..g
+    };
+    let e = bad.contact(1e-3, 2e11).unwrap_err().to_string();
+    assert!(e.contains("Ry/Rx") && e.contains("0.5"), "{e}");
+    let bad = LawGroups {
+        ln_eta0_ratio: None,
+        ..g
+    };
+    let e = bad.validate().unwrap_err().to_string();
+    assert!(e.contains("ln_eta0_ratio"), "{e}");
+    let bad = LawGroups { m: -1.0, ..g };
+    assert!(bad.validate().unwrap_err().to_string().contains("M = -1"));
+}
+
+mod map {
+    use ehl_bearing::law_map::{
+        assemble_map, generate_map, Group, LawMapError, LawMapSpec, MapAxis,
+    };
+    use ehl_bearing::material::{DensityModel, ViscosityModel};
+    use ehl_bearing::study::{MemoryStore, Shard};
+
+    /// A 3 × 3 × 3 map on grid 33 (seconds): the machinery, not the accuracy.
+    fn small() -> LawMapSpec {
+        let axis = |group, min, max, log| MapAxis {
+            group,
+            min,
+            max,
+            nodes: 3,
+            log,
+        };
+        LawMapSpec {
+            viscosity_model: ViscosityModel::Roelands,
+            density_model: DensityModel::DowsonHigginson,
+            m: None,
+            l: None,
+            ry_over_rx: None,
+            alpha_p0: Some(4.312),
+            ln_eta0_ratio: Some(0.04_f64.ln() + 9.67),
+            axes: vec![
+                axis(Group::M, 300.0, 1000.0, true),
+                axis(Group::L, 20.0, 24.0, false),
+                axis(Group::RyOverRx, 10.0, 20.0, true),
+            ],
+            amplitude: 0.2,
+            points: 7,
+            grid: 33,
+        }
+    }
+
+    /// Two shards into one store give the map; a rerun computes nothing; another spec's files are
+    /// refused; at a node of the nested half set the map returns the node's law with a zero error
+    /// estimate; outside the envelope the error names the group, its value and the range.
+    #[test]
+    fn shards_resume_assemble_and_query() {
+        let spec = small();
+        let store = MemoryStore::default();
+        let none = |_: &_| {};
+        // Assembling before every node is done says how many are missing.
+        generate_map(&spec, &store, Shard::new(1, 2).unwrap(), false, &none).unwrap();
+        match assemble_map(&spec, &store) {
+            Err(LawMapError::Incomplete { missing, total, .. }) => {
+                assert_eq!((missing, total), (13, 27))
+            }
+            other => panic!("{other:?}"),
+        }
+        let g2 = generate_map(&spec, &store, Shard::new(2, 2).unwrap(), false, &none).unwrap();
+        assert_eq!((g2.nodes, g2.computed, g2.failed), (13, 13, 0));
+        let again = generate_map(&spec, &store, Shard::ALL, false, &none).unwrap();
+        assert_eq!((again.computed, again.loaded), (0, 27));
+        let map = assemble_map(&spec, &store).unwrap();
+        let other = LawMapSpec {
+            amplitude: 0.1,
+            ..spec.clone()
+        };
+        assert!(matches!(
+            generate_map(&other, &store, Shard::ALL, false, &none),
+            Err(LawMapError::ForeignNodes { count: 27, .. })
+        ));
+        // The map file round-trips.
+        let back = ehl_bearing::law_map::LawMap::from_json(&map.to_json()).unwrap();
+        assert_eq!(back, map);
+        // Corner node 0 belongs to the half set: exact, zero estimate. The middle node 13 does
+        // not: exact, with a non-zero estimate.
+        for (k, zero) in [(0, true), (13, false), (26, true)] {
+            let q = map.query(&spec.node_groups(k)).unwrap();
+            let l = map.laws[k];
+            assert!((q.law.k_hat - l.k_hat).abs() <= 1e-14 * l.k_hat, "{k}");
+            assert!((q.law.d - l.d).abs() <= 1e-14, "{k}");
+            assert_eq!(q.force_error == 0.0, zero, "{k}: {q:?}");
+        }
+        let mut out = spec.node_groups(13);
+        out.m = 1500.0;
+        let e = map.query(&out).unwrap_err().to_string();
+        assert!(e.contains("M = 1500") && e.contains("[300, 1000]"), "{e}");
+        let mut oil = spec.node_groups(13);
+        oil.alpha_p0 = Some(3.0);
+        let e = map.query(&oil).unwrap_err().to_string();
+        assert!(e.contains("alpha_p0 = 3"), "{e}");
+    }
+
+    /// Spec files: a group needed twice or not at all, or an even node count, is refused with
+    /// the group's name.
+    #[test]
+    fn invalid_specs_are_refused() {
+        let mut s = small();
+        s.m = Some(500.0);
+        let e = s.validate().unwrap_err().to_string();
+        assert!(e.contains("group M"), "{e}");
+        let mut s = small();
+        s.ln_eta0_ratio = None;
+        assert!(s
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("ln_eta0_ratio"));
+        let mut s = small();
+        s.axes[1].nodes = 4;
+        assert!(s
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("axis L.nodes"));
+    }
+}
+
+mod embedded {
+    use super::{difference, SAME};
+    use ehl_bearing::law_map::{characterize_groups, held_out_check, LawMap, LawMapSpec};
+
+    /// The embedded map is what `law-map generate` and `assemble` give for
+    /// examples/law_map_seed_oil.toml: its spec is the file's, and nodes recomputed now (a
+    /// corner, the centre, the far corner) reproduce its stored laws to round-off (1e-9, as for
+    /// equal groups above).
+    #[test]
+    fn embedded_map_is_the_example_spec_and_reproduces_its_nodes() {
+        let map = LawMap::embedded();
+        let spec =
+            LawMapSpec::from_toml(include_str!("../../../examples/law_map_seed_oil.toml")).unwrap();
+        assert_eq!(map.spec, spec);
+        assert_eq!(map.laws.len(), 17 * 5 * 9);
+        for k in [0, 382, 764] {
+            let (l, _) = characterize_groups(&spec.node_groups(k), &spec).unwrap();
+            let diff = difference(&l, &map.laws[k]);
+            assert!(diff < SAME, "node {k}: {diff:e}");
+        }
+        let high = &LawMap::embedded_maps()[1];
+        let spec = LawMapSpec::from_toml(include_str!(
+            "../../../examples/law_map_seed_oil_high_l.toml"
+        ))
+        .unwrap();
+        assert_eq!(high.spec, spec);
+        for k in [4, 764] {
+            let (l, _) = characterize_groups(&spec.node_groups(k), &spec).unwrap();
+            let diff = difference(&l, &high.laws[k]);
+            assert!(diff < SAME, "high-L node {k}: {diff:e}");
+        }
+    }
+
+    /// Held-out points (a fresh seed, not the 200 of docs/law_map.md §5): the map against direct
+    /// characterizations at the map's grid, within the acceptance bounds (force at the nominal
+    /// approach 0.5 %, d 0.005, ΔF 3 %); the 200-point distribution's maxima are 6.1e-4, 2.0e-3
+    /// and 1.8 %.
+    #[test]
+    fn embedded_map_against_direct_characterizations() {
+        let r = held_out_check(LawMap::embedded(), 6, 20261126);
+        assert_eq!(r.len(), 6);
+        for h in &r {
+            assert!(
+                h.force_error < 5e-3 && h.d_error < 5e-3 && h.delta_f_error < 0.03,
+                "{h:?}"
+            );
+        }
+    }
+}
+
+mod bearing {
+    use ehl_bearing::characterize::{characterize_bearing, CharacterizeSettings};
+    use ehl_bearing::io::read_case;
+    use ehl_bearing::law_map::LawMap;
+    use ehl_bearing::method::{MapSettings, Method};
+
+    /// The seed bearing (examples/7006.toml) at 3000, 4000 and 5000 rpm characterized by the
+    /// map (with the quasi-static fallback for the contacts outside its envelope) against the
+    /// quasi-static method at the map's settings (grid 65²): contact loads within 0.2 % and the
+    /// stiffness diagonal within 0.5 % (the acceptance bounds of docs/law_map.md §6; measured
+    /// 4.0e-4 and 1.1e-4 at 5000 rpm).
+    #[test]
+    fn seed_bearing_by_map_against_quasi_static() {
+        let mut case = read_case(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../examples/7006.toml"
+        )))
+        .unwrap();
+        for rpm in [3000.0, 4000.0, 5000.0] {
+            case.operating.inner_speed = rpm * std::f64::consts::PI / 30.0;
+            let s = CharacterizeSettings::default();
+            let qs = Method::QuasiStatic(LawMap::embedded().spec.settings());
+            let t0 = std::time::Instant::now();
+            let a = characterize_bearing(&case, &qs, &s).unwrap();
+            let ta = t0.elapsed().as_secs_f64();
+            let t0 = std::time::Instant::now();
+            let map = Method::Map(MapSettings { fallback: true });
+            let b = characterize_bearing(&case, &map, &s).unwrap();
+            let tb = t0.elapsed().as_secs_f64();
+            let fallbacks = b
+                .contacts
+                .iter()
+                .filter(|c| c.characterized.method != "map")
+                .count();
+            let mut worst_load = 0.0_f64;
+            for (x, y) in a.equilibrium.balls.iter().zip(&b.equilibrium.balls) {
+                for (p, q) in [(x.inner, y.inner), (x.outer, y.outer)] {
+                    worst_load = worst_load.max((q.load - p.load).abs() / p.load);
+                }
+            }
+            let mut worst_k = 0.0_f64;
+            for i in 0..5 {
+                let (p, q) = (a.equilibrium.stiffness[i][i], b.equilibrium.stiffness[i][i]);
+                worst_k = worst_k.max((q - p).abs() / p.abs());
+            }
+            eprintln!(
+                "seed {rpm} rpm: {fallbacks} fallbacks of {}; loads {worst_load:.3e}, stiffness \
+                 diagonal {worst_k:.3e}; quasi-static {ta:.2} s, map {tb:.3} s",
+                b.contacts.len()
+            );
+            assert!(a.converged && b.converged, "{rpm}");
+            assert!(worst_load < 2e-3, "{rpm}: {worst_load}");
+            assert!(worst_k < 5e-3, "{rpm}: {worst_k}");
+        }
+    }
+
+    /// The 218 example (examples/218_high_speed.toml, 15000 rpm, L ≈ 31.5: the second embedded
+    /// map) by the map alone (no fallback) against the quasi-static method at the map's settings.
+    #[test]
+    fn high_speed_218_by_map_against_quasi_static() {
+        let case = read_case(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../examples/218_high_speed.toml"
+        )))
+        .unwrap();
+        let s = CharacterizeSettings::default();
+        let qs = Method::QuasiStatic(LawMap::embedded().spec.settings());
+        let t0 = std::time::Instant::now();
+        let a = characterize_bearing(&case, &qs, &s).unwrap();
+        let ta = t0.elapsed().as_secs_f64();
+        let t0 = std::time::Instant::now();
+        let b =
+            characterize_bearing(&case, &Method::Map(MapSettings { fallback: false }), &s).unwrap();
+        let tb = t0.elapsed().as_secs_f64();
+        let mut worst_load = 0.0_f64;
+        for (x, y) in a.equilibrium.balls.iter().zip(&b.equilibrium.balls) {
+            for (p, q) in [(x.inner, y.inner), (x.outer, y.outer)] {
+                worst_load = worst_load.max((q.load - p.load).abs() / p.load);
+            }
+        }
+        let mut worst_k = 0.0_f64;
+        for i in 0..5 {
+            let (p, q) = (a.equilibrium.stiffness[i][i], b.equilibrium.stiffness[i][i]);
+            worst_k = worst_k.max((q - p).abs() / p.abs());
+        }
+        eprintln!(
+            "218 15000 rpm: loads {worst_load:.3e}, stiffness diagonal {worst_k:.3e}; \
+             quasi-static {ta:.2} s, map {tb:.4} s"
+        );
+        assert!(a.converged && b.converged);
+        assert!(b.contacts.iter().all(|c| c.characterized.method == "map"));
+        assert!(worst_load < 2e-3, "{worst_load}");
+        assert!(worst_k < 5e-3, "{worst_k}");
+    }
+
+    /// Without the fallback, a contact outside the envelope is an error naming the group.
+    #[test]
+    fn outside_the_envelope_without_fallback_names_the_group() {
+        let case = read_case(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../examples/7006.toml"
+        )))
+        .unwrap();
+        let e = characterize_bearing(
+            &case,
+            &Method::Map(MapSettings { fallback: false }),
+            &CharacterizeSettings::default(),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("M = ") && e.contains("outside the map's envelope"),
+            "{e}"
+        );
+    }
+}
