@@ -9,15 +9,38 @@ use std::path::{Path, PathBuf};
 
 /// Imports running back up that are known, as (from, to, reason).
 const ALLOWED: &[(&str, &str, &str)] = &[
-    ("characterize", "io", "the loop takes a Case, which still lives in io/case.rs"),
-    ("coefficients", "io", "takes a Case; speed errors are io's InputError"),
-    ("ehl", "io", "ehl/input.rs reads contact files with io's raw TOML solid and lubricant tables"),
+    (
+        "characterize",
+        "io",
+        "the loop takes a Case, which still lives in io/case.rs",
+    ),
+    (
+        "coefficients",
+        "io",
+        "takes a Case; speed errors are io's InputError",
+    ),
+    (
+        "ehl",
+        "io",
+        "ehl/input.rs reads contact files with io's raw TOML solid and lubricant tables",
+    ),
     ("force_element", "io", "builds elements from a Case"),
-    ("force_element", "study", "the trend element evaluates the study's trend model"),
-    ("lubrication", "characterize", "assess_characterization reads the loop's result"),
+    (
+        "lubrication",
+        "characterize",
+        "assess_characterization reads the loop's result",
+    ),
     ("lubrication", "io", "the assessment takes a Case"),
-    ("plausibility", "io", "checks a Case; its messages use io's number_text and InputError"),
-    ("study", "io", "study files are parsed in study/spec.rs with io's TOML helpers and Case"),
+    (
+        "plausibility",
+        "io",
+        "checks a Case; its messages use io's number_text and InputError",
+    ),
+    (
+        "study",
+        "io",
+        "study files are parsed in study/spec.rs with io's TOML helpers and Case",
+    ),
 ];
 
 struct Layers {
@@ -40,7 +63,10 @@ fn layers() -> Layers {
                 any.insert(m.to_string());
             } else {
                 let f: u32 = key.trim().parse().expect("layers.txt: a floor number");
-                assert!(floor.insert(m.to_string(), f).is_none(), "{m} twice in layers.txt");
+                assert!(
+                    floor.insert(m.to_string(), f).is_none(),
+                    "{m} twice in layers.txt"
+                );
             }
         }
     }
@@ -100,7 +126,9 @@ fn blank(text: &str) -> Vec<char> {
                 continue;
             }
             let body = j + 1;
-            let close: String = std::iter::once('"').chain(std::iter::repeat('#').take(hashes)).collect();
+            let close: String = std::iter::once('"')
+                .chain(std::iter::repeat('#').take(hashes))
+                .collect();
             let mut k = body;
             while k < n && !starts(k, &close) {
                 k += 1;
@@ -145,11 +173,14 @@ fn without_test_modules(mut code: Vec<char>) -> Vec<char> {
         let at = from + p;
         let rest = &text[at + "#[cfg(test)]".len()..];
         let trimmed = rest.trim_start();
-        let after_pub = trimmed.strip_prefix("pub ").map(str::trim_start).unwrap_or(trimmed);
-        let brace = rest.find('{');
-        let semi = rest.find(';');
-        if after_pub.starts_with("mod ") && brace.is_some() && brace < semi.or(Some(usize::MAX)) {
-            let open = byte_to_char(at + "#[cfg(test)]".len() + brace.unwrap());
+        let after_pub = trimmed
+            .strip_prefix("pub ")
+            .map(str::trim_start)
+            .unwrap_or(trimmed);
+        let semi = rest.find(';').unwrap_or(usize::MAX);
+        let brace = rest.find('{').filter(|b| *b < semi);
+        if let (true, Some(brace)) = (after_pub.starts_with("mod "), brace) {
+            let open = byte_to_char(at + "#[cfg(test)]".len() + brace);
             let mut depth = 0;
             let mut k = open;
             while k < code.len() {
@@ -177,7 +208,10 @@ fn without_test_modules(mut code: Vec<char>) -> Vec<char> {
 }
 
 fn rs_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    let mut entries: Vec<_> = std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().path()).collect();
+    let mut entries: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
     entries.sort();
     for p in entries {
         if p.is_dir() {
@@ -190,7 +224,13 @@ fn rs_files(dir: &Path, out: &mut Vec<PathBuf>) {
 
 fn top_module(src: &Path, file: &Path) -> String {
     let rel = file.strip_prefix(src).unwrap();
-    let first = rel.components().next().unwrap().as_os_str().to_string_lossy().to_string();
+    let first = rel
+        .components()
+        .next()
+        .unwrap()
+        .as_os_str()
+        .to_string_lossy()
+        .to_string();
     first.strip_suffix(".rs").unwrap_or(&first).to_string()
 }
 
@@ -225,11 +265,17 @@ fn imports() -> BTreeMap<(String, String), Vec<String>> {
                 if before.is_some_and(|c| c.is_alphanumeric() || c == '_') {
                     continue; // e.g. `mycrate::`
                 }
-                let name: String = tail.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+                let name: String = tail
+                    .chars()
+                    .take_while(|c| c.is_alphanumeric() || *c == '_')
+                    .collect();
                 let to = root_item_owner(&name).to_string();
                 if to != from && !to.is_empty() {
                     let rel = file.strip_prefix(&src).unwrap().display().to_string();
-                    edges.entry((from.clone(), to)).or_default().push(format!("src/{rel}:{}", ln + 1));
+                    edges
+                        .entry((from.clone(), to))
+                        .or_default()
+                        .push(format!("src/{rel}:{}", ln + 1));
                 }
             }
         }
@@ -243,10 +289,19 @@ fn every_module_is_on_a_floor() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let mut files = Vec::new();
     rs_files(&src, &mut files);
-    let modules: BTreeSet<String> = files.iter().map(|f| top_module(&src, f)).filter(|m| m != "lib").collect();
-    let missing: Vec<_> =
-        modules.iter().filter(|m| !layers.floor.contains_key(*m) && !layers.any.contains(*m)).collect();
-    assert!(missing.is_empty(), "modules missing from crates/ehl-bearing/layers.txt: {missing:?}");
+    let modules: BTreeSet<String> = files
+        .iter()
+        .map(|f| top_module(&src, f))
+        .filter(|m| m != "lib")
+        .collect();
+    let missing: Vec<_> = modules
+        .iter()
+        .filter(|m| !layers.floor.contains_key(*m) && !layers.any.contains(*m))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "modules missing from crates/ehl-bearing/layers.txt: {missing:?}"
+    );
     // the lint sees imports at all: the equilibrium uses the contact law
     assert!(imports().contains_key(&("bearing".to_string(), "contact_law".to_string())));
 }
@@ -254,8 +309,10 @@ fn every_module_is_on_a_floor() {
 #[test]
 fn no_module_imports_a_higher_floor() {
     let layers = layers();
-    let allowed: BTreeMap<(String, String), &str> =
-        ALLOWED.iter().map(|(a, b, why)| ((a.to_string(), b.to_string()), *why)).collect();
+    let allowed: BTreeMap<(String, String), &str> = ALLOWED
+        .iter()
+        .map(|(a, b, why)| ((a.to_string(), b.to_string()), *why))
+        .collect();
     let mut new = Vec::new();
     let mut seen = BTreeSet::new();
     for ((from, to), places) in imports() {
@@ -269,7 +326,10 @@ fn no_module_imports_a_higher_floor() {
             if allowed.contains_key(&(from.clone(), to.clone())) {
                 seen.insert((from.clone(), to.clone()));
             } else {
-                new.push(format!("{from} (floor {f}) imports {to} (floor {t}) at {}", places.join(", ")));
+                new.push(format!(
+                    "{from} (floor {f}) imports {to} (floor {t}) at {}",
+                    places.join(", ")
+                ));
             }
         }
     }
@@ -279,5 +339,8 @@ fn no_module_imports_a_higher_floor() {
         new.join("\n")
     );
     let stale: Vec<_> = allowed.keys().filter(|k| !seen.contains(*k)).collect();
-    assert!(stale.is_empty(), "allowed imports that no longer occur, remove them from ALLOWED: {stale:?}");
+    assert!(
+        stale.is_empty(),
+        "allowed imports that no longer occur, remove them from ALLOWED: {stale:?}"
+    );
 }
