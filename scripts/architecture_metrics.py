@@ -15,7 +15,8 @@ Prints:
   4. serde_json::Value uses per crate outside a report layer (src/*/report*): mentions of the type
      `Value` (imported from serde_json or spelled serde_json::Value), `Map`, and `json!` calls;
   5. string-built errors in library code: the error variants with a String payload (tuple
-     variants `V(String)`) and the places that build them.
+     variants `V(String)`) and the places that build them;
+  6. `#[allow(clippy::too_many_arguments)]` allowances per crate.
 With --list the individual items are printed under each count.
 
 Imports are counted in code only: comments and string literals are blanked first, and
@@ -421,6 +422,18 @@ def main():
     if LIST:
         for p, ln, name, t in sites:
             print(f"      {p}:{ln}: {t}")
+    print()
+
+    print("## 6. too_many_arguments allowances")
+    total = 0
+    for c in crates():
+        n = 0
+        for p in crate_files(c):
+            code = blank(open(p, encoding="utf-8").read())
+            n += len(re.findall(r"clippy::too_many_arguments", code))
+        total += n
+        print(f"  {c}: {n}")
+    print(f"  total: {total}")
 
 
 if __name__ == "__main__":
