@@ -2,7 +2,7 @@
 //! [-o DIR] [--json]`: the lubricated bearing's linearized 5×5 stiffness and damping at each
 //! speed, beside the dry stiffness, in SI; and ROSS's bearing table.
 
-use crate::characterize_cmd::{contact_progress, progress_container, with_threads};
+use crate::cli_support::{contact_progress, progress_container, with_threads};
 use anyhow::Context;
 use ehl_bearing::characterize::CharacterizeSettings;
 use ehl_bearing::coefficients::{
@@ -41,7 +41,7 @@ pub struct CoefficientsArgs {
 /// Run `coefficients`.
 pub fn run(args: &CoefficientsArgs) -> anyhow::Result<()> {
     let case = read_case(&args.case)?;
-    crate::characterize_cmd::check_plausible(&case, &args.case)?;
+    crate::cli_support::check_plausible(&case, &args.case)?;
     let speeds = if args.speeds.is_empty() {
         vec![case.operating.inner_speed * 30.0 / std::f64::consts::PI]
     } else {

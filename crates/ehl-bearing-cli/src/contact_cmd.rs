@@ -332,9 +332,9 @@ pub fn run(args: &ContactArgs) -> Result<()> {
     let file = ehl::input::parse_contact_file(&text)
         .with_context(|| format!("in {}", args.contact.display()))?;
     let c = file.contact;
-    let deadline = crate::characterize_cmd::deadline(args.time_limit)?;
+    let deadline = crate::cli_support::deadline(args.time_limit)?;
     if let Some(dir) = &args.output {
-        crate::characterize_cmd::check_output_dir(dir, "-o")?;
+        crate::cli_support::check_output_dir(dir, "-o")?;
     }
     for w in ehl_bearing::plausibility::check_contact(&c).with_context(|| {
         format!(
@@ -380,10 +380,8 @@ pub fn run(args: &ContactArgs) -> Result<()> {
         };
         crate::ehl_cmd::large_grid_notice(&s, args.time_limit);
     }
-    let spinner = crate::characterize_cmd::solve_spinner(format!(
-        "characterizing {}",
-        args.contact.display()
-    ));
+    let spinner =
+        crate::cli_support::solve_spinner(format!("characterizing {}", args.contact.display()));
     let fit = match method {
         ehl_bearing::method::Method::Harmonic(s) => {
             let mass = match (s.mass, file.ball_mass) {

@@ -235,13 +235,12 @@ pub fn run(args: &EhlArgs) -> Result<()> {
     let mut s = settings(args);
     s.validate()
         .context("--grid, --inlet, --half-width or --max-cycles")?;
-    s.deadline = crate::characterize_cmd::deadline(args.time_limit)?;
+    s.deadline = crate::cli_support::deadline(args.time_limit)?;
     if let Some(dir) = &args.fields {
-        crate::characterize_cmd::check_output_dir(dir, "--fields")?;
+        crate::cli_support::check_output_dir(dir, "--fields")?;
     }
     large_grid_notice(&s, args.time_limit);
-    let spinner =
-        crate::characterize_cmd::solve_spinner(format!("EHL solve, {0}×{0} grid", s.grid));
+    let spinner = crate::cli_support::solve_spinner(format!("EHL solve, {0}×{0} grid", s.grid));
     let result = match (&args.contact, args.moes_m, args.moes_l) {
         (Some(path), _, _) => {
             let text = ehl_bearing::io::read_text(path)?;

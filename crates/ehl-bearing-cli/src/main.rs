@@ -1,6 +1,7 @@
 //! `ehl-bearing` command line: thin layer over the `ehl-bearing` library.
 
 mod characterize_cmd;
+mod cli_support;
 mod coefficients_cmd;
 mod contact_cmd;
 mod ehl_cmd;

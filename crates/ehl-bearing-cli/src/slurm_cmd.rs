@@ -461,8 +461,8 @@ pub fn run(args: &SbatchArgs) -> anyhow::Result<()> {
     };
     let array = job_dir.join("study.sbatch");
     let merge = job_dir.join("merge.sbatch");
-    crate::characterize_cmd::write_atomic(&array, array_script(&p).as_bytes())?;
-    crate::characterize_cmd::write_atomic(&merge, merge_script(&p).as_bytes())?;
+    crate::cli_support::write_atomic(&array, array_script(&p).as_bytes())?;
+    crate::cli_support::write_atomic(&merge, merge_script(&p).as_bytes())?;
     progress::write_plan(&output, &study_path, &study, args.shards)?;
     println!(
         "study {}: {} points in {} shards (array tasks 1-{}, {} CPU(s) each, {} min)\n  array script {}\n  merge script {}\n  logs in {}",

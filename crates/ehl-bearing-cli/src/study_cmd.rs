@@ -15,7 +15,7 @@
 //! Every final file is built from the point files alone, so it is identical whether the study ran
 //! in one go, was resumed, or ran as shards, and whatever the number of threads.
 
-use crate::characterize_cmd::{contact_progress, progress_container, with_threads};
+use crate::cli_support::{contact_progress, progress_container, with_threads};
 use crate::progress;
 use anyhow::Context;
 use ehl_bearing::io::FsStore;
@@ -201,14 +201,14 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
         anyhow::bail!("give a study file and -o DIR (or `study merge`)");
     };
     let study = load_study(study_path, args.method.as_deref())?;
-    crate::characterize_cmd::check_threads(args.threads)?;
+    crate::cli_support::check_threads(args.threads)?;
     if args.points_in_flight == 0 {
         anyhow::bail!("--points-in-flight 0: expected at least 1 point");
     }
-    crate::characterize_cmd::deadline(args.time_limit)?;
+    crate::cli_support::deadline(args.time_limit)?;
     // Every point's case is checked for physical plausibility before any work.
     for p in study.shard_points(args.shard.unwrap_or(Shard::ALL)) {
-        crate::characterize_cmd::check_plausible(&study.point_case(&p), study_path).with_context(
+        crate::cli_support::check_plausible(&study.point_case(&p), study_path).with_context(
             || {
                 format!(
                     "point {} ({} rpm × load scale {})",

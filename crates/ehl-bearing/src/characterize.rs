@@ -132,7 +132,19 @@ pub enum CharacterizeError {
     },
     /// A trend-curve fit or a trend model is invalid.
     #[error("trend curves: {0}")]
-    Trend(String),
+    Trend(#[from] crate::trends::TrendError),
+    /// A law rescaled to another contact's conditions does not reach the load it carries there.
+    #[error("rescaled law does not reach {load_n} N")]
+    RescaledLawShort {
+        /// The load the rescaled law must carry, N.
+        load_n: f64,
+    },
+    /// A broken invariant of the loop: a contact planned for characterization has no result.
+    #[error("contact {contact} was planned but not characterized")]
+    NotCharacterized {
+        /// Index of the contact.
+        contact: usize,
+    },
 }
 
 impl CharacterizeError {
@@ -481,7 +493,7 @@ fn rescale(
     let load = src.load * e * r * r;
     let approach = law
         .approach_at(load)
-        .ok_or_else(|| CharacterizeError::Trend(format!("rescaled law does not reach {load} N")))?;
+        .ok_or(CharacterizeError::RescaledLawShort { load_n: load })?;
     let moes = ContactConditions { load, ..*to }.moes();
     Ok(CharacterizedContact {
         law,
@@ -720,9 +732,9 @@ pub fn characterize_bearing_with_control(
         let mut fresh = fresh.into_iter().collect::<Result<Vec<_>, _>>()?;
         let assembled = assemble_laws(&plan, &fresh, &cache, &conds, &keys, iteration, floor)?;
         for &i in &runs {
-            let result = fresh[i].take().ok_or_else(|| {
-                CharacterizeError::Trend(format!("contact {i} was planned but not characterized"))
-            })?;
+            let result = fresh[i]
+                .take()
+                .ok_or(CharacterizeError::NotCharacterized { contact: i })?;
             cache.push(CacheEntry::new(keys[i], conds[i].0, result));
         }
         let laws = laws_of(&assembled.contacts);
@@ -968,9 +980,7 @@ fn assemble_laws(
     iteration: usize,
     floor: LoadFloor,
 ) -> Result<Assembled, CharacterizeError> {
-    let missing = |i: usize| {
-        CharacterizeError::Trend(format!("contact {i} was planned but not characterized"))
-    };
+    let missing = |i: usize| CharacterizeError::NotCharacterized { contact: i };
     let mut out = Assembled {
         contacts: Vec::with_capacity(conds.len()),
         max_key_distance: 0.0,

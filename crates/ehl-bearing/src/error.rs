@@ -39,3 +39,10 @@ pub enum Error {
 
 /// Result with the crate error.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// A trend error is a characterization error (as before the trend model had its own module).
+impl From<crate::trends::TrendError> for Error {
+    fn from(e: crate::trends::TrendError) -> Self {
+        Error::Characterize(crate::characterize::CharacterizeError::Trend(e))
+    }
+}

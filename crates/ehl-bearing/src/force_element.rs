@@ -27,9 +27,8 @@ use crate::characterize::{
 use crate::contact_law::ContactLaw;
 use crate::fit::FittedLaw;
 use crate::io::Case;
-use crate::study::{PointRecord, RaceTrends, TrendModel};
+use crate::trends::{RaceTrends, SpeedLaws, TrendModel};
 use serde::Serialize;
-use std::f64::consts::PI;
 use std::sync::Arc;
 
 /// The inputs of one evaluation (SI).
@@ -121,7 +120,7 @@ pub struct ElementState {
     model: Option<BearingModel>,
     warm: Vec<Option<[f64; 2]>>,
     loads: Vec<[f64; 2]>,
-    trend: Option<TrendSpeedCache>,
+    trend: Option<SpeedLaws>,
 }
 
 /// A bearing as a force element.
@@ -553,106 +552,11 @@ pub struct TrendForce {
     pub speed_outside: bool,
 }
 
-/// The law of one raceway at one speed from the trend curves.
-///
-/// Inside the load range [Q_lo, Q_hi] of the trends, the contact's load is the one whose trend
-/// approach equals the contact's approach: Q(δ) solves δ_trend(Q, n) = δ (safeguarded Newton,
-/// started from the contact's load of the previous call), so dQ/dδ = 1/(∂δ_trend/∂Q). This is the
-/// law K(Q)·δ^d(Q) + ΔF(Q) of the trends with K anchored on the approach trend
-/// ([`RaceTrends::k_at`]), evaluated at its own load. Outside the range the law is the fitted law
-/// with K, d, ΔF frozen at the nearest end ([`TrendForceElement::law_at`]), which passes through
-/// the same end point (continuous force).
-#[derive(Debug, Clone)]
-struct TrendLaw {
-    race: Arc<RaceTrends>,
-    n: f64,
-    lo: f64,
-    hi: f64,
-    delta_lo: f64,
-    delta_hi: f64,
-    law_lo: FittedLaw,
-    law_hi: FittedLaw,
-    hint: f64,
-    tolerance: f64,
-    max_iterations: usize,
-}
-
-impl TrendLaw {
-    /// (Q, dQ/dδ, relative residual) at approach δ inside [δ_lo, δ_hi].
-    fn invert(&self, delta: f64) -> (f64, f64, f64) {
-        let (mut a, mut b) = (self.lo, self.hi);
-        let mut q = if self.hint > a && self.hint < b {
-            self.hint
-        } else {
-            // Interpolate in the approach between the ends.
-            a + (b - a) * (delta - self.delta_lo) / (self.delta_hi - self.delta_lo)
-        };
-        let scale = (self.delta_hi - self.delta_lo).abs().max(1e-300);
-        let mut res = f64::INFINITY;
-        let mut slope = 0.0;
-        for _ in 0..self.max_iterations {
-            let (d, dd) = self.race.approach_dq(q, self.n);
-            let f = d - delta;
-            res = f.abs() / scale;
-            slope = dd;
-            if f > 0.0 {
-                b = q;
-            } else {
-                a = q;
-            }
-            if res <= self.tolerance || (b - a) <= self.tolerance * b {
-                break;
-            }
-            let newton = q - f / dd;
-            q = if dd > 0.0 && newton > a && newton < b {
-                newton
-            } else {
-                0.5 * (a + b)
-            };
-        }
-        let dq = if slope > 0.0 { 1.0 / slope } else { 0.0 };
-        (q, dq, res)
-    }
-}
-
-impl ContactLaw for TrendLaw {
-    fn force(&self, approach: f64) -> (f64, f64) {
-        if approach <= self.delta_lo {
-            self.law_lo.force(approach)
-        } else if approach >= self.delta_hi {
-            self.law_hi.force(approach)
-        } else {
-            let (q, dq, _) = self.invert(approach);
-            (q, dq)
-        }
-    }
-
-    fn approach_at(&self, load: f64) -> Option<f64> {
-        if !(load.is_finite() && load > 0.0) {
-            return None;
-        }
-        if load <= self.lo {
-            self.law_lo.approach_at(load)
-        } else if load >= self.hi {
-            self.law_hi.approach_at(load)
-        } else {
-            Some(self.race.approach_at(load, self.n))
-        }
-    }
-}
-
-/// The per-raceway parts of the trend laws at one speed (kept in the state between calls).
-#[derive(Debug, Clone)]
-struct TrendSpeedCache {
-    n: f64,
-    races: [TrendLaw; 2],
-}
-
 /// The bearing as a force element with contact laws from trend curves: no EHL run.
 ///
 /// Each contact's law depends on the contact's own load (K(Q), d(Q), ΔF(Q, n)). The element
-/// evaluates it as the load whose approach trend δ(Q, n) equals the contact's approach (see the
-/// private `TrendLaw`): one bearing evaluation per call, no fixed point over the loads, and the
+/// evaluates it as the load whose approach trend δ(Q, n) equals the contact's approach
+/// ([`crate::trends::RaceLaw`]): one bearing evaluation per call, no fixed point over the loads, and the
 /// exact Jacobian. Contacts whose load falls outside the trends' load range, and speeds outside
 /// their speed range, are flagged and use the laws at the nearest end.
 #[derive(Debug, Clone)]
@@ -670,23 +574,7 @@ impl TrendForceElement {
     /// inverted).
     pub fn new(model: TrendModel) -> Result<Self, CharacterizeError> {
         let bearing = model.bearing_model()?;
-        for (name, t) in [("inner", &model.inner), ("outer", &model.outer)] {
-            let [lo, hi] = t.load_range_n;
-            let [nlo, nhi] = t.speed_range_rad_s;
-            for n in [nlo, 0.5 * (nlo + nhi), nhi] {
-                let mut prev = f64::NEG_INFINITY;
-                for i in 0..=64 {
-                    let q = lo * (hi / lo).powf(i as f64 / 64.0);
-                    let d = t.approach_at(q, n);
-                    if !(d.is_finite() && d > prev) {
-                        return Err(CharacterizeError::Trend(format!(
-                            "{name} approach trend δ(Q, n) does not increase with the load at Q = {q:.4e} N, n = {n:.4e} rad/s: it cannot serve as a contact law"
-                        )));
-                    }
-                    prev = d;
-                }
-            }
-        }
+        model.check_invertible()?;
         let races = [Arc::new(model.inner.clone()), Arc::new(model.outer.clone())];
         Ok(TrendForceElement {
             model,
@@ -706,84 +594,26 @@ impl TrendForceElement {
         &self.model
     }
 
-    /// Largest relative difference between the reactions F_x, F_y, F_z this element gives at a
-    /// characterized point's displacement and speed and the point's own equilibrium reactions
-    /// (each relative to max(|F|, 1 N)): how well the trends reproduce the characterization.
-    pub fn reaction_error(&self, point: &PointRecord) -> Result<f64, crate::Error> {
-        let r = point.result.as_ref().ok_or_else(|| {
-            CharacterizeError::Trend("the point failed: no equilibrium to compare".into())
-        })?;
-        let q = r.displacement.to_array();
-        let inner = point.spec.inner_speed_rpm * PI / 30.0;
-        let f = self.evaluate(&q, inner, point.spec.operating.outer_speed)?;
-        let want = r.reaction.to_array();
-        Ok(f.force.reaction[..3]
-            .iter()
-            .zip(&want[..3])
-            .map(|(got, w)| (got - w).abs() / w.abs().max(1.0))
-            .fold(0.0_f64, f64::max))
-    }
-
-    /// The fitted law of a contact on `race` at load `load` (N) and speed `n` (rad/s): d and ΔF
-    /// from their trends at the load and speed clamped into the validity range,
-    /// K = (Q − ΔF)/δ(Q, n)^d so that the law passes through the approach trend (K(Q) from its
-    /// own trend only if that anchor is not positive), fitted range δ at 0.8·Q and 1.2·Q (or just
-    /// above ΔF). Returns the law and whether the load was clamped.
+    /// The fitted law of a contact on `race` at load `load` (N) and speed `n` (rad/s), and
+    /// whether the load was clamped into the validity range: [`TrendModel::law_at`].
     pub fn law_at(
         &self,
         race: Race,
         load: f64,
         n: f64,
     ) -> Result<(FittedLaw, bool), CharacterizeError> {
-        let t = self.model.race(race);
-        let [lo, hi] = t.load_range_n;
-        let qc = if load.is_nan() {
-            lo
-        } else {
-            load.clamp(lo, hi)
-        };
-        let clamped = !(load >= lo && load <= hi);
-        let [nlo, nhi] = t.speed_range_rad_s;
-        let nc = n.clamp(nlo, nhi);
-        let d = t.d.eval(qc, nc);
-        let df = t.delta_f.eval(qc, nc);
-        let k = t.k_at(qc, nc);
-        let q_lo = (0.8 * qc).max(df + 0.05 * qc);
-        let q_hi = (1.2 * qc).max(1.5 * q_lo);
-        let delta = |q: f64| ((q - df) / k).powf(1.0 / d);
-        let law = FittedLaw::new(k, d, df, delta(q_lo), delta(q_hi)).map_err(|e| {
-            CharacterizeError::Trend(format!(
-                "law from the trends at Q = {qc} N, n = {nc} rad/s ({race:?}): {e}"
-            ))
-        })?;
-        Ok((law, clamped))
+        Ok(self.model.law_at(race, load, n)?)
     }
 
     /// The raceway laws at relative speed `n` (rad/s, clamped into the speed range).
-    fn speed_cache(&self, n: f64) -> Result<TrendSpeedCache, CharacterizeError> {
-        let mk = |k: usize, race: Race| -> Result<TrendLaw, CharacterizeError> {
-            let t = &self.races[k];
-            let [lo, hi] = t.load_range_n;
-            let [nlo, nhi] = t.speed_range_rad_s;
-            let nc = n.clamp(nlo, nhi);
-            Ok(TrendLaw {
-                race: self.races[k].clone(),
-                n: nc,
-                lo,
-                hi,
-                delta_lo: t.approach_at(lo, nc),
-                delta_hi: t.approach_at(hi, nc),
-                law_lo: self.law_at(race, lo, nc)?.0,
-                law_hi: self.law_at(race, hi, nc)?.0,
-                hint: f64::NAN,
-                tolerance: self.options.tolerance,
-                max_iterations: self.options.max_iterations,
-            })
-        };
-        Ok(TrendSpeedCache {
+    fn speed_laws(&self, n: f64) -> Result<SpeedLaws, CharacterizeError> {
+        Ok(SpeedLaws::new(
+            &self.model,
+            &self.races,
             n,
-            races: [mk(0, Race::Inner)?, mk(1, Race::Outer)?],
-        })
+            self.options.tolerance,
+            self.options.max_iterations,
+        )?)
     }
 
     /// Reactions and Jacobian at ring displacement `displacement` (x, y, z in m; θy, θz in rad)
@@ -845,30 +675,24 @@ impl TrendForceElement {
             )
             .into());
         }
-        let stale = state.trend.as_ref().map_or(true, |c| c.n != n);
-        if stale {
-            state.trend = Some(self.speed_cache(n)?);
-        }
+        let races = match &state.trend {
+            Some(laws) if laws.speed() == n => laws.races().clone(),
+            _ => {
+                let laws = self.speed_laws(n)?;
+                let races = laws.races().clone();
+                state.trend = Some(laws);
+                races
+            }
+        };
         let z = self.bearing.geometry.ball_count;
-        let cache = state
-            .trend
-            .as_ref()
-            .ok_or_else(|| CharacterizeError::Trend("trend state missing".into()))?;
         let mut inner: Vec<Arc<dyn ContactLaw>> = Vec::with_capacity(z);
         let mut outer: Vec<Arc<dyn ContactLaw>> = Vec::with_capacity(z);
         for j in 0..z {
             let hint = |k: usize| state.loads.get(j).map_or(f64::NAN, |l| l[k]);
-            inner.push(Arc::new(TrendLaw {
-                hint: hint(0),
-                ..cache.races[0].clone()
-            }));
-            outer.push(Arc::new(TrendLaw {
-                hint: hint(1),
-                ..cache.races[1].clone()
-            }));
+            inner.push(Arc::new(races[0].with_hint(hint(0))));
+            outer.push(Arc::new(races[1].with_hint(hint(1))));
         }
         let laws = ContactLaws { inner, outer };
-        let races = [cache.races[0].clone(), cache.races[1].clone()];
         prepare(
             state,
             &self.bearing,
@@ -882,13 +706,12 @@ impl TrendForceElement {
         for (j, (loads, delta)) in f.loads.iter().zip(&f.approaches).enumerate() {
             for (k, race) in [Race::Inner, Race::Outer].into_iter().enumerate() {
                 let l = &races[k];
-                if loads[k] > 0.0 && !(loads[k] >= l.lo && loads[k] <= l.hi) {
+                if l.outside_load_range(loads[k]) {
                     outside_range.push((j, race));
                 }
-                if delta[k] > l.delta_lo && delta[k] < l.delta_hi {
-                    // The inverted load's approach against the contact's: the inversion residual.
-                    let d = l.race.approach_at(loads[k], l.n);
-                    residual = residual.max((d - delta[k]).abs() / (l.delta_hi - l.delta_lo));
+                // The inverted load's approach against the contact's: the inversion residual.
+                if let Some(r) = l.inversion_residual(loads[k], delta[k]) {
+                    residual = residual.max(r);
                 }
             }
         }

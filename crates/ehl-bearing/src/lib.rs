@@ -4,8 +4,9 @@
 //! ([`bearing`]), Hertz elliptical contacts ([`hertz`]), an elastohydrodynamic point-contact solver
 //! ([`ehl`]), a Levenberg–Marquardt fit of the nonlinear contact law Q = K·δ^d + ΔF ([`fit`]), the
 //! characterization methods ([`method`]) and the coupled loop ([`characterize`]), load × speed
-//! studies ([`study`]), the contact law made dimensionless and its map over the groups
-//! ([`law_map`]), the bearing as a force element for rotor simulations ([`force_element`])
+//! studies ([`study`]) and their trend curves ([`trends`]), the contact law made dimensionless and
+//! its map over the groups ([`law_map`]), the bearing as a force element for rotor simulations
+//! ([`force_element`])
 //! and its linearized coefficients over speed ([`coefficients`]), and case files ([`io`]).
 //! [`prelude`] has what a typical program needs.
 //!
@@ -33,6 +34,7 @@ pub mod oil;
 pub mod plausibility;
 pub mod rotor;
 pub mod study;
+pub mod trends;
 
 pub use contact_law::{ContactLaw, HertzLaw};
 pub use error::{Error, Result};

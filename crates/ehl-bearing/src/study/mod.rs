@@ -10,8 +10,10 @@
 //!   `results.csv`, `points.csv` and `trends.json` from the point files, identical for one run,
 //!   a resumed run or merged shards.
 //! - [`fit_trends`]: trend curves K(Q), d(Q), ΔF(Q, n) per raceway with fit quality and validity
-//!   range, as a [`TrendModel`] (JSON with [`TrendModel::to_json`] / [`TrendModel::from_json`]),
-//!   evaluated as a force element by [`crate::force_element::TrendForceElement`].
+//!   range from the study's rows, as a [`TrendModel`] (JSON with [`TrendModel::to_json`] /
+//!   [`TrendModel::from_json`]), evaluated as a force element by
+//!   [`crate::force_element::TrendForceElement`]. The model, its fit and its evaluation live in
+//!   [`crate::trends`]; [`trend_reaction_error`] compares the element with a point.
 //!
 //! The library prints nothing: progress goes through a callback ([`StudyEvent`]). Forms, fits
 //! and measured figures: `docs/study.md`.
@@ -22,7 +24,10 @@ mod spec;
 mod store;
 mod trends;
 
+// The trend model and its force element under their former paths (they live in
+// crate::trends and crate::force_element; the study imports them, never the reverse).
 pub use crate::force_element::{JacobianMode, TrendEvalOptions, TrendForce, TrendForceElement};
+pub use crate::trends::{RaceTrends, TrendBearing, TrendCurve, TrendModel, TREND_VERSION};
 pub use point::{
     points_csv, results_csv, ContactLubrication, PointRecord, PointSpec, ResultRow,
     POINTS_CSV_HEADER, POINTS_CSV_LUBRICATION_HEADER,
@@ -33,4 +38,4 @@ pub use runner::{
 };
 pub use spec::{parse_study, read_study, Shard, Study, StudyPoint};
 pub use store::{MemoryStore, PointStore, StoreError};
-pub use trends::{fit_trends, RaceTrends, TrendBearing, TrendCurve, TrendModel, TREND_VERSION};
+pub use trends::{fit_trends, trend_reaction_error};

@@ -10,9 +10,10 @@
 use super::point::{points_csv, results_csv, PointRecord, ResultRow};
 use super::spec::{Shard, Study, StudyPoint};
 use super::store::{PointStore, StoreError};
-use super::trends::{fit_trends, TrendModel};
+use super::trends::{fit_trends, trend_reaction_error};
 use crate::characterize::{characterize_bearing_with_progress, CharacterizeError, Progress};
 use crate::force_element::TrendForceElement;
+use crate::trends::TrendModel;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::Instant;
@@ -560,7 +561,7 @@ pub fn finish_study(study: &Study, store: &dyn PointStore) -> Result<StudyOutput
         if let Ok(element) = TrendForceElement::new(model.clone()) {
             for (i, r) in records.iter().enumerate() {
                 if r.result.is_some() {
-                    trend_errors[i] = element.reaction_error(r).ok();
+                    trend_errors[i] = trend_reaction_error(&element, r).ok();
                 }
             }
         }
