@@ -6,10 +6,8 @@
 
 use anyhow::Context;
 use ehl_bearing::io::FsStore;
-use ehl_bearing::law_map::{
-    assemble_map, generate_map, held_out_check, LawMap, LawMapSpec, NodeRecord,
-};
-use ehl_bearing::study::Shard;
+use ehl_bearing::law_map::{LawMap, LawMapSpec};
+use ehl_bearing::study::{assemble_map, generate_map, held_out_check, NodeRecord, Shard};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;

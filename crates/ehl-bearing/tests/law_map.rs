@@ -256,11 +256,9 @@ fn invalid_groups_name_the_group() {
 }
 
 mod map {
-    use ehl_bearing::law_map::{
-        assemble_map, generate_map, Group, LawMapError, LawMapSpec, MapAxis,
-    };
+    use ehl_bearing::law_map::{Group, LawMapError, LawMapSpec, MapAxis};
     use ehl_bearing::material::{DensityModel, ViscosityModel};
-    use ehl_bearing::study::{MemoryStore, Shard};
+    use ehl_bearing::study::{assemble_map, generate_map, MapGenerationError, MemoryStore, Shard};
 
     /// A 3 × 3 × 3 map on grid 33 (seconds): the machinery, not the accuracy.
     fn small() -> LawMapSpec {
@@ -301,7 +299,7 @@ mod map {
         // Assembling before every node is done says how many are missing.
         generate_map(&spec, &store, Shard::new(1, 2).unwrap(), false, &none).unwrap();
         match assemble_map(&spec, &store) {
-            Err(LawMapError::Incomplete { missing, total, .. }) => {
+            Err(MapGenerationError::Map(LawMapError::Incomplete { missing, total, .. })) => {
                 assert_eq!((missing, total), (13, 27))
             }
             other => panic!("{other:?}"),
@@ -317,7 +315,10 @@ mod map {
         };
         assert!(matches!(
             generate_map(&other, &store, Shard::ALL, false, &none),
-            Err(LawMapError::ForeignNodes { count: 27, .. })
+            Err(MapGenerationError::Map(LawMapError::ForeignNodes {
+                count: 27,
+                ..
+            }))
         ));
         // The map file round-trips.
         let back = ehl_bearing::law_map::LawMap::from_json(&map.to_json()).unwrap();
@@ -368,7 +369,8 @@ mod map {
 
 mod embedded {
     use super::{difference, SAME};
-    use ehl_bearing::law_map::{characterize_groups, held_out_check, LawMap, LawMapSpec};
+    use ehl_bearing::law_map::{LawMap, LawMapSpec};
+    use ehl_bearing::study::{characterize_groups, held_out_check};
 
     /// The embedded map is what `law-map generate` and `assemble` give for
     /// examples/law_map_seed_oil.toml: its spec is the file's, and nodes recomputed now (a

@@ -90,9 +90,6 @@ pub enum LawMapError {
         /// The first of them, with its groups and error.
         first: String,
     },
-    /// Reading or writing the store.
-    #[error(transparent)]
-    Store(#[from] crate::study::StoreError),
 }
 
 fn invalid(field: &str, value: f64, expected: &str) -> LawMapError {
@@ -329,14 +326,6 @@ impl DimensionlessLaw {
     }
 }
 
-mod characterizer;
-mod generate;
 mod map;
 
-pub use characterizer::MapCharacterizer;
-
-pub use generate::{
-    assemble_map, characterize_groups, generate_map, held_out_check, HeldOutPoint, MapGeneration,
-    NodeRecord,
-};
-pub use map::{Group, LawMap, LawMapSpec, MapAxis, MapQuery, NodeQuality};
+pub use map::{Group, LawMap, LawMapSpec, MapAxis, MapQuery, NodeQuality, FORMAT};

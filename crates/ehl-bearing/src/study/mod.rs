@@ -18,6 +18,7 @@
 //! The library prints nothing: progress goes through a callback ([`StudyEvent`]). Forms, fits
 //! and measured figures: `docs/study.md`.
 
+mod law_map;
 mod point;
 mod runner;
 mod spec;
@@ -28,6 +29,10 @@ mod trends;
 // crate::trends and crate::force_element; the study imports them, never the reverse).
 pub use crate::force_element::{JacobianMode, TrendEvalOptions, TrendForce, TrendForceElement};
 pub use crate::trends::{RaceTrends, TrendBearing, TrendCurve, TrendModel, TREND_VERSION};
+pub use law_map::{
+    assemble_map, characterize_groups, generate_map, held_out_check, HeldOutPoint, MapGeneration,
+    MapGenerationError, NodeRecord,
+};
 pub use point::{
     points_csv, results_csv, ContactLubrication, PointRecord, PointSpec, ResultRow,
     POINTS_CSV_HEADER, POINTS_CSV_LUBRICATION_HEADER,

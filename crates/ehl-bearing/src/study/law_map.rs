@@ -4,13 +4,27 @@
 //! as study shards; a Slurm job array runs one shard per task), and [`assemble_map`] builds the
 //! map from the node files alone, so the map is byte for byte the same however it was run.
 
-use super::map::{LawMap, LawMapSpec, NodeQuality, FORMAT};
-use super::{DimensionlessLaw, LawGroups, LawMapError};
+use super::{PointStore, Shard, StoreError};
 use crate::contact::characterize_quasi_static;
-use crate::study::{PointStore, Shard};
+use crate::law_map::{
+    DimensionlessLaw, Group, LawGroups, LawMap, LawMapError, LawMapSpec, MapQuery, NodeQuality,
+    FORMAT,
+};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
+use thiserror::Error;
+
+/// An error of a map's generation or assembly: the map's own, or the store's.
+#[derive(Debug, Error)]
+pub enum MapGenerationError {
+    /// The spec, a node or the assembled map.
+    #[error(transparent)]
+    Map(#[from] LawMapError),
+    /// Reading or writing the store.
+    #[error(transparent)]
+    Store(#[from] StoreError),
+}
 
 /// Curvature radius and reduced modulus of the contacts the nodes are solved on (any values
 /// give the same dimensionless law, docs/law_map.md §4): a steel pair's E′ and Rx = 5 mm.
@@ -102,7 +116,7 @@ pub fn generate_map(
     shard: Shard,
     overwrite: bool,
     on_node: &(dyn Fn(&NodeRecord) + Sync),
-) -> Result<MapGeneration, LawMapError> {
+) -> Result<MapGeneration, MapGenerationError> {
     spec.validate()?;
     let mine: Vec<usize> = (0..spec.node_count())
         .filter(|&k| shard.contains(k))
@@ -134,9 +148,10 @@ pub fn generate_map(
         return Err(LawMapError::ForeignNodes {
             count: foreign.len(),
             first: foreign[0].clone(),
-        });
+        }
+        .into());
     }
-    let results: Vec<Result<NodeRecord, LawMapError>> = todo
+    let results: Vec<Result<NodeRecord, MapGenerationError>> = todo
         .par_iter()
         .map(|&k| {
             let r = compute(k, spec);
@@ -163,7 +178,10 @@ pub fn generate_map(
 }
 
 /// The map from the store's node files (every node must be present and characterized).
-pub fn assemble_map(spec: &LawMapSpec, store: &dyn PointStore) -> Result<LawMap, LawMapError> {
+pub fn assemble_map(
+    spec: &LawMapSpec,
+    store: &dyn PointStore,
+) -> Result<LawMap, MapGenerationError> {
     spec.validate()?;
     let n = spec.node_count();
     let mut laws = Vec::with_capacity(n);
@@ -206,7 +224,8 @@ pub fn assemble_map(spec: &LawMapSpec, store: &dyn PointStore) -> Result<LawMap,
             missing: missing.len(),
             total: n,
             first: missing[0].clone(),
-        });
+        }
+        .into());
     }
     Ok(LawMap {
         format: FORMAT.into(),
@@ -223,7 +242,7 @@ pub struct HeldOutPoint {
     /// The groups.
     pub groups: LawGroups,
     /// The map's law and error estimate.
-    pub map: super::MapQuery,
+    pub map: MapQuery,
     /// The direct characterization's law.
     pub direct: DimensionlessLaw,
     /// Relative error of the map's force at the direct nominal approach: |Q̂_map(δ̂0) −
@@ -288,12 +307,12 @@ pub fn held_out_check(map: &LawMap, count: usize, seed: u64) -> Vec<HeldOutPoint
         .collect()
 }
 
-fn set_group(g: &mut LawGroups, grp: super::Group, v: f64) {
+fn set_group(g: &mut LawGroups, grp: Group, v: f64) {
     match grp {
-        super::Group::M => g.m = v,
-        super::Group::L => g.l = v,
-        super::Group::RyOverRx => g.ry_over_rx = v,
-        super::Group::AlphaP0 => g.alpha_p0 = Some(v),
-        super::Group::LnEta0Ratio => g.ln_eta0_ratio = Some(v),
+        Group::M => g.m = v,
+        Group::L => g.l = v,
+        Group::RyOverRx => g.ry_over_rx = v,
+        Group::AlphaP0 => g.alpha_p0 = Some(v),
+        Group::LnEta0Ratio => g.ln_eta0_ratio = Some(v),
     }
 }

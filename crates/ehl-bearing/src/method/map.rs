@@ -2,11 +2,11 @@
 //! of the dimensionless law, with the map's error estimate, or — outside the map's envelope — an
 //! error naming the group, or with `fallback` the quasi-static method itself.
 
-use super::{hertz_deflection, LawGroups, LawMap};
-use crate::method::{
+use super::{
     CharacterizedContact, ContactCharacterizer, ContactConditions, MapSettings, Method,
     QuasiStaticCharacterizer,
 };
+use crate::law_map::{hertz_deflection, LawGroups, LawMap};
 use crate::ContactLaw;
 use std::time::Instant;
 

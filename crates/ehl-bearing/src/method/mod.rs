@@ -29,6 +29,9 @@ use serde::{Deserialize, Serialize};
 use std::time::Instant;
 use thiserror::Error;
 
+mod map;
+pub use map::MapCharacterizer;
+
 /// Errors of the method settings and of the method adapters.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum MethodError {
@@ -665,7 +668,7 @@ pub enum Method {
     /// listed in [`Method::NAMES`] or in the command line's help.
     Synthetic(SyntheticCharacterizer),
     /// The quasi-static law from the embedded map of the dimensionless law
-    /// ([`crate::law_map::MapCharacterizer`], docs/law_map.md).
+    /// ([`MapCharacterizer`], docs/law_map.md).
     Map(MapSettings),
 }
 
@@ -997,7 +1000,7 @@ impl ContactCharacterizer for Method {
             Method::Synthetic(s) => s.characterize(c),
             Method::QuasiStatic(s) => QuasiStaticCharacterizer { settings: *s }.characterize(c),
             Method::Harmonic(s) => HarmonicCharacterizer { settings: *s }.characterize(c),
-            Method::Map(s) => crate::law_map::MapCharacterizer { settings: *s }.characterize(c),
+            Method::Map(s) => MapCharacterizer { settings: *s }.characterize(c),
         }
     }
 
