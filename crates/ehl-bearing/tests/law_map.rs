@@ -513,7 +513,8 @@ mod bearing {
         assert!(worst_k < 5e-3, "{worst_k}");
     }
 
-    /// Without the fallback, a contact outside the envelope is an error naming the group.
+    /// Without the fallback, a contact outside the envelope is an error naming the group and the
+    /// option that characterizes such contacts by EHL.
     #[test]
     fn outside_the_envelope_without_fallback_names_the_group() {
         let case = read_case(std::path::Path::new(concat!(
@@ -529,7 +530,9 @@ mod bearing {
         .unwrap_err()
         .to_string();
         assert!(
-            e.contains("M = ") && e.contains("outside the map's envelope"),
+            e.contains("M = ")
+                && e.contains("outside the map's envelope")
+                && e.contains("fallback = true"),
             "{e}"
         );
     }

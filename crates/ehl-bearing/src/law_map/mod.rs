@@ -67,7 +67,7 @@ pub enum LawMapError {
         max: f64,
     },
     /// A contact outside every embedded map.
-    #[error("outside every embedded map: {reasons}")]
+    #[error("outside every embedded map: {reasons} (with `fallback = true` in [method_options] such contacts are characterized by the quasi-static method)")]
     OutsideEveryMap {
         /// Each map's refusal.
         reasons: String,
