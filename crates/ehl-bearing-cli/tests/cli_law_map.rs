@@ -112,3 +112,70 @@ fn a_spec_with_a_missing_group_is_refused() {
     let e = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && e.contains("alpha_p0"), "{e}");
 }
+
+/// The map method feeds the consumers of fitted laws: a load × speed study of the 218 example
+/// (inside the second embedded map's envelope) converges at every point, fits its trend curves
+/// and writes them; `coefficients --method map` writes ROSS's table. Milliseconds per point.
+#[test]
+fn map_method_feeds_studies_trends_and_coefficients() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/218_high_speed.toml"
+    );
+    let study = dir.path().join("study.toml");
+    std::fs::write(
+        &study,
+        format!(
+            "case = {case:?}\nmethod = \"map\"\ninner_speeds_rpm = [10000.0, 15000.0]\n\
+             load_scales = [0.7, 1.0, 1.3]\n"
+        ),
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    let run = bin()
+        .args([
+            "study",
+            study.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let points = std::fs::read_to_string(out.join("points.csv")).unwrap();
+    let rows: Vec<&str> = points.lines().skip(1).collect();
+    assert_eq!(rows.len(), 6, "{points}");
+    assert!(
+        rows.iter().all(|r| r.split(',').nth(2) == Some("true")),
+        "{points}"
+    );
+    let trends: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("trends.json")).unwrap()).unwrap();
+    assert_eq!(trends["method"]["name"], "map");
+    let coef = dir.path().join("coef");
+    let run = bin()
+        .args([
+            "coefficients",
+            case,
+            "--method",
+            "map",
+            "--speeds",
+            "10000,15000",
+            "-o",
+            coef.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let ross = std::fs::read_to_string(coef.join("ross_bearing.csv")).unwrap();
+    assert_eq!(ross.lines().count(), 3, "{ross}");
+}

@@ -216,3 +216,17 @@ def test_study_of_a_described_oil_carries_the_lubrication(tmp_path, examples):
     assert header[-3:] == ["min_lambda_race", "max_thermal_reduction", "lubrication_warnings"]
     results = (tmp_path / "out" / "results.csv").read_text().splitlines()[0]
     assert results.endswith("lambda,thermal_reduction,min_film_thermal_m")
+
+
+def test_map_method_characterizes_the_218_example(examples):
+    """The law map (method "map") from Python: the 218 example lies inside the second embedded
+    map, so every contact's law comes from the map (milliseconds) and the fitted-law element
+    carries the case's axial load at the equilibrium (loop tolerance 1e-3 on the loads)."""
+    case = eb.Case.from_file(str(examples / "218_high_speed.toml"))
+    ch = eb.characterize(case, method="map")
+    assert ch.converged
+    report = ch.report()
+    assert report["method"]["name"] == "map"
+    r, k, _ = ch.law_element().evaluate(ch.displacement, inner_speed_rad_s=case.inner_speed_rad_s)
+    assert r[0] == pytest.approx(22250.0, rel=2e-3)
+    np.testing.assert_allclose(k, ch.stiffness, rtol=1e-6, atol=1e-6 * np.abs(k).max())
