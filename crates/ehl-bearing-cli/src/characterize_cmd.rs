@@ -21,8 +21,9 @@ use std::path::PathBuf;
 pub struct CharacterizeArgs {
     /// Case file (TOML), e.g. examples/7006.toml.
     pub case: PathBuf,
-    /// Characterization method: quasi-static (EHL), harmonic (EHL), hertz (dry reference).
-    /// Default: the case file's `method` (with its [method_options]), else quasi-static.
+    /// Characterization method: quasi-static (EHL), harmonic (EHL), hertz (dry reference), map
+    /// (quasi-static laws from the embedded law map, milliseconds; docs/law_map.md). Default: the
+    /// case file's `method` (with its [method_options]), else quasi-static.
     #[arg(long)]
     pub method: Option<String>,
     /// Relative load amplitude ε of each contact's characterization: loads w0·(1 ± ε)

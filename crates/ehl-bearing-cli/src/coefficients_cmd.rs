@@ -21,7 +21,8 @@ pub struct CoefficientsArgs {
     #[arg(long, value_delimiter = ',')]
     pub speeds: Vec<f64>,
     /// Characterization method at each speed: quasi-static, harmonic (gives the damping c·δ̇
-    /// of every contact), hertz (dry). Default: the case file's `method`, else quasi-static.
+    /// of every contact), hertz (dry), map (quasi-static laws from the embedded law map).
+    /// Default: the case file's `method`, else quasi-static.
     #[arg(long, conflicts_with = "trends")]
     pub method: Option<String>,
     /// Use a study's trend curves (trends.json) instead of characterizing: no EHL run, no damping.
