@@ -431,10 +431,28 @@ mod embedded {
 }
 
 mod bearing {
-    use ehl_bearing::characterize::{characterize_bearing, CharacterizeSettings};
+    use ehl_bearing::characterize::{
+        characterize_bearing, BearingCharacterization, CharacterizeSettings,
+    };
     use ehl_bearing::io::read_case;
     use ehl_bearing::law_map::LawMap;
     use ehl_bearing::method::{MapSettings, Method};
+
+    /// Largest relative differences of b against a: contact loads, stiffness diagonal.
+    fn largest_differences(a: &BearingCharacterization, b: &BearingCharacterization) -> (f64, f64) {
+        let mut worst_load = 0.0_f64;
+        for (x, y) in a.equilibrium.balls.iter().zip(&b.equilibrium.balls) {
+            for (p, q) in [(x.inner, y.inner), (x.outer, y.outer)] {
+                worst_load = worst_load.max((q.load - p.load).abs() / p.load);
+            }
+        }
+        let mut worst_k = 0.0_f64;
+        for i in 0..5 {
+            let (p, q) = (a.equilibrium.stiffness[i][i], b.equilibrium.stiffness[i][i]);
+            worst_k = worst_k.max((q - p).abs() / p.abs());
+        }
+        (worst_load, worst_k)
+    }
 
     /// The seed bearing (examples/7006.toml) at 3000, 4000 and 5000 rpm characterized by the
     /// maps (with the quasi-static fallback for the contacts outside their envelopes) against the
@@ -466,17 +484,7 @@ mod bearing {
                 .iter()
                 .filter(|c| c.characterized.method != "map")
                 .count();
-            let mut worst_load = 0.0_f64;
-            for (x, y) in a.equilibrium.balls.iter().zip(&b.equilibrium.balls) {
-                for (p, q) in [(x.inner, y.inner), (x.outer, y.outer)] {
-                    worst_load = worst_load.max((q.load - p.load).abs() / p.load);
-                }
-            }
-            let mut worst_k = 0.0_f64;
-            for i in 0..5 {
-                let (p, q) = (a.equilibrium.stiffness[i][i], b.equilibrium.stiffness[i][i]);
-                worst_k = worst_k.max((q - p).abs() / p.abs());
-            }
+            let (worst_load, worst_k) = largest_differences(&a, &b);
             eprintln!(
                 "seed {rpm} rpm: {fallbacks} fallbacks of {}; loads {worst_load:.3e}, stiffness \
                  diagonal {worst_k:.3e}; quasi-static {ta:.2} s, map {tb:.3} s",
@@ -507,17 +515,7 @@ mod bearing {
         let b =
             characterize_bearing(&case, &Method::Map(MapSettings { fallback: false }), &s).unwrap();
         let tb = t0.elapsed().as_secs_f64();
-        let mut worst_load = 0.0_f64;
-        for (x, y) in a.equilibrium.balls.iter().zip(&b.equilibrium.balls) {
-            for (p, q) in [(x.inner, y.inner), (x.outer, y.outer)] {
-                worst_load = worst_load.max((q.load - p.load).abs() / p.load);
-            }
-        }
-        let mut worst_k = 0.0_f64;
-        for i in 0..5 {
-            let (p, q) = (a.equilibrium.stiffness[i][i], b.equilibrium.stiffness[i][i]);
-            worst_k = worst_k.max((q - p).abs() / p.abs());
-        }
+        let (worst_load, worst_k) = largest_differences(&a, &b);
         eprintln!(
             "218 15000 rpm: loads {worst_load:.3e}, stiffness diagonal {worst_k:.3e}; \
              quasi-static {ta:.2} s, map {tb:.4} s"
