@@ -133,20 +133,15 @@ fn map_method_feeds_studies_trends_and_coefficients() {
     )
     .unwrap();
     let out = dir.path().join("out");
-    let run = bin()
+    bin()
         .args([
             "study",
             study.to_str().unwrap(),
             "-o",
             out.to_str().unwrap(),
         ])
-        .output()
-        .unwrap();
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+        .assert()
+        .success();
     let points = std::fs::read_to_string(out.join("points.csv")).unwrap();
     let rows: Vec<&str> = points.lines().skip(1).collect();
     assert_eq!(rows.len(), 6, "{points}");
@@ -158,7 +153,7 @@ fn map_method_feeds_studies_trends_and_coefficients() {
         serde_json::from_str(&std::fs::read_to_string(out.join("trends.json")).unwrap()).unwrap();
     assert_eq!(trends["method"]["name"], "map");
     let coef = dir.path().join("coef");
-    let run = bin()
+    bin()
         .args([
             "coefficients",
             case,
@@ -167,15 +162,10 @@ fn map_method_feeds_studies_trends_and_coefficients() {
             "--speeds",
             "10000,15000",
             "-o",
-            coef.to_str().unwrap(),
         ])
-        .output()
-        .unwrap();
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+        .arg(&coef)
+        .assert()
+        .success();
     let ross = std::fs::read_to_string(coef.join("ross_bearing.csv")).unwrap();
     assert_eq!(ross.lines().count(), 3, "{ross}");
 }
