@@ -14,8 +14,11 @@ use ehl_bearing::ehl::deformation::set_kernel_cache;
 use ehl_bearing::ehl::{
     solve_moes, solve_steady, DensityModel, EhlContact, EhlSettings, MoesCase, ViscosityModel,
 };
-use ehl_bearing::material::{reduced_modulus, Lubricant, Solid};
+use ehl_bearing::material::Lubricant;
 use std::hint::black_box;
+
+#[path = "common/seed_contacts.rs"]
+mod seed_contacts;
 
 fn circular() -> MoesCase {
     MoesCase::new(
@@ -142,25 +145,10 @@ fn bench_cache(c: &mut Criterion) {
 
 /// The seed bearing's contacts at 5000 rpm (rows of `seed_contacts.csv`).
 fn seed_contacts_5000() -> Vec<EhlContact> {
-    let e = reduced_modulus(&Solid::AISI_52100, &Solid::AISI_52100);
-    include_str!("seed_contacts.csv")
-        .lines()
-        .filter(|l| l.starts_with("5000,"))
-        .map(|l| {
-            let f: Vec<f64> = l
-                .split(',')
-                .skip(3)
-                .map(|v| v.parse().expect("number"))
-                .collect();
-            EhlContact {
-                load: f[0],
-                rx: f[1],
-                ry: f[2],
-                sum_velocity: f[3],
-                e_reduced: e,
-                lubricant: Lubricant::DEFAULT_MINERAL_OIL,
-            }
-        })
+    seed_contacts::seed_contacts()
+        .into_iter()
+        .filter(|r| r.rpm == "5000")
+        .map(|r| r.contact)
         .collect()
 }
 

@@ -24,10 +24,13 @@ use ehl_bearing::contact::{
     ball_mass, characterize_harmonic, characterize_quasi_static, Excitation, ExcitationFrequency,
     HarmonicSettings, QuasiStaticSettings,
 };
-use ehl_bearing::ehl::{EhlContact, EhlSettings};
-use ehl_bearing::material::{reduced_modulus, Lubricant, Solid};
+use ehl_bearing::ehl::EhlSettings;
+use ehl_bearing::material::Solid;
 use std::fmt::Write as _;
 use std::path::PathBuf;
+
+#[path = "../benches/common/seed_contacts.rs"]
+mod seed_contacts;
 
 /// Runs whose periodicity exceeds this are not plotted: not a periodic state (at Ω/ω_n = 0.5 the
 /// seed contacts reach 7.6e-3 to 2.3e-2 in 4 settling periods; up to 0.3 they stay below 1.3e-3).
@@ -74,7 +77,6 @@ fn main() {
             .iter()
             .map(|x| x.parse().expect("ratio"))
             .collect();
-    let e = reduced_modulus(&Solid::AISI_52100, &Solid::AISI_52100);
     let m = ball_mass(7e-3, Solid::AISI_52100.density);
     let ehl = EhlSettings {
         grid,
@@ -88,28 +90,12 @@ fn main() {
     let mut csv = String::from(HEADER);
     csv.push('\n');
     let t_all = std::time::Instant::now();
-    for line in include_str!("../benches/seed_contacts.csv")
-        .lines()
-        .filter(|l| !l.starts_with('#') && !l.starts_with("rpm"))
-    {
-        let f: Vec<&str> = line.split(',').collect();
-        if !rpms.iter().any(|r| r == f[0]) || !contacts.contains(&format!("{}{}", f[1], &f[2][..1]))
-        {
+    for row in seed_contacts::seed_contacts() {
+        if !rpms.contains(&row.rpm) || !contacts.contains(&row.id()) {
             continue;
         }
-        let v: Vec<f64> = f[3..]
-            .iter()
-            .map(|x| x.parse().expect("a number"))
-            .collect();
-        let c = EhlContact {
-            load: v[0],
-            rx: v[1],
-            ry: v[2],
-            sum_velocity: v[3],
-            e_reduced: e,
-            lubricant: Lubricant::DEFAULT_MINERAL_OIL,
-        };
-        let id = format!("{},{},{},{:.3}", f[0], f[1], f[2], c.load);
+        let c = row.contact;
+        let id = format!("{},{},{},{:.3}", row.rpm, row.ball, row.race, c.load);
         match characterize_quasi_static(&c, &qs) {
             Ok(q) => {
                 let k_law = q.k * q.d * q.approach.powf(q.d - 1.0);

@@ -14,8 +14,11 @@ use ehl_bearing::contact::{
     ball_mass, characterize_harmonic, characterize_quasi_static, ContactFit, Excitation,
     ExcitationFrequency, HarmonicSettings, QuasiStaticSettings,
 };
-use ehl_bearing::ehl::{solve_steady, EhlContact, EhlSettings, TransientSolver};
-use ehl_bearing::material::{reduced_modulus, Lubricant, Solid};
+use ehl_bearing::ehl::{solve_steady, EhlSettings, TransientSolver};
+use ehl_bearing::material::Solid;
+
+#[path = "../benches/common/seed_contacts.rs"]
+mod seed_contacts;
 
 fn main() -> Result<(), ehl_bearing::Error> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -26,26 +29,11 @@ fn main() -> Result<(), ehl_bearing::Error> {
     let r1: f64 = get(3, "0.002").parse().expect("Ω₁/ω_n");
     let n: usize = get(4, "5").parse().expect("Ω₂/Ω₁, an integer");
     let eps: f64 = get(5, "0.1").parse().expect("ε");
-    let line = include_str!("../benches/seed_contacts.csv")
-        .lines()
-        .find(|l| {
-            let f: Vec<&str> = l.split(',').collect();
-            f.len() > 3 && f[0] == rpm && format!("{}{}", f[1], &f[2][..1]) == which
-        })
-        .expect("a contact of seed_contacts.csv");
-    let v: Vec<f64> = line
-        .split(',')
-        .skip(3)
-        .map(|x| x.parse().expect("number"))
-        .collect();
-    let c = EhlContact {
-        load: v[0],
-        rx: v[1],
-        ry: v[2],
-        sum_velocity: v[3],
-        e_reduced: reduced_modulus(&Solid::AISI_52100, &Solid::AISI_52100),
-        lubricant: Lubricant::DEFAULT_MINERAL_OIL,
-    };
+    let c = seed_contacts::seed_contacts()
+        .into_iter()
+        .find(|r| r.rpm == rpm && r.id() == which)
+        .expect("a contact of seed_contacts.csv")
+        .contact;
     let m = ball_mass(7e-3, Solid::AISI_52100.density);
     let ehl = EhlSettings {
         grid,

@@ -8,14 +8,15 @@
 //! (default), 4000 or 5000; CONTACTs select some, as ball number and race initial (`7i 5o`).
 //! Environment: `STEP_TOL_FILM` overrides the steps' film tolerance, `FREQUENCY_FRACTION` Ω/ω_n.
 use ehl_bearing::contact::{ball_mass, characterize_harmonic, Excitation, HarmonicSettings};
-use ehl_bearing::ehl::EhlContact;
-use ehl_bearing::material::{reduced_modulus, Lubricant, Solid};
+use ehl_bearing::material::Solid;
+
+#[path = "../benches/common/seed_contacts.rs"]
+mod seed_contacts;
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let rpm = args.first().cloned().unwrap_or_else(|| "3000".into());
     let only = &args[args.len().min(1)..];
-    let e = reduced_modulus(&Solid::AISI_52100, &Solid::AISI_52100);
     let m = ball_mass(7e-3, Solid::AISI_52100.density);
     let mut s = HarmonicSettings::default();
     let env = |k: &str| {
@@ -30,26 +31,14 @@ fn main() {
         s.frequency = ehl_bearing::contact::ExcitationFrequency::FractionOfNatural(f);
     }
     let (mut steps, mut cycles, mut seconds, mut bad) = (0usize, 0.0, 0.0, 0usize);
-    for line in include_str!("../benches/seed_contacts.csv")
-        .lines()
-        .filter(|l| l.starts_with(&format!("{rpm},")))
+    for row in seed_contacts::seed_contacts()
+        .into_iter()
+        .filter(|r| r.rpm == rpm)
     {
-        let f: Vec<&str> = line.split(',').collect();
-        if !only.is_empty() && !only.contains(&format!("{}{}", f[1], &f[2][..1])) {
+        if !only.is_empty() && !only.contains(&row.id()) {
             continue;
         }
-        let v: Vec<f64> = f[3..]
-            .iter()
-            .map(|x| x.parse().expect("a number"))
-            .collect();
-        let c = EhlContact {
-            load: v[0],
-            rx: v[1],
-            ry: v[2],
-            sum_velocity: v[3],
-            e_reduced: e,
-            lubricant: Lubricant::DEFAULT_MINERAL_OIL,
-        };
+        let c = row.contact;
         match characterize_harmonic(&c, m, &s) {
             Ok(fit) => {
                 let Excitation::Harmonic(x) = fit.excitation else {
@@ -64,8 +53,8 @@ fn main() {
                     "{} ball {:>2} {:<5} {:7.1} N: d {:.5} dF {:8.3} c {:8.3} | settling {:2} periodicity {:.2e} \
                      cycles/step {:.2} not converged {} {:.2} s",
                     rpm,
-                    f[1],
-                    f[2],
+                    row.ball,
+                    row.race,
                     c.load,
                     fit.d,
                     fit.delta_f,
@@ -77,7 +66,10 @@ fn main() {
                     fit.seconds
                 );
             }
-            Err(err) => println!("{rpm} ball {} {} {:.1} N: error {err}", f[1], f[2], c.load),
+            Err(err) => println!(
+                "{rpm} ball {} {} {:.1} N: error {err}",
+                row.ball, row.race, c.load
+            ),
         }
     }
     println!(
