@@ -106,16 +106,6 @@ fn lib_err(e: impl Into<ehl_bearing::Error>) -> Failure {
     fail(status, e.to_string())
 }
 
-fn panic_text(p: &(dyn std::any::Any + Send)) -> String {
-    if let Some(s) = p.downcast_ref::<&str>() {
-        (*s).to_string()
-    } else if let Some(s) = p.downcast_ref::<String>() {
-        s.clone()
-    } else {
-        "unknown panic".to_string()
-    }
-}
-
 /// Run `f`, catch any panic, record the error and return the status.
 fn guard(f: impl FnOnce() -> R<()>) -> c_int {
     match catch_unwind(AssertUnwindSafe(f)) {
@@ -130,7 +120,7 @@ fn guard(f: impl FnOnce() -> R<()>) -> c_int {
         Err(p) => {
             set_error(&format!(
                 "internal error of ehl-bearing (a bug, please report it): {}",
-                panic_text(p.as_ref())
+                ehl_bearing::error::panic_message(p.as_ref())
             ));
             EHL_ERR_INTERNAL
         }
@@ -460,7 +450,7 @@ fn with_progress<T: Send>(
             EHL_ERR_INTERNAL,
             format!(
                 "internal error of ehl-bearing (a bug, please report it): {}",
-                panic_text(p.as_ref())
+                ehl_bearing::error::panic_message(p.as_ref())
             ),
         )),
     };

@@ -144,16 +144,6 @@ impl Instance {
     }
 }
 
-fn panic_text(p: &(dyn std::any::Any + Send)) -> String {
-    if let Some(s) = p.downcast_ref::<&str>() {
-        (*s).to_string()
-    } else if let Some(s) = p.downcast_ref::<String>() {
-        s.clone()
-    } else {
-        "unknown panic".to_string()
-    }
-}
-
 /// Run `f` on the instance behind `c`, catching panics (logged, `fmi2Error`).
 fn with_instance(
     c: *mut c_void,
@@ -169,7 +159,10 @@ fn with_instance(
         Ok(s) => s,
         Err(p) => inst.fail(
             function,
-            &format!("internal error (panic): {}", panic_text(p.as_ref())),
+            &format!(
+                "internal error (panic): {}",
+                ehl_bearing::error::panic_message(p.as_ref())
+            ),
         ),
     }
 }

@@ -46,3 +46,16 @@ impl From<crate::trends::TrendError> for Error {
         Error::Characterize(crate::characterize::CharacterizeError::Trend(e))
     }
 }
+
+/// The message of a caught panic's payload (`std::panic::catch_unwind`): the `&str` or `String`
+/// it was raised with, else "unknown panic". For the foreign-language layers (C, FMI), which
+/// turn every panic into an error status instead of unwinding into the caller.
+pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    if let Some(s) = payload.downcast_ref::<&str>() {
+        (*s).to_string()
+    } else if let Some(s) = payload.downcast_ref::<String>() {
+        s.clone()
+    } else {
+        "unknown panic".to_string()
+    }
+}
