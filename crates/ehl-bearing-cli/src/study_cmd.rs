@@ -465,6 +465,13 @@ fn finish(study: &Study, store: &FsStore) -> anyhow::Result<()> {
             l.points_with_warnings,
             l.points
         );
+        if let Some(e) = &l.max_starvation_reduction {
+            println!(
+                "  starvation: largest reduction of the minimum film {:.1} % ({})",
+                100.0 * e.value,
+                at(e)
+            );
+        }
     }
     match &out.trends {
         Ok(model) => {

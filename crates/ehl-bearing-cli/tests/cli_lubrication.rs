@@ -202,3 +202,89 @@ fn study_tables_carry_the_lubrication_columns() {
         assert!(kappa > 1.0, "{line}");
     }
 }
+
+/// An oil supply (`operating.inlet_meniscus_distance_mm`) reaches every output: the JSON's
+/// per-contact `starvation`, the table's columns, `lubrication.csv`, and a study's
+/// `results.csv`/`points.csv` columns and summary line (docs/lubricant.md §3).
+#[test]
+fn an_oil_supply_reaches_json_table_csv_and_study() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(VG46).unwrap().replace(
+        "temperature_c = 40.0",
+        "temperature_c = 40.0\ninlet_meniscus_distance_mm = 0.25",
+    );
+    assert!(text.contains("inlet_meniscus_distance_mm"));
+    let case = dir.path().join("starved.toml");
+    std::fs::write(&case, text).unwrap();
+    let out = bin()
+        .args(["characterize", "--method", "hertz", "--json", "-o"])
+        .arg(dir.path().join("ch"))
+        .arg(&case)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let l = &v["lubrication"];
+    assert_eq!(l["inlet_meniscus_distance_m"].as_f64(), Some(2.5e-4));
+    let worst = l["max_starvation_reduction"].as_f64().unwrap();
+    assert!(worst > 0.05 && worst < 0.5, "{worst}");
+    let s = &l["contacts"][1]["starvation"];
+    assert!(s["inlet_distance_ratio"].as_f64().unwrap() > 1.0, "{s}");
+    let csv = std::fs::read_to_string(dir.path().join("ch/lubrication.csv")).unwrap();
+    assert!(csv
+        .lines()
+        .next()
+        .unwrap()
+        .contains(",starvation_reduction,min_film_starved_m,flags"));
+    let table = bin().args(["equilibrium"]).arg(&case).output().unwrap();
+    let t = String::from_utf8_lossy(&table.stdout);
+    assert!(
+        t.contains("oil supply: meniscus at 0.250 mm") && t.contains("h_min,S"),
+        "{t}"
+    );
+    let study = dir.path().join("study.toml");
+    std::fs::write(
+        &study,
+        format!(
+            "case = \"{}\"\nmethod = \"hertz\"\ninner_speeds_rpm = [3000]\nload_scales = [1.0, 2.0]\n",
+            case.display()
+        ),
+    )
+    .unwrap();
+    let outdir = dir.path().join("out");
+    let out = bin()
+        .arg("study")
+        .arg(&study)
+        .arg("-o")
+        .arg(&outdir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("starvation: largest reduction of the minimum film"),
+        "{stdout}"
+    );
+    let results = std::fs::read_to_string(outdir.join("results.csv")).unwrap();
+    assert!(results.lines().next().unwrap().ends_with(
+        ",min_film_thermal_m,inlet_distance_ratio,starvation_reduction,min_film_starved_m"
+    ));
+    let points = std::fs::read_to_string(outdir.join("points.csv")).unwrap();
+    let mut lines = points.lines();
+    assert!(lines
+        .next()
+        .unwrap()
+        .ends_with(",lubrication_warnings,max_starvation_reduction"));
+    for line in lines {
+        let x: f64 = line.rsplit(',').next().unwrap().parse().unwrap();
+        assert!(x > 0.0 && x < 1.0, "{line}");
+    }
+}

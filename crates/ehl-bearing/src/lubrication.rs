@@ -27,7 +27,17 @@
 //!   raceway's film, Λ and thermal reduction use the described oil's constants at its ring's
 //!   temperature (the formula, not a solved film); the EHL solves, the laws and κ stay at the
 //!   oil of `operating.temperature_c`.
-//! - starvation: not estimated (the case files describe no oil supply).
+//! - starvation (when `operating.inlet_meniscus_distance_mm` describes the oil supply): the
+//!   starvation correlation of Hamrock & Dowson ("Isothermal elastohydrodynamic lubrication of
+//!   point contacts, Part IV — Starvation results", ASME J. Lubr. Technol. 99 (1977) 15–23) with
+//!   m = x_meniscus/b the meniscus distance from the contact centre in Hertz semi-widths along the
+//!   rolling direction: the flooded–starved boundary m* = 1 + 3.06·[(Rx/b)²·h_c/Rx]^0.58 for the
+//!   central film and 1 + 3.34·[(Rx/b)²·h_min/Rx]^0.56 for the minimum film, and below it
+//!   h_s = h·((m − 1)/(m* − 1))^0.29 (central) and ^0.25 (minimum). A fit to starved EHL
+//!   solutions; checked here against this crate's own steady solver with the inlet boundary at m
+//!   (docs/lubricant.md §3: the solver gives 3–7 % of the flooded film more reduction for
+//!   m ≥ 1.25). The reduction reported is that of the minimum film; above [`STARVATION_WARN`] it
+//!   is a warning, at m ≤ 1 (the meniscus inside the Hertzian contact) the contact is flagged.
 
 use crate::bearing::{ContactState, Race};
 use crate::ehl::formulas::{hamrock_dowson_central, hamrock_dowson_min};
@@ -41,6 +51,68 @@ pub const LAMBDA_WARN: f64 = 1.5;
 pub const LAMBDA_INVALID: f64 = 1.0;
 /// Thermal film reduction above which a warning is given (fraction).
 pub const THERMAL_WARN: f64 = 0.10;
+/// Starvation film reduction above which a warning is given (fraction).
+pub const STARVATION_WARN: f64 = 0.10;
+
+/// Hamrock & Dowson's (1977) flooded–starved boundary m* (dimensionless inlet distance, in Hertz
+/// semi-widths b along the rolling direction) for the flooded film `h_over_rx` = h/Rx of a
+/// contact with `rx_over_b` = Rx/b: m* = 1 + 3.06·[(Rx/b)²·h/Rx]^0.58 for the central film
+/// (`central`), 1 + 3.34·[(Rx/b)²·h/Rx]^0.56 for the minimum film.
+pub fn starvation_boundary(h_over_rx: f64, rx_over_b: f64, central: bool) -> f64 {
+    let x = rx_over_b * rx_over_b * h_over_rx;
+    if central {
+        1.0 + 3.06 * x.powf(0.58)
+    } else {
+        1.0 + 3.34 * x.powf(0.56)
+    }
+}
+
+/// Hamrock & Dowson's (1977) starved-to-flooded film ratio at the dimensionless inlet distance
+/// `m` (meniscus distance from the contact centre over the Hertz semi-width b) for the boundary
+/// `m_star` ([`starvation_boundary`]): ((m − 1)/(m* − 1))^0.29 for the central film (`central`),
+/// ^0.25 for the minimum film, 1 at m ≥ m* (flooded) and 0 at m ≤ 1 (the meniscus inside the
+/// contact: no film is formed by the correlation).
+pub fn starvation_factor(m: f64, m_star: f64, central: bool) -> f64 {
+    if m >= m_star {
+        1.0
+    } else if m <= 1.0 {
+        0.0
+    } else {
+        ((m - 1.0) / (m_star - 1.0)).powf(if central { 0.29 } else { 0.25 })
+    }
+}
+
+/// A contact's starvation figures ([`starvation_boundary`], [`starvation_factor`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Starvation {
+    /// Dimensionless inlet distance m = x_meniscus/b.
+    pub inlet_distance_ratio: f64,
+    /// Flooded–starved boundary of the minimum film m*.
+    pub boundary_ratio: f64,
+    /// Estimated reduction of the minimum film, 1 − h_min,s/h_min (fraction).
+    pub reduction: f64,
+    /// Estimated reduction of the central film (fraction).
+    pub central_reduction: f64,
+    /// Starved minimum film, m.
+    pub min_film_m: f64,
+}
+
+/// The starvation figures of a contact with flooded films `hc`, `hmin` (m), curvature radius
+/// `rx` (m) and Hertz semi-width along the rolling direction `b` (m), for the meniscus at
+/// `meniscus_m` from its centre.
+pub fn starvation(hc: f64, hmin: f64, rx: f64, b: f64, meniscus_m: f64) -> Starvation {
+    let m = meniscus_m / b;
+    let mc = starvation_boundary(hc / rx, rx / b, true);
+    let mm = starvation_boundary(hmin / rx, rx / b, false);
+    let fm = starvation_factor(m, mm, false);
+    Starvation {
+        inlet_distance_ratio: m,
+        boundary_ratio: mm,
+        reduction: 1.0 - fm,
+        central_reduction: 1.0 - starvation_factor(m, mc, true),
+        min_film_m: hmin * fm,
+    }
+}
 
 /// A described oil's constants at the inner and outer ring temperatures
 /// (`operating.inner_ring_temperature_c`, `operating.outer_ring_temperature_c`): each raceway's
@@ -139,6 +211,9 @@ pub struct ContactFilm {
     pub thermal_reduction: Option<f64>,
     /// Minimum film with the thermal reduction applied, m (an estimate beside the isothermal film).
     pub min_film_thermal_m: Option<f64>,
+    /// Starvation figures (absent: no oil supply described, i.e. fully flooded, or no film).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub starvation: Option<Starvation>,
     /// Where the films come from: `ehl-solution` (a converged steady EHL solution of the contact)
     /// or `hamrock-dowson-1977` (the formula); empty when unloaded.
     #[serde(default)]
@@ -185,6 +260,14 @@ pub struct LubricationReport {
     pub min_lambda: Option<f64>,
     /// Largest thermal film reduction of the loaded contacts (fraction).
     pub max_thermal_reduction: Option<f64>,
+    /// The oil supply: distance from each contact's centre to the upstream meniscus, m (absent:
+    /// fully flooded).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inlet_meniscus_distance_m: Option<f64>,
+    /// Largest starvation reduction of the minimum film over the loaded contacts (absent: no
+    /// oil supply described).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_starvation_reduction: Option<f64>,
     /// Warnings (Λ < 1.5, thermal reduction above 10 %, κ < 1), each naming its contacts.
     pub warnings: Vec<String>,
     /// What is not estimated, and why.
@@ -201,7 +284,7 @@ fn race_name(r: Race) -> &'static str {
 /// Whether the case gives any of the inputs this report is about (a described oil or roughness):
 /// the outputs carry the report only then, so that results of cases without them are unchanged.
 pub fn wanted(case: &Case) -> bool {
-    case.oil.is_some() || case.roughness.is_some()
+    case.oil.is_some() || case.roughness.is_some() || case.inlet_meniscus_distance_m.is_some()
 }
 
 /// The lubrication figures of `case` at the contact states `contacts` (ball index, race, state).
@@ -240,6 +323,7 @@ pub fn assess_with_films(
     let mut rows = Vec::new();
     let mut low_lambda = Vec::new();
     let mut hot = Vec::new();
+    let mut starved = Vec::new();
     let mut from_solution = 0;
     for (i, (ball, race, st)) in contacts.iter().enumerate() {
         let mut flags = Vec::new();
@@ -327,6 +411,31 @@ pub fn assess_with_films(
             }
             _ => (None, None),
         };
+        let starved = match (case.inlet_meniscus_distance_m, hc, hmin) {
+            (Some(x), Some(c), Some(m)) => {
+                let sv = starvation(c, m, st.rx, st.semi_minor, x);
+                if sv.inlet_distance_ratio <= 1.0 {
+                    flags.push(format!(
+                        "oil meniscus inside the Hertzian contact (m = {:.2} ≤ 1): no film is \
+                         formed; the fully flooded EHL model (film, law, ΔF) does not hold here",
+                        sv.inlet_distance_ratio
+                    ));
+                } else if sv.reduction > STARVATION_WARN {
+                    flags.push(format!(
+                        "starvation reduces the minimum film by about {:.0} % (m = {:.2} < m* = \
+                         {:.2}; fully flooded model)",
+                        100.0 * sv.reduction,
+                        sv.inlet_distance_ratio,
+                        sv.boundary_ratio
+                    ));
+                }
+                if sv.reduction > STARVATION_WARN {
+                    starved.push(format!("{name} ({:.0} %)", 100.0 * sv.reduction));
+                }
+                Some(sv)
+            }
+            _ => None,
+        };
         rows.push(ContactFilm {
             ball: *ball,
             race: race_name(*race).into(),
@@ -343,6 +452,7 @@ pub fn assess_with_films(
                 (Some(h), Some(r)) => Some(h * (1.0 - r)),
                 _ => None,
             },
+            starvation: starved,
             film_source: if solution.is_some() {
                 "ehl-solution".into()
             } else if hmin.is_some() {
@@ -364,6 +474,11 @@ pub fn assess_with_films(
         .iter()
         .filter_map(|c| c.thermal_reduction)
         .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.max(v))));
+    let max_starvation_reduction = case.inlet_meniscus_distance_m.and(
+        rows.iter()
+            .filter_map(|c| c.starvation.map(|s| s.reduction))
+            .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.max(v)))),
+    );
     let mut warnings = Vec::new();
     if !low_lambda.is_empty() {
         warnings.push(format!(
@@ -383,6 +498,15 @@ pub fn assess_with_films(
              1992) at {}",
             100.0 * THERMAL_WARN,
             hot.join(", ")
+        ));
+    }
+    if !starved.is_empty() {
+        warnings.push(format!(
+            "starvation reduces the minimum film by more than {:.0} % (Hamrock & Dowson 1977; the \
+             oil meniscus at {:.3} mm from the contact centres) at {}",
+            100.0 * STARVATION_WARN,
+            case.inlet_meniscus_distance_m.unwrap_or(f64::NAN) * 1e3,
+            starved.join(", ")
         ));
     }
     if let Some(k) = kappa {
@@ -405,9 +529,17 @@ pub fn assess_with_films(
              against full numerical solutions), not the EHL samples of the law fit"
                 .to_string()
         },
-        "starvation: not estimated (no oil supply is described); the model assumes a fully \
-         flooded inlet"
-            .to_string(),
+        match case.inlet_meniscus_distance_m {
+            None => "starvation: not estimated (no oil supply is described); the model assumes \
+                     a fully flooded inlet"
+                .to_string(),
+            Some(x) => format!(
+                "starvation: Hamrock & Dowson (1977) correlation with the oil meniscus at {:.3} mm \
+                 from each contact's centre, an estimate beside the fully flooded films (the EHL \
+                 solves and laws are fully flooded)",
+                x * 1e3
+            ),
+        },
     ];
     if let (Some(r), Some(o)) = (ring_oils, &case.oil) {
         notes.push(format!(
@@ -458,6 +590,8 @@ pub fn assess_with_films(
         contacts: rows,
         min_lambda,
         max_thermal_reduction,
+        inlet_meniscus_distance_m: case.inlet_meniscus_distance_m,
+        max_starvation_reduction,
         warnings,
         notes,
     }
@@ -522,14 +656,31 @@ pub fn table(r: &LubricationReport) -> String {
         r.composite_roughness_m
             .map_or("not given".into(), |v| format!("{:.4} µm", v * 1e6))
     );
-    let _ = writeln!(
+    let supplied = r.inlet_meniscus_distance_m.is_some();
+    if let Some(x) = r.inlet_meniscus_distance_m {
+        let _ = writeln!(
+            s,
+            "oil supply: meniscus at {:.3} mm from the contact centres (starvation: Hamrock & \
+             Dowson 1977; m = distance/b, m* the flooded–starved boundary)",
+            x * 1e3
+        );
+    }
+    let _ = write!(
         s,
         "{:>4} {:>5} {:>9} {:>9} {:>9} {:>7} {:>8}",
         "ball", "race", "h_c µm", "h_min µm", "Λ", "thermal", "h_min,T"
     );
+    if supplied {
+        let _ = write!(
+            s,
+            " {:>6} {:>6} {:>7} {:>8}",
+            "m", "m*", "starved", "h_min,S"
+        );
+    }
+    s.push('\n');
     let opt = |v: Option<f64>, f: &dyn Fn(f64) -> String| v.map_or("-".to_string(), f);
     for c in &r.contacts {
-        let _ = writeln!(
+        let _ = write!(
             s,
             "{:>4} {:>5} {:>9} {:>9} {:>9} {:>7} {:>8}",
             c.ball,
@@ -540,6 +691,18 @@ pub fn table(r: &LubricationReport) -> String {
             opt(c.thermal_reduction, &|v| format!("{:.1}%", 100.0 * v)),
             opt(c.min_film_thermal_m, &|v| format!("{:.4}", v * 1e6)),
         );
+        if supplied {
+            let sv = c.starvation;
+            let _ = write!(
+                s,
+                " {:>6} {:>6} {:>7} {:>8}",
+                opt(sv.map(|v| v.inlet_distance_ratio), &|v| format!("{v:.2}")),
+                opt(sv.map(|v| v.boundary_ratio), &|v| format!("{v:.2}")),
+                opt(sv.map(|v| v.reduction), &|v| format!("{:.1}%", 100.0 * v)),
+                opt(sv.map(|v| v.min_film_m), &|v| format!("{:.4}", v * 1e6)),
+            );
+        }
+        s.push('\n');
     }
     s
 }
@@ -547,14 +710,19 @@ pub fn table(r: &LubricationReport) -> String {
 /// The per-contact figures as CSV (SI units, the names carry them; empty fields where a figure is
 /// not computed).
 pub fn contacts_csv(r: &LubricationReport) -> String {
+    let supplied = r.inlet_meniscus_distance_m.is_some();
     let mut s = String::from(
         "ball,race,load_n,max_pressure_pa,entrainment_velocity_m_s,ellipticity,central_film_m,\
-         min_film_m,lambda,thermal_loading,thermal_reduction,min_film_thermal_m,flags\n",
+         min_film_m,lambda,thermal_loading,thermal_reduction,min_film_thermal_m,",
     );
+    if supplied {
+        s.push_str("inlet_distance_ratio,starvation_boundary_ratio,starvation_reduction,min_film_starved_m,");
+    }
+    s.push_str("flags\n");
     let o = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:e}"));
     for c in &r.contacts {
         s.push_str(&format!(
-            "{},{},{:e},{:e},{:e},{:e},{},{},{},{},{},{},\"{}\"\n",
+            "{},{},{:e},{:e},{:e},{:e},{},{},{},{},{},{},",
             c.ball,
             c.race,
             c.load_n,
@@ -567,8 +735,18 @@ pub fn contacts_csv(r: &LubricationReport) -> String {
             o(c.thermal_loading),
             o(c.thermal_reduction),
             o(c.min_film_thermal_m),
-            c.flags.join("; ").replace('"', "'")
         ));
+        if supplied {
+            let sv = c.starvation;
+            s.push_str(&format!(
+                "{},{},{},{},",
+                o(sv.map(|v| v.inlet_distance_ratio)),
+                o(sv.map(|v| v.boundary_ratio)),
+                o(sv.map(|v| v.reduction)),
+                o(sv.map(|v| v.min_film_m)),
+            ));
+        }
+        s.push_str(&format!("\"{}\"\n", c.flags.join("; ").replace('"', "'")));
     }
     s
 }

@@ -411,6 +411,7 @@ fn manufactured_rows(d_of: impl Fn(f64, f64) -> f64) -> Vec<ResultRow> {
                         outside_fit_range: false,
                     },
                     lubrication: None,
+                    starvation: None,
                 });
             }
         }

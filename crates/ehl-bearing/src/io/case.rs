@@ -50,6 +50,9 @@
 //! temperature_c = 60.0           # operating oil temperature, °C (described lubricant only)
 //! # inner_ring_temperature_c = 70.0  # optional, both or neither (described lubricant only):
 //! # outer_ring_temperature_c = 55.0  # each raceway's lubrication figures at its ring's oil
+//! # inlet_meniscus_distance_mm = 0.3 # optional: an oil supply that starves the contacts; the
+//! #                                  # distance from each contact's centre to the upstream oil
+//! #                                  # meniscus, mm (the starvation estimate, crate::lubrication)
 //!
 //! [equilibrium]                  # optional solver settings
 //! tolerance = 1e-11              # relative force tolerance
@@ -93,6 +96,10 @@ pub struct Case {
     /// given). Used by the lubrication figures of each raceway's contacts only: the EHL solves
     /// and laws use the oil at `operating.temperature_c` (docs/lubricant.md §3).
     pub ring_oils: Option<RingOils>,
+    /// Distance from each contact's centre to the upstream oil meniscus along the rolling
+    /// direction, m (`operating.inlet_meniscus_distance_mm`; None: fully flooded, the default).
+    /// Used by the starvation estimate of the lubrication figures only (docs/lubricant.md §3).
+    pub inlet_meniscus_distance_m: Option<f64>,
     /// Speeds, loads and race control.
     pub operating: OperatingPoint,
     /// Equilibrium solver settings.
@@ -244,6 +251,7 @@ struct RawOperating {
     temperature_c: Option<f64>,
     inner_ring_temperature_c: Option<f64>,
     outer_ring_temperature_c: Option<f64>,
+    inlet_meniscus_distance_mm: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -446,6 +454,7 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
         ));
     }
     let roughness = roughness(raw.ball_material.as_ref(), raw.ring_material.as_ref())?;
+    let inlet_meniscus_distance_m = inlet_meniscus_distance(raw.operating.as_ref())?;
     let operating = operating(raw.operating.as_ref())?;
     let mut settings = EquilibriumSettings::default();
     if b.diametral_clearance_mm.is_some() {
@@ -509,6 +518,7 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
         oil,
         roughness,
         ring_oils,
+        inlet_meniscus_distance_m,
         operating,
         settings,
         method,
@@ -672,6 +682,21 @@ fn ring_temperatures(raw: Option<&RawOperating>) -> Result<Option<(f64, f64)>, I
             hint: "operating.outer_ring_temperature_c is given: give both ring temperatures, °C"
                 .into(),
         }),
+    }
+}
+
+/// The distance to the upstream oil meniscus of `[operating]`, m (None: fully flooded).
+fn inlet_meniscus_distance(raw: Option<&RawOperating>) -> Result<Option<f64>, InputError> {
+    match raw.and_then(|o| o.inlet_meniscus_distance_mm) {
+        None => Ok(None),
+        Some(x) if x.is_finite() && x > 0.0 && x <= 100.0 => Ok(Some(x * 1e-3)),
+        Some(x) => Err(InputError::field(
+            "operating.inlet_meniscus_distance_mm",
+            x,
+            "a distance from 0 (exclusive) to 100 mm from each contact's centre to the upstream oil \
+             meniscus (a contact starves when it is within a few Hertz semi-widths, typically \
+             0.1–1 mm; leave the key out for a fully flooded inlet)",
+        )),
     }
 }
 
@@ -937,6 +962,7 @@ fn operating(raw: Option<&RawOperating>) -> Result<OperatingPoint, InputError> {
         temperature_c: None,
         inner_ring_temperature_c: None,
         outer_ring_temperature_c: None,
+        inlet_meniscus_distance_mm: None,
     };
     let o = raw.unwrap_or(&empty);
     let rpm = PI / 30.0;

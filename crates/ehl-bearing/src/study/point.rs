@@ -43,13 +43,22 @@ pub struct PointSpec {
     /// The oil at the ring temperatures (absent when not given): enters each raceway's figures.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ring_oils: Option<RingOils>,
+    /// The oil supply: distance from each contact's centre to the upstream meniscus, m (absent:
+    /// fully flooded): enters the starvation estimate.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inlet_meniscus_distance_m: Option<f64>,
 }
 
 impl PointSpec {
-    /// Whether the point's outputs carry the lubrication figures (a described oil or roughness,
-    /// as [`crate::lubrication::wanted`]).
+    /// Whether the point's outputs carry the lubrication figures (a described oil, roughness or
+    /// an oil supply, as [`crate::lubrication::wanted`]).
     pub fn has_lubrication(&self) -> bool {
-        self.oil.is_some() || self.roughness.is_some()
+        self.oil.is_some() || self.roughness.is_some() || self.has_oil_supply()
+    }
+
+    /// Whether the point's outputs carry the starvation figures (an oil supply is described).
+    pub fn has_oil_supply(&self) -> bool {
+        self.inlet_meniscus_distance_m.is_some()
     }
 }
 
@@ -91,6 +100,7 @@ impl PointRecord {
         };
         let rpm = self.spec.inner_speed_rpm;
         let lubricated = self.spec.has_lubrication();
+        let supplied = self.spec.has_oil_supply();
         r.contacts
             .iter()
             .map(|c| ResultRow {
@@ -101,6 +111,8 @@ impl PointRecord {
                 contact: c.clone(),
                 lubrication: lubricated
                     .then(|| ContactLubrication::of(r.lubrication.as_ref(), c.ball, &c.race)),
+                starvation: supplied
+                    .then(|| ContactStarvation::of(r.lubrication.as_ref(), c.ball, &c.race)),
             })
             .collect()
     }
@@ -139,6 +151,33 @@ impl ContactLubrication {
     }
 }
 
+/// A contact's starvation figures in `results.csv` (crate::lubrication::Starvation; None where
+/// not computed: an unloaded contact).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct ContactStarvation {
+    /// Dimensionless inlet distance m = x_meniscus/b.
+    pub inlet_distance_ratio: Option<f64>,
+    /// Estimated starvation reduction of the minimum film (fraction).
+    pub starvation_reduction: Option<f64>,
+    /// Starved minimum film, m.
+    pub min_film_starved_m: Option<f64>,
+}
+
+impl ContactStarvation {
+    /// The figures of contact (`ball`, `race`) in `report` (all None if absent).
+    pub fn of(report: Option<&LubricationReport>, ball: usize, race: &str) -> Self {
+        report
+            .and_then(|l| l.contacts.iter().find(|c| c.ball == ball && c.race == race))
+            .and_then(|c| c.starvation)
+            .map(|s| ContactStarvation {
+                inlet_distance_ratio: Some(s.inlet_distance_ratio),
+                starvation_reduction: Some(s.reduction),
+                min_film_starved_m: Some(s.min_film_m),
+            })
+            .unwrap_or_default()
+    }
+}
+
 /// A row of `results.csv`: the point and one contact.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ResultRow {
@@ -157,6 +196,10 @@ pub struct ResultRow {
     /// its oil or gives roughness (None otherwise: no columns, the file as without them).
     #[serde(flatten, default, skip_serializing_if = "Option::is_none")]
     pub lubrication: Option<ContactLubrication>,
+    /// The contact's starvation figures, appended as columns when the study's case describes an
+    /// oil supply (`operating.inlet_meniscus_distance_mm`; None otherwise: no columns).
+    #[serde(flatten, default, skip_serializing_if = "Option::is_none")]
+    pub starvation: Option<ContactStarvation>,
 }
 
 fn csv_cell(v: &Value) -> String {
@@ -195,6 +238,10 @@ pub const POINTS_CSV_HEADER: &str = "speed_rpm,load_scale,converged,iterations,m
 /// viscosity, ISO 281's κ, the smallest minimum film over the contacts, the smallest Λ and the
 /// contact where it occurs, the largest thermal film reduction, and the number of warnings.
 pub const POINTS_CSV_LUBRICATION_HEADER: &str = "kinematic_viscosity_mm2_s,kappa,min_film_m,min_lambda,min_lambda_ball,min_lambda_race,max_thermal_reduction,lubrication_warnings";
+
+/// Column appended to `points.csv` after [`POINTS_CSV_LUBRICATION_HEADER`] when the study's case
+/// describes an oil supply: the largest starvation reduction of the minimum film.
+pub const POINTS_CSV_STARVATION_HEADER: &str = "max_starvation_reduction";
 
 /// The cells of [`POINTS_CSV_LUBRICATION_HEADER`] for a point's report (empty cells where a
 /// figure is not computed or the report is absent).
@@ -240,10 +287,15 @@ fn lubrication_cells(report: Option<&LubricationReport>) -> Vec<String> {
 /// roughness (without them the file is as before).
 pub fn points_csv(records: &[PointRecord], trend_errors: &[Option<f64>]) -> String {
     let lubricated = records.iter().any(|r| r.spec.has_lubrication());
+    let supplied = records.iter().any(|r| r.spec.has_oil_supply());
     let mut out = String::from(POINTS_CSV_HEADER);
     if lubricated {
         out.push(',');
         out.push_str(POINTS_CSV_LUBRICATION_HEADER);
+    }
+    if supplied {
+        out.push(',');
+        out.push_str(POINTS_CSV_STARVATION_HEADER);
     }
     out.push('\n');
     let num = |x: f64| Value::from(x).to_string();
@@ -282,10 +334,17 @@ pub fn points_csv(records: &[PointRecord], trend_errors: &[Option<f64>]) -> Stri
                 );
             }
         }
+        let report = p.result.as_ref().and_then(|r| r.lubrication.as_ref());
         if lubricated {
-            cells.extend(lubrication_cells(
-                p.result.as_ref().and_then(|r| r.lubrication.as_ref()),
-            ));
+            cells.extend(lubrication_cells(report));
+        }
+        if supplied {
+            cells.push(
+                report
+                    .and_then(|l| l.max_starvation_reduction)
+                    .map(|x| Value::from(x).to_string())
+                    .unwrap_or_default(),
+            );
         }
         out.push_str(&cells.join(","));
         out.push('\n');

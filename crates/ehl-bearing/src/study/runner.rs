@@ -439,8 +439,8 @@ impl StudyOutputs {
     }
 
     /// The lubrication figures over the study's points (None when its case describes no oil
-    /// and gives no roughness): the smallest Λ and the largest thermal reduction with where they
-    /// occur, and how many points have warnings.
+    /// and gives no roughness or oil supply): the smallest Λ and the largest thermal and
+    /// starvation reductions with where they occur, and how many points have warnings.
     pub fn lubrication_summary(&self) -> Option<LubricationSummary> {
         if !self.records.iter().any(|r| r.spec.has_lubrication()) {
             return None;
@@ -448,6 +448,7 @@ impl StudyOutputs {
         let mut s = LubricationSummary {
             min_lambda: None,
             max_thermal_reduction: None,
+            max_starvation_reduction: None,
             points_with_warnings: 0,
             points: 0,
         };
@@ -478,6 +479,14 @@ impl StudyOutputs {
                     (Some(x), _) => s.max_thermal_reduction = Some(at(x)),
                     (None, _) => {}
                 }
+                match (
+                    c.starvation.map(|v| v.reduction),
+                    &s.max_starvation_reduction,
+                ) {
+                    (Some(x), Some(m)) if x <= m.value => {}
+                    (Some(x), _) => s.max_starvation_reduction = Some(at(x)),
+                    (None, _) => {}
+                }
             }
         }
         Some(s)
@@ -506,6 +515,10 @@ pub struct LubricationSummary {
     pub min_lambda: Option<LubricationExtreme>,
     /// The largest thermal film reduction (None without a described oil).
     pub max_thermal_reduction: Option<LubricationExtreme>,
+    /// The largest starvation reduction of the minimum film (None without an oil supply;
+    /// absent from the JSON then).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_starvation_reduction: Option<LubricationExtreme>,
     /// Points whose report has warnings (Λ < 1.5, thermal reduction above 10 %, κ < 1).
     pub points_with_warnings: usize,
     /// Points with a report (the failed ones have none).

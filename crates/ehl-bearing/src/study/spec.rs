@@ -283,6 +283,7 @@ impl Study {
             oil: c.oil,
             roughness: c.roughness,
             ring_oils: c.ring_oils,
+            inlet_meniscus_distance_m: c.inlet_meniscus_distance_m,
         }
     }
 
