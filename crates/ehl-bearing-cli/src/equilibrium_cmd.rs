@@ -1,7 +1,7 @@
 //! `ehl-bearing equilibrium CASE.toml [--json]`.
 
 use anyhow::Context;
-use ehl_bearing::bearing::{solve_equilibrium, ContactLaws, Control, Equilibrium, DOF_NAMES};
+use ehl_bearing::bearing::{solve_equilibrium, ContactLaws, Control, Equilibrium, Race, DOF_NAMES};
 use ehl_bearing::io::{json::equilibrium_json, read_case, Case};
 use std::path::PathBuf;
 
@@ -54,7 +54,10 @@ pub fn films(case: &Case, eq: &Equilibrium, grid: Option<usize>) -> Vec<Film> {
     let umax = contacts.iter().map(|c| c.sum_velocity).fold(0.0, f64::max);
     contacts
         .par_iter()
-        .map(|c| {
+        .enumerate()
+        .map(|(j, c)| {
+            // Index 2j inner, 2j+1 outer: each raceway's contacts with its ring's oil.
+            let race = if j % 2 == 0 { Race::Inner } else { Race::Outer };
             if c.load <= UNLOADED_FRACTION * qmax {
                 return Film::Unloaded;
             }
@@ -67,7 +70,7 @@ pub fn films(case: &Case, eq: &Equilibrium, grid: Option<usize>) -> Vec<Film> {
                 ry: c.ry,
                 sum_velocity: c.sum_velocity,
                 e_reduced,
-                lubricant: case.lubricant,
+                lubricant: case.lubricant_of(race),
             };
             Film::Solved(solve_steady(&ec, &settings).map_err(|e| e.to_string()))
         })

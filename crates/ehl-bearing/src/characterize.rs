@@ -551,7 +551,7 @@ fn conditions_of(
                     ry: s.ry,
                     sum_velocity: s.sum_velocity,
                     e_reduced,
-                    lubricant: case.lubricant,
+                    lubricant: case.lubricant_of(race),
                     ball_mass: mass,
                 },
                 floored,
@@ -694,8 +694,9 @@ pub fn characterize_bearing_with_control(
         (None, None)
     };
     cancelled.check(0, 0, t0)?;
-    // The cache lives for one call: method, settings, E′, lubricant and ball mass (the exact part
-    // of the key) are the same for every entry, so only (M, L, Ry/Rx) are compared.
+    // The cache lives for one call: method, settings, E′ and ball mass (the exact part of the
+    // key) are the same for every entry, so (M, L, Ry/Rx) are compared, and the lubricant (one
+    // per raceway with ring temperatures) must be equal.
     let mut cache: Vec<CacheEntry> = Vec::new();
     let mut eq = start.unwrap_or_else(|| dry.clone());
     let mut history = Vec::new();
@@ -831,6 +832,11 @@ fn plan_iteration(
         let w = load_parameter(&conds[i].0);
         let mut best: Option<(usize, f64)> = None;
         for (e, entry) in cache.iter().enumerate() {
+            // (M, L, Ry/Rx) fix the law only for one lubricant (its α·p0 and ln(η0/η∞) are
+            // further groups, docs/law_map.md): with ring temperatures the raceways differ.
+            if entry.conditions.lubricant != conds[i].0.lubricant {
+                continue;
+            }
             let [dm, dl, dr] = key_components(key, &entry.key);
             let in_range = w >= entry.w_range[0] && w <= entry.w_range[1];
             let ok = dl <= tol && dr <= tol && (dm <= tol || (dm <= load_tol && in_range));
@@ -845,6 +851,9 @@ fn plan_iteration(
         }
         let mut dup: Option<(usize, f64)> = None;
         for &r in &runs {
+            if conds[r].0.lubricant != conds[i].0.lubricant {
+                continue;
+            }
             let d = key_distance(key, &keys[r]);
             if d <= tol && dup.map_or(true, |(_, bd)| d < bd) {
                 dup = Some((r, d));

@@ -25,8 +25,8 @@
 //!   [`THERMAL_WARN`] it is a warning.
 //! - ring temperatures (`operating.inner_ring_temperature_c`, `outer_ring_temperature_c`): each
 //!   raceway's film, Λ and thermal reduction use the described oil's constants at its ring's
-//!   temperature (the formula, not a solved film); the EHL solves, the laws and κ stay at the
-//!   oil of `operating.temperature_c`.
+//!   temperature, as do its contacts' EHL solves and laws ([`Case::lubricant_of`]); κ stays at
+//!   the oil of `operating.temperature_c`.
 //! - starvation (when `operating.inlet_meniscus_distance_mm` describes the oil supply): the
 //!   starvation correlation of Hamrock & Dowson ("Isothermal elastohydrodynamic lubrication of
 //!   point contacts, Part IV — Starvation results", ASME J. Lubr. Technol. 99 (1977) 15–23) with
@@ -116,7 +116,7 @@ pub fn starvation(hc: f64, hmin: f64, rx: f64, b: f64, meniscus_m: f64) -> Starv
 
 /// A described oil's constants at the inner and outer ring temperatures
 /// (`operating.inner_ring_temperature_c`, `operating.outer_ring_temperature_c`): each raceway's
-/// figures use its ring's; the EHL solves and laws use the oil at `operating.temperature_c`.
+/// figures, EHL solves and laws use its ring's; κ uses the oil at `operating.temperature_c`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RingOils {
     /// At the inner ring's temperature.
@@ -317,9 +317,6 @@ pub fn assess_with_films(
         )
     });
     let ring_oils = case.ring_oils.as_ref();
-    // Solved films are at the oil of operating.temperature_c: with ring temperatures the
-    // formula at each ring's oil is used instead.
-    let solved = if ring_oils.is_some() { &[][..] } else { solved };
     let mut rows = Vec::new();
     let mut low_lambda = Vec::new();
     let mut hot = Vec::new();
@@ -543,10 +540,9 @@ pub fn assess_with_films(
     ];
     if let (Some(r), Some(o)) = (ring_oils, &case.oil) {
         notes.push(format!(
-            "ring temperatures: the films, Λ and thermal reduction of the inner contacts use the \
-             oil at {} °C (η0 = {:.5} Pa·s), of the outer contacts at {} °C (η0 = {:.5} Pa·s), by \
-             the Hamrock–Dowson formula; the EHL solves, the laws and κ use the oil at \
-             operating.temperature_c = {} °C",
+            "ring temperatures: the inner contacts are characterized and get their film, Λ and \
+             thermal reduction with the oil at {} °C (η0 = {:.5} Pa·s), the outer contacts at {} \
+             °C (η0 = {:.5} Pa·s); κ and the η0, α above are at operating.temperature_c = {} °C",
             r.inner.temperature_c,
             r.inner.viscosity_pa_s,
             r.outer.temperature_c,
@@ -638,7 +634,7 @@ pub fn table(r: &LubricationReport) -> String {
             let _ = writeln!(
                 s,
                 "{name} ring at {} °C: ν = {:.3} mm²/s, η0 = {:.5} Pa·s, α = {:.3e} 1/Pa (its \
-                 contacts' films, Λ and thermal reduction)",
+                 contacts' EHL solves, laws, films, Λ and thermal reduction)",
                 o.temperature_c,
                 o.kinematic_viscosity_mm2_s,
                 o.viscosity_pa_s,

@@ -659,8 +659,8 @@ fn characterization_record_carries_the_report_only_when_wanted() {
 
 /// `operating.inner_ring_temperature_c` and `outer_ring_temperature_c`: the oil's constants at each
 /// ring's temperature are those of the same description at that `temperature_c`; each raceway's
-/// films, Λ and thermal reduction are the formulas at its ring's oil (by hand), while the report's
-/// η0, α and κ (and the EHL solves, through `case.lubricant`) stay at `temperature_c`; ring
+/// films, Λ and thermal reduction are the formulas at its ring's oil (by hand) and its solves use
+/// that oil (`Case::lubricant_of`), while the report's η0, α and κ stay at `temperature_c`; ring
 /// temperatures equal to `temperature_c` change no figure.
 #[test]
 fn ring_temperatures_give_each_raceway_its_oil() {
@@ -683,10 +683,19 @@ fn ring_temperatures_give_each_raceway_its_oil() {
     let rings = c.ring_oils.clone().unwrap();
     assert_eq!(rings.inner, at(70.0));
     assert_eq!(rings.outer, at(55.0));
-    // The solves' lubricant is the oil at temperature_c.
+    // The case's lubricant (κ, the report's η0 and α) is the oil at temperature_c; each
+    // raceway's contacts are solved with its ring's oil.
     let plain = case(oil, "temperature_c = 60.0", rough).unwrap();
     assert_eq!(c.lubricant, plain.lubricant);
     assert_eq!(c.oil, plain.oil);
+    assert_eq!(plain.lubricant_of(Race::Inner), plain.lubricant);
+    let lub_at = |t: f64| {
+        case(oil, &format!("temperature_c = {t}"), rough)
+            .unwrap()
+            .lubricant
+    };
+    assert_eq!(c.lubricant_of(Race::Inner), lub_at(70.0));
+    assert_eq!(c.lubricant_of(Race::Outer), lub_at(55.0));
 
     let laws = ContactLaws::hertz(&c.bearing).unwrap();
     let eq = solve_equilibrium(&c.bearing, &laws, &c.operating, &c.settings).unwrap();
@@ -826,5 +835,63 @@ fn invalid_ring_temperatures_name_key_value_and_range() {
         for w in want {
             assert!(e.contains(w), "{lub} | {op}\n  → {e}\n  missing {w}");
         }
+    }
+}
+
+/// The characterization loop gives each raceway's contacts its ring's oil: every contact
+/// condition handed to the contact characterizer carries `Case::lubricant_of(race)`, the two
+/// raceways never share a cached law (their (M, L, Ry/Rx) keys do not fix the law across
+/// lubricants), and each contact's reported Moes L is that of its ring's oil.
+#[test]
+fn the_loop_characterizes_each_raceway_with_its_rings_oil() {
+    use ehl_bearing::bearing::Race;
+    use ehl_bearing::characterize::{
+        characterize_bearing, CharacterizeSettings, CharacterizedContact, ContactCharacterizer,
+        ContactConditions, HertzCharacterizer,
+    };
+    use ehl_bearing::method::Method;
+    use std::sync::Mutex;
+    struct Recording {
+        inner: HertzCharacterizer,
+        seen: Mutex<Vec<(Race, ehl_bearing::material::Lubricant)>>,
+    }
+    impl ContactCharacterizer for Recording {
+        fn characterize(
+            &self,
+            c: &ContactConditions,
+        ) -> Result<CharacterizedContact, ehl_bearing::Error> {
+            self.seen.lock().unwrap().push((c.race, c.lubricant));
+            self.inner.characterize(c)
+        }
+        fn method(&self) -> Method {
+            self.inner.method()
+        }
+    }
+    let oil = "iso_vg = 32\nviscosity_index = 100.0\ndensity_15c_kg_m3 = 870.0";
+    let c = case(
+        oil,
+        "temperature_c = 60.0\ninner_ring_temperature_c = 75.0\nouter_ring_temperature_c = 50.0",
+        "",
+    )
+    .unwrap();
+    let (li, lo) = (c.lubricant_of(Race::Inner), c.lubricant_of(Race::Outer));
+    assert!(li.viscosity < c.lubricant.viscosity && lo.viscosity > c.lubricant.viscosity);
+    let ch = Recording {
+        inner: HertzCharacterizer::default(),
+        seen: Mutex::new(Vec::new()),
+    };
+    let r = characterize_bearing(&c, &ch, &CharacterizeSettings::default()).unwrap();
+    let seen = ch.seen.into_inner().unwrap();
+    assert!(seen.iter().any(|(race, _)| *race == Race::Inner));
+    assert!(seen.iter().any(|(race, _)| *race == Race::Outer));
+    for (race, lub) in &seen {
+        assert_eq!(*lub, c.lubricant_of(*race), "{race:?}");
+    }
+    for k in &r.contacts {
+        let l = c.lubricant_of(k.race);
+        let e = c.bearing.reduced_modulus();
+        let u = l.viscosity * k.state.sum_velocity / (e * k.state.rx);
+        let want = l.pressure_viscosity * e * u.powf(0.25);
+        assert!(rel(k.characterized.moes_l, want) < 1e-9, "{:?}", k.race);
     }
 }

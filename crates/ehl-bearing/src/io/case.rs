@@ -93,8 +93,9 @@ pub struct Case {
     pub roughness: Option<Roughness>,
     /// The described lubricant's constants at the inner and outer ring temperatures
     /// (`operating.inner_ring_temperature_c`, `operating.outer_ring_temperature_c`; None: not
-    /// given). Used by the lubrication figures of each raceway's contacts only: the EHL solves
-    /// and laws use the oil at `operating.temperature_c` (docs/lubricant.md §3).
+    /// given). Each raceway's contacts are characterized with its ring's oil
+    /// ([`Case::lubricant_of`]) and get their lubrication figures from it; κ and the report's
+    /// η0, α are at `operating.temperature_c` (docs/lubricant.md §3.1).
     pub ring_oils: Option<RingOils>,
     /// Distance from each contact's centre to the upstream oil meniscus along the rolling
     /// direction, m (`operating.inlet_meniscus_distance_mm`; None: fully flooded, the default).
@@ -112,6 +113,25 @@ pub struct Case {
 }
 
 impl Case {
+    /// The lubricant at the contacts of raceway `race`: the described oil's constants at the
+    /// ring's temperature when ring temperatures are given (`operating.inner_ring_temperature_c`,
+    /// `outer_ring_temperature_c`), else [`Case::lubricant`]; the viscosity and density models
+    /// are the case's.
+    pub fn lubricant_of(&self, race: crate::bearing::Race) -> Lubricant {
+        match &self.ring_oils {
+            Some(r) => {
+                let o = r.of(race);
+                Lubricant {
+                    viscosity: o.viscosity_pa_s,
+                    pressure_viscosity: o.pressure_viscosity_1_pa,
+                    density: o.density_kg_m3,
+                    ..self.lubricant
+                }
+            }
+            None => self.lubricant,
+        }
+    }
+
     /// The method to characterize this case with: `name` if given (with the file's
     /// `[method_options]` when `name` is the file's own method), else the file's method, else the
     /// default (quasi-static).

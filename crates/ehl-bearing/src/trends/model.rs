@@ -193,7 +193,8 @@ pub struct TrendModel {
     pub method: Method,
     /// The bearing.
     pub bearing: TrendBearing,
-    /// The lubricant.
+    /// The study case's lubricant at `operating.temperature_c` (a record: with ring temperatures
+    /// each raceway's curves were fitted to laws of its ring's oil, `Case::lubricant_of`).
     pub lubricant: Lubricant,
     /// Race-control hypothesis of the study's case.
     pub race_control: RaceControl,
