@@ -117,15 +117,7 @@ pub fn run(args: &EquilibriumArgs) -> anyhow::Result<()> {
     // Film, Λ, κ and thermal reduction at the dry equilibrium (docs/lubricant.md), when the case
     // describes its oil or gives roughness.
     let lubrication = ehl_bearing::lubrication::wanted(&case).then(|| {
-        let states: Vec<_> = eq
-            .balls
-            .iter()
-            .enumerate()
-            .flat_map(|(i, b)| {
-                use ehl_bearing::bearing::Race;
-                [(i, Race::Inner, b.inner), (i, Race::Outer, b.outer)]
-            })
-            .collect();
+        let states = eq.contact_states();
         // With --film, the films of the converged EHL solutions (index 2j inner, 2j+1 outer).
         let solved: Vec<_> = films
             .iter()

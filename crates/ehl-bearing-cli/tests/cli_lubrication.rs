@@ -12,6 +12,39 @@ fn bin() -> Command {
     Command::cargo_bin("ehl-bearing").unwrap()
 }
 
+/// Run `ehl-bearing study` with the dry method on `case` at the given speeds and load scales
+/// (TOML arrays) in `dir`; the output folder and stdout.
+fn hertz_study(
+    dir: &std::path::Path,
+    case: &std::path::Path,
+    speeds: &str,
+    scales: &str,
+) -> (std::path::PathBuf, String) {
+    let study = dir.join("study.toml");
+    std::fs::write(
+        &study,
+        format!(
+            "case = \"{}\"\nmethod = \"hertz\"\ninner_speeds_rpm = {speeds}\nload_scales = {scales}\n",
+            case.display()
+        ),
+    )
+    .unwrap();
+    let outdir = dir.join("out");
+    let out = bin()
+        .arg("study")
+        .arg(&study)
+        .arg("-o")
+        .arg(&outdir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    (outdir, String::from_utf8_lossy(&out.stdout).into_owned())
+}
+
 #[test]
 fn equilibrium_reports_the_lubrication_of_a_described_oil_only() {
     let out = bin()
@@ -156,28 +189,7 @@ fn ring_temperatures_reach_the_report() {
 #[test]
 fn study_tables_carry_the_lubrication_columns() {
     let dir = tempfile::tempdir().unwrap();
-    let study = dir.path().join("study.toml");
-    std::fs::write(
-        &study,
-        format!(
-            "case = \"{VG46}\"\nmethod = \"hertz\"\ninner_speeds_rpm = [3000, 5000]\nload_scales = [1.0]\n"
-        ),
-    )
-    .unwrap();
-    let outdir = dir.path().join("out");
-    let out = bin()
-        .arg("study")
-        .arg(&study)
-        .arg("-o")
-        .arg(&outdir)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let stdout = String::from_utf8_lossy(&out.stdout);
+    let (outdir, stdout) = hertz_study(dir.path(), VG46.as_ref(), "[3000, 5000]", "[1.0]");
     assert!(
         stdout.contains("smallest Λ") && stdout.contains("largest thermal film reduction"),
         "{stdout}"
@@ -246,29 +258,7 @@ fn an_oil_supply_reaches_json_table_csv_and_study() {
         t.contains("oil supply: meniscus at 0.250 mm") && t.contains("h_min,S"),
         "{t}"
     );
-    let study = dir.path().join("study.toml");
-    std::fs::write(
-        &study,
-        format!(
-            "case = \"{}\"\nmethod = \"hertz\"\ninner_speeds_rpm = [3000]\nload_scales = [1.0, 2.0]\n",
-            case.display()
-        ),
-    )
-    .unwrap();
-    let outdir = dir.path().join("out");
-    let out = bin()
-        .arg("study")
-        .arg(&study)
-        .arg("-o")
-        .arg(&outdir)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let stdout = String::from_utf8_lossy(&out.stdout);
+    let (outdir, stdout) = hertz_study(dir.path(), &case, "[3000]", "[1.0, 2.0]");
     assert!(
         stdout.contains("starvation: largest reduction of the minimum film"),
         "{stdout}"

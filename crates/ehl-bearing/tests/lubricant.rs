@@ -573,17 +573,7 @@ fn assessment_equals_the_formulas_at_the_contact_states() {
     .unwrap();
     let laws = ContactLaws::hertz(&c.bearing).unwrap();
     let eq = solve_equilibrium(&c.bearing, &laws, &c.operating, &c.settings).unwrap();
-    let states: Vec<_> = eq
-        .balls
-        .iter()
-        .enumerate()
-        .flat_map(|(i, b)| {
-            [
-                (i, ehl_bearing::bearing::Race::Inner, b.inner),
-                (i, ehl_bearing::bearing::Race::Outer, b.outer),
-            ]
-        })
-        .collect();
+    let states = eq.contact_states();
     let r = assess(&c, &states);
     let o = c.oil.as_ref().unwrap();
     let nu1 = 4500.0 / (5000.0f64 * 42.5).sqrt();
@@ -699,12 +689,7 @@ fn ring_temperatures_give_each_raceway_its_oil() {
 
     let laws = ContactLaws::hertz(&c.bearing).unwrap();
     let eq = solve_equilibrium(&c.bearing, &laws, &c.operating, &c.settings).unwrap();
-    let states: Vec<_> = eq
-        .balls
-        .iter()
-        .enumerate()
-        .flat_map(|(i, b)| [(i, Race::Inner, b.inner), (i, Race::Outer, b.outer)])
-        .collect();
+    let states = eq.contact_states();
     let r = assess(&c, &states);
     let p = assess(&plain, &states);
     assert_eq!(r.kappa, p.kappa);

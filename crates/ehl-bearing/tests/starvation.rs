@@ -155,17 +155,7 @@ fn the_oil_supply_key_gives_each_contact_its_starvation() {
     assert_eq!(case.inlet_meniscus_distance_m, Some(2e-4));
     let laws = ContactLaws::hertz(&case.bearing).unwrap();
     let eq = solve_equilibrium(&case.bearing, &laws, &case.operating, &case.settings).unwrap();
-    let contacts: Vec<_> = eq
-        .balls
-        .iter()
-        .enumerate()
-        .flat_map(|(i, b)| {
-            [
-                (i, ehl_bearing::bearing::Race::Inner, b.inner),
-                (i, ehl_bearing::bearing::Race::Outer, b.outer),
-            ]
-        })
-        .collect();
+    let contacts = eq.contact_states();
     let r = assess(&case, &contacts);
     assert_eq!(r.inlet_meniscus_distance_m, Some(2e-4));
     let mut worst: f64 = 0.0;

@@ -337,6 +337,16 @@ pub struct Equilibrium {
 }
 
 impl Equilibrium {
+    /// Every contact as (ball index, raceway, state), ball-major, inner before outer (the order
+    /// of characterizations and of [`crate::lubrication::assess`]).
+    pub fn contact_states(&self) -> Vec<(usize, Race, super::ContactState)> {
+        self.balls
+            .iter()
+            .enumerate()
+            .flat_map(|(i, b)| [(i, Race::Inner, b.inner), (i, Race::Outer, b.outer)])
+            .collect()
+    }
+
     /// The cage speed at this equilibrium, rad/s: the load-weighted mean of the balls' orbital
     /// speeds ([`cage_speed_of`]). The ball-pass frequency is Z times it over 2π.
     pub fn cage_speed(&self) -> f64 {
