@@ -411,6 +411,18 @@ mod embedded {
             let diff = difference(&l, &low.laws[k]);
             assert!(diff < SAME, "low-M node {k}: {diff:e}");
         }
+        let heavy = &LawMap::embedded_maps()[3];
+        let spec = LawMapSpec::from_toml(include_str!(
+            "../../../examples/law_map_seed_oil_high_m.toml"
+        ))
+        .unwrap();
+        assert_eq!(heavy.spec, spec);
+        assert_eq!(heavy.laws.len(), 7 * 5 * 9);
+        for k in [0, 314] {
+            let (l, _) = characterize_groups(&spec.node_groups(k), &spec).unwrap();
+            let diff = difference(&l, &heavy.laws[k]);
+            assert!(diff < SAME, "high-M node {k}: {diff:e}");
+        }
     }
 
     /// Held-out points (a fresh seed, not the 200 of docs/law_map.md §5): the map against direct
