@@ -411,6 +411,52 @@ mod embedded {
             let diff = difference(&l, &low.laws[k]);
             assert!(diff < SAME, "low-M node {k}: {diff:e}");
         }
+        let heavy = &LawMap::embedded_maps()[3];
+        let spec = LawMapSpec::from_toml(include_str!(
+            "../../../examples/law_map_seed_oil_high_m.toml"
+        ))
+        .unwrap();
+        assert_eq!(heavy.spec, spec);
+        assert_eq!(heavy.laws.len(), 7 * 5 * 9);
+        for k in [0, 314] {
+            let (l, _) = characterize_groups(&spec.node_groups(k), &spec).unwrap();
+            let diff = difference(&l, &heavy.laws[k]);
+            assert!(diff < SAME, "high-M node {k}: {diff:e}");
+        }
+    }
+
+    /// The fourth embedded map, with the rheology groups as axes (other oils), is what
+    /// `law-map generate` and `assemble` give for examples/law_map_mineral_oils.toml: its spec is
+    /// the file's and recomputed nodes (the first, one in the middle, the last) reproduce its
+    /// stored laws to round-off.
+    #[test]
+    fn oils_map_is_the_example_spec_and_reproduces_its_nodes() {
+        let map = &LawMap::embedded_maps()[4];
+        let spec =
+            LawMapSpec::from_toml(include_str!("../../../examples/law_map_mineral_oils.toml"))
+                .unwrap();
+        assert_eq!(map.spec, spec);
+        assert_eq!(map.laws.len(), 7 * 7 * 5 * 3 * 3);
+        for k in [0, 1102, 2204] {
+            let (l, _) = characterize_groups(&spec.node_groups(k), &spec).unwrap();
+            let diff = difference(&l, &map.laws[k]);
+            assert!(diff < SAME, "oils node {k}: {diff:e}");
+        }
+    }
+
+    /// The oils map against direct characterizations at held-out points (a fresh seed, not the
+    /// 200 of docs/law_map.md §6), within the acceptance bounds (force at the nominal approach
+    /// 0.5 %, d 0.005, ΔF 3 %).
+    #[test]
+    fn oils_map_against_direct_characterizations() {
+        let r = held_out_check(&LawMap::embedded_maps()[4], 6, 20261127);
+        assert_eq!(r.len(), 6);
+        for h in &r {
+            assert!(
+                h.force_error < 5e-3 && h.d_error < 5e-3 && h.delta_f_error < 0.03,
+                "{h:?}"
+            );
+        }
     }
 
     /// Held-out points (a fresh seed, not the 200 of docs/law_map.md §5): the map against direct
@@ -524,6 +570,43 @@ mod bearing {
         assert!(b.contacts.iter().all(|c| c.characterized.method == "map"));
         assert!(worst_load < 2e-3, "{worst_load}");
         assert!(worst_k < 5e-3, "{worst_k}");
+    }
+
+    /// Two more bearings with other oils, described by grade and temperature: a 7205 (25°) with
+    /// ISO VG 68 at 60 °C and a 7210 (15°) with ISO VG 22 at 80 °C (examples/7205_vg68.toml,
+    /// examples/7210_vg22.toml), by the oils map alone (no fallback) against the quasi-static
+    /// method at the map's settings: contact loads within 0.2 %, stiffness diagonal within 0.5 %.
+    #[test]
+    fn other_oils_7205_and_7210_by_map_against_quasi_static() {
+        for name in ["7205_vg68.toml", "7210_vg22.toml"] {
+            let case = read_case(
+                &std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/"))
+                    .join(name),
+            )
+            .unwrap();
+            let s = CharacterizeSettings::default();
+            let qs = Method::QuasiStatic(LawMap::embedded().spec.settings());
+            let t0 = std::time::Instant::now();
+            let a = characterize_bearing(&case, &qs, &s).unwrap();
+            let ta = t0.elapsed().as_secs_f64();
+            let t0 = std::time::Instant::now();
+            let b = characterize_bearing(&case, &Method::Map(MapSettings { fallback: false }), &s)
+                .unwrap();
+            let tb = t0.elapsed().as_secs_f64();
+            let (worst_load, worst_k) = largest_differences(&a, &b);
+            eprintln!(
+                "{name}: {} contacts; loads {worst_load:.3e}, stiffness diagonal {worst_k:.3e}; \
+                 quasi-static {ta:.2} s, map {tb:.4} s",
+                b.contacts.len()
+            );
+            assert!(a.converged && b.converged, "{name}");
+            assert!(
+                b.contacts.iter().all(|c| c.characterized.method == "map"),
+                "{name}"
+            );
+            assert!(worst_load < 2e-3, "{name}: {worst_load}");
+            assert!(worst_k < 5e-3, "{name}: {worst_k}");
+        }
     }
 
     /// Without the fallback, a contact outside the envelope is an error naming the group and the

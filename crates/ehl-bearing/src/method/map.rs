@@ -3,9 +3,10 @@
 //! error naming the group, or with `fallback` the quasi-static method itself.
 
 use super::{
-    CharacterizedContact, ContactCharacterizer, ContactConditions, MapSettings, Method,
-    QuasiStaticCharacterizer,
+    predict_steady, CharacterizedContact, ContactCharacterizer, ContactConditions, LoadPredictor,
+    MapSettings, Method, PredictedLaw, QuasiStaticCharacterizer,
 };
+use crate::hertz::HertzGeometry;
 use crate::law_map::{hertz_deflection, LawGroups, LawMap};
 use crate::ContactLaw;
 use std::time::Instant;
@@ -76,5 +77,40 @@ impl ContactCharacterizer for MapCharacterizer {
 
     fn method(&self) -> Method {
         Method::Map(self.settings)
+    }
+
+    fn predictor(&self) -> Option<&dyn LoadPredictor> {
+        Some(self)
+    }
+}
+
+impl LoadPredictor for MapCharacterizer {
+    /// Inside a map, the map's own law: h = δ_Hertz(w0) − δ_map(w0), no EHL solution (so the
+    /// loop starts from nearly the lubricated loads, as the EHL methods' predictor makes it do;
+    /// from the dry loads a light contact can start where the fallback's family reaches the
+    /// hydrodynamic regime, docs/law_map.md §7). Outside every map, with `fallback`, the
+    /// quasi-static method's predictor at the map's settings (one loosely converged steady EHL
+    /// solution, [`predict_steady`]); without, the map's error (the loop keeps that contact's
+    /// dry law for the start).
+    fn predict(&self, c: &ContactConditions) -> Result<PredictedLaw, crate::Error> {
+        let ehl = c.ehl_contact();
+        let groups = LawGroups::of(&ehl)?;
+        match LawMap::query_embedded(&groups) {
+            Ok((q, _)) => {
+                let law = q.law.law(&ehl)?;
+                let h = HertzGeometry::new(c.rx, c.ry, c.e_reduced)?;
+                let dh = h.contact(c.load).deflection;
+                let approach = law.approach_at(c.load).unwrap_or(q.law.approach_hat * dh);
+                Ok(PredictedLaw::new(
+                    h.stiffness,
+                    dh - approach,
+                    q.nodes_converged,
+                )?)
+            }
+            Err(_) if self.settings.fallback => {
+                predict_steady(c, &LawMap::embedded().spec.settings().ehl)
+            }
+            Err(e) => Err(e.into()),
+        }
     }
 }

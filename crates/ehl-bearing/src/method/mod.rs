@@ -1014,19 +1014,21 @@ impl ContactCharacterizer for Method {
 
     fn predictor(&self) -> Option<&dyn LoadPredictor> {
         match self {
-            Method::QuasiStatic(_) | Method::Harmonic(_) => Some(self),
-            Method::Hertz(_) | Method::Synthetic(_) | Method::Map(_) => None,
+            Method::QuasiStatic(_) | Method::Harmonic(_) | Method::Map(_) => Some(self),
+            Method::Hertz(_) | Method::Synthetic(_) => None,
         }
     }
 }
 
 impl LoadPredictor for Method {
     /// The steady predictor of the EHL methods ([`predict_steady`] with the method's EHL grid
-    /// and domain); an error for the dry methods, which have none.
+    /// and domain), the map's own for the map method ([`MapCharacterizer`]); an error for the
+    /// dry methods, which have none.
     fn predict(&self, c: &ContactConditions) -> Result<PredictedLaw, crate::Error> {
         match self {
             Method::QuasiStatic(s) => predict_steady(c, &s.ehl),
             Method::Harmonic(s) => predict_steady(c, &s.ehl),
+            Method::Map(s) => MapCharacterizer { settings: *s }.predict(c),
             other => Err(MethodError::Law(format!("method {other} has no load predictor")).into()),
         }
     }
