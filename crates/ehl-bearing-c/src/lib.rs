@@ -11,6 +11,7 @@
 #![allow(clippy::missing_safety_doc)] // The header states each function's contract.
 
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws};
+use ehl_bearing::case::Case;
 use ehl_bearing::characterize::{
     characterization_json, characterize_bearing_with_control, BearingCharacterization,
     CharacterizationReport, CharacterizeSettings,
@@ -18,7 +19,7 @@ use ehl_bearing::characterize::{
 use ehl_bearing::force_element::{
     ElementInput, ElementState, ForceElement, LawElement, TrendForceElement,
 };
-use ehl_bearing::io::{parse_case, read_case, Case};
+use ehl_bearing::io::{parse_case, read_case};
 use std::cell::RefCell;
 use std::ffi::{c_char, c_int, c_void, CStr, CString};
 use std::ops::ControlFlow;
@@ -320,7 +321,7 @@ pub unsafe extern "C" fn ehl_case_with_inner_speed_rpm(
                 EHL_ERR_INPUT,
                 format!(
                     "with_inner_speed_rpm({}): {e}",
-                    ehl_bearing::io::number_text(rpm)
+                    ehl_bearing::case::number_text(rpm)
                 ),
             )
         })?;

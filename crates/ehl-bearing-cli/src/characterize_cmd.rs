@@ -6,12 +6,13 @@ use crate::cli_support::{
     with_threads, write_atomic,
 };
 use anyhow::{bail, Context};
+use ehl_bearing::case::Case;
 use ehl_bearing::characterize::{
     characterization_json, characterize_bearing_with_progress, BearingCharacterization,
     CharacterizeSettings, ContactRow, LawSource,
 };
 use ehl_bearing::contact::{HarmonicSettings, QuasiStaticSettings};
-use ehl_bearing::io::{read_case, Case};
+use ehl_bearing::io::read_case;
 use ehl_bearing::method::{HertzCharacterizer, Method, SyntheticCharacterizer};
 use serde_json::Value;
 use std::path::PathBuf;

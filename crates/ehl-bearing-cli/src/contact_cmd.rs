@@ -3,7 +3,6 @@
 
 use anyhow::{bail, Context, Result};
 use ehl_bearing::contact::{characterize_harmonic, characterize_quasi_static, ContactFit};
-use ehl_bearing::ehl;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
@@ -329,7 +328,7 @@ fn refuse_options(options: &[(bool, &str)], scope: &str) -> Result<()> {
 /// Run `contact`.
 pub fn run(args: &ContactArgs) -> Result<()> {
     let text = ehl_bearing::io::read_text(&args.contact)?;
-    let file = ehl::input::parse_contact_file(&text)
+    let file = ehl_bearing::io::contact::parse_contact_file(&text)
         .with_context(|| format!("in {}", args.contact.display()))?;
     let c = file.contact;
     let deadline = crate::cli_support::deadline(args.time_limit)?;

@@ -244,7 +244,7 @@ pub fn run(args: &EhlArgs) -> Result<()> {
     let result = match (&args.contact, args.moes_m, args.moes_l) {
         (Some(path), _, _) => {
             let text = ehl_bearing::io::read_text(path)?;
-            let c = ehl::input::parse_contact_toml(&text)
+            let c = ehl_bearing::io::contact::parse_contact_toml(&text)
                 .with_context(|| format!("in {}", path.display()))?;
             for w in ehl_bearing::plausibility::check_contact(&c)
                 .with_context(|| format!("{}: outside what the models describe", path.display()))?

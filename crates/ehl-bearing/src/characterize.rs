@@ -27,9 +27,9 @@
 use crate::bearing::{
     solve_equilibrium, BearingError, ContactLaws, ContactState, Equilibrium, Race,
 };
+use crate::case::Case;
 use crate::contact_law::ContactLaw;
 use crate::fit::{FittedLaw, RangeStatus};
-use crate::io::Case;
 use crate::method::Method;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};

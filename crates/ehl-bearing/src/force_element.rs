@@ -21,12 +21,12 @@ use crate::bearing::{cage_speed_of, Bearing, ForceResult};
 use crate::bearing::{
     BearingError, BearingModel, ContactLaws, DynamicForce, Kinematics, Race, RaceControl,
 };
+use crate::case::Case;
 use crate::characterize::{
     BearingCharacterization, CharacterizationReport, CharacterizeError, ContactRow,
 };
 use crate::contact_law::ContactLaw;
 use crate::fit::FittedLaw;
-use crate::io::Case;
 use crate::trends::{RaceTrends, SpeedLaws, TrendModel};
 use serde::Serialize;
 use std::sync::Arc;

@@ -30,8 +30,9 @@
 //! - starvation: not estimated (the case files describe no oil supply).
 
 use crate::bearing::{ContactState, Race};
+use crate::case::Case;
+pub use crate::case::{RingOils, Roughness};
 use crate::ehl::formulas::{hamrock_dowson_central, hamrock_dowson_min};
-use crate::io::Case;
 use crate::material::reduced_modulus;
 use serde::{Deserialize, Serialize};
 
@@ -41,43 +42,6 @@ pub const LAMBDA_WARN: f64 = 1.5;
 pub const LAMBDA_INVALID: f64 = 1.0;
 /// Thermal film reduction above which a warning is given (fraction).
 pub const THERMAL_WARN: f64 = 0.10;
-
-/// A described oil's constants at the inner and outer ring temperatures
-/// (`operating.inner_ring_temperature_c`, `operating.outer_ring_temperature_c`): each raceway's
-/// figures use its ring's; the EHL solves and laws use the oil at `operating.temperature_c`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct RingOils {
-    /// At the inner ring's temperature.
-    pub inner: crate::oil::OilProperties,
-    /// At the outer ring's temperature.
-    pub outer: crate::oil::OilProperties,
-}
-
-impl RingOils {
-    /// The oil of raceway `race`.
-    pub fn of(&self, race: Race) -> &crate::oil::OilProperties {
-        match race {
-            Race::Inner => &self.inner,
-            Race::Outer => &self.outer,
-        }
-    }
-}
-
-/// Surface roughness of balls and rings, m (RMS, Rq).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Roughness {
-    /// Ball roughness Rq, m.
-    pub ball_rq_m: f64,
-    /// Raceway roughness Rq, m.
-    pub ring_rq_m: f64,
-}
-
-impl Roughness {
-    /// Composite roughness σ = √(Rq_ball² + Rq_race²), m.
-    pub fn composite(&self) -> f64 {
-        composite_roughness(self.ball_rq_m, self.ring_rq_m)
-    }
-}
 
 /// Composite roughness σ = √(Rq1² + Rq2²), in the unit of its arguments.
 pub fn composite_roughness(rq1: f64, rq2: f64) -> f64 {

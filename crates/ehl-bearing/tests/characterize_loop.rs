@@ -4,6 +4,7 @@
 //! reference method, independence of the number of threads, and the law cache.
 
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws, Race};
+use ehl_bearing::case::Case;
 use ehl_bearing::characterize::{
     characterization_json, characterize_bearing, BearingCharacterization, CharacterizeError,
     CharacterizeSettings, CharacterizedContact, ContactCharacterizer, ContactConditions,
@@ -11,7 +12,7 @@ use ehl_bearing::characterize::{
 };
 use ehl_bearing::contact_law::{ContactLaw, HertzLaw};
 use ehl_bearing::hertz::HertzGeometry;
-use ehl_bearing::io::{read_case, Case};
+use ehl_bearing::io::read_case;
 use std::sync::Arc;
 
 fn seed() -> Case {

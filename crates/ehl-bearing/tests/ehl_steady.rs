@@ -4,6 +4,7 @@
 mod seeded;
 use ehl_bearing::ehl::formulas::{nijenbanning_asymptotes, nijenbanning_central};
 use ehl_bearing::ehl::*;
+use ehl_bearing::io::contact as input;
 use ehl_bearing::material::Lubricant;
 
 fn barus(m: f64, l: f64, r: f64) -> MoesCase {

@@ -2,7 +2,8 @@
 //! data; the lubrication figures (crate::lubrication) against hand calculations from the cited
 //! formulas; the case-file keys, valid and invalid.
 
-use ehl_bearing::io::{parse_case, InputError};
+use ehl_bearing::case::InputError;
+use ehl_bearing::io::parse_case;
 use ehl_bearing::lubrication::{
     assess, composite_roughness, rated_viscosity_mm2_s, thermal_factor, thermal_loading,
 };
@@ -248,7 +249,7 @@ fn case(
     lubricant: &str,
     operating: &str,
     materials: &str,
-) -> Result<ehl_bearing::io::Case, InputError> {
+) -> Result<ehl_bearing::case::Case, InputError> {
     let text = format!(
         "{BEARING}\n{materials}\n[lubricant]\n{lubricant}\n[operating]\ninner_speed_rpm = 5000.0\nforce_axial_n = 1000.0\n{operating}\n"
     );
@@ -520,7 +521,7 @@ fn contact_files_refuse_descriptions_and_roughness() {
         "[lubricant]\niso_vg = 32",
         "[ball_material]\nroughness_rq_um = 0.02",
     ] {
-        let r = ehl_bearing::ehl::input::parse_contact_toml(&contact(extra));
+        let r = ehl_bearing::io::contact::parse_contact_toml(&contact(extra));
         let e = format!("{:?}", r.err());
         assert!(
             e.contains("iso_vg") || e.contains("roughness_rq_um"),

@@ -15,7 +15,6 @@
 
 pub mod deformation;
 pub mod formulas;
-pub mod input;
 mod multigrid;
 mod rheology;
 mod steady;

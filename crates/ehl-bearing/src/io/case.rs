@@ -61,65 +61,15 @@
 //!                                # model; README, "Modelling choices of the bearing model")
 //! ```
 
-use super::InputError;
 use crate::bearing::{
     Bearing, BearingGeometry, Control, EquilibriumSettings, Kinematics, OperatingPoint, RaceControl,
 };
-use crate::lubrication::{RingOils, Roughness};
+use crate::case::{Case, InputError, RingOils, Roughness};
 use crate::material::{DensityModel, Lubricant, Solid, ViscosityModel};
 use crate::oil::{BaseOil, OilDescription, OilProperties};
 use serde::Deserialize;
 use std::f64::consts::PI;
 use std::path::Path;
-
-/// A validated bearing case, in SI units.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Case {
-    /// Optional bearing name.
-    pub name: Option<String>,
-    /// Geometry and materials.
-    pub bearing: Bearing,
-    /// Lubricant (the default mineral oil when the file has no `[lubricant]`).
-    pub lubricant: Lubricant,
-    /// Whether the lubricant was given in the file (false: the default was used).
-    pub lubricant_given: bool,
-    /// The described lubricant's derived constants at the operating temperature, with their
-    /// sources (None: the lubricant is given by its constants or not at all).
-    pub oil: Option<OilProperties>,
-    /// Surface roughness of balls and rings (None: not given).
-    pub roughness: Option<Roughness>,
-    /// The described lubricant's constants at the inner and outer ring temperatures
-    /// (`operating.inner_ring_temperature_c`, `operating.outer_ring_temperature_c`; None: not
-    /// given). Used by the lubrication figures of each raceway's contacts only: the EHL solves
-    /// and laws use the oil at `operating.temperature_c` (docs/lubricant.md §3).
-    pub ring_oils: Option<RingOils>,
-    /// Speeds, loads and race control.
-    pub operating: OperatingPoint,
-    /// Equilibrium solver settings.
-    pub settings: EquilibriumSettings,
-    /// Characterization method given in the file (`method`, `[method_options]`), if any.
-    pub method: Option<crate::method::Method>,
-    /// The file's `[method_options]` table as given (so that a command-line override of the
-    /// method name can apply the same options).
-    pub method_options: Option<toml::Table>,
-}
-
-impl Case {
-    /// The method to characterize this case with: `name` if given (with the file's
-    /// `[method_options]` when `name` is the file's own method), else the file's method, else the
-    /// default (quasi-static).
-    pub fn method_or(
-        &self,
-        name: Option<&str>,
-    ) -> Result<crate::method::Method, crate::method::MethodError> {
-        match (name, &self.method) {
-            (Some(n), Some(m)) if n == m.name() => Ok(*m),
-            (Some(n), _) => crate::method::Method::parse(n, None),
-            (None, Some(m)) => Ok(*m),
-            (None, None) => Ok(crate::method::Method::default()),
-        }
-    }
-}
 
 /// A method error as an input error naming the key of the file.
 pub(crate) fn method_input_error(e: crate::method::MethodError) -> InputError {

@@ -11,8 +11,8 @@
 //! material's density (both optional; not both). Unknown keys are rejected; invalid values give
 //! an error naming the key, the value and the valid range.
 
-use super::{EhlContact, EhlError};
-use crate::io::case::{self, RawLubricant, RawSolid};
+use super::case::{self, RawLubricant, RawSolid};
+use crate::ehl::{EhlContact, EhlError};
 use crate::material::{reduced_modulus, Lubricant, Solid};
 use serde::Deserialize;
 
@@ -81,8 +81,8 @@ pub fn parse_contact_toml(text: &str) -> Result<EhlContact, EhlError> {
 
 /// Parses and validates a contact file's text, with the ball's mass if the file gives it.
 pub fn parse_contact_file(text: &str) -> Result<ContactFile, EhlError> {
-    let t: ContactToml = crate::io::from_toml(text, "contact file").map_err(|e| match e {
-        crate::io::InputError::Syntax { path, message } => {
+    let t: ContactToml = super::from_toml(text, "contact file").map_err(|e| match e {
+        crate::case::InputError::Syntax { path, message } => {
             EhlError::File(format!("{path}: {message}"))
         }
         e => EhlError::File(e.to_string()),
