@@ -101,7 +101,7 @@ fn lib_err(e: impl Into<ehl_bearing::Error>) -> Failure {
     let status = match &e {
         E::Input(_) | E::Method(_) | E::Fit(_) => EHL_ERR_INPUT,
         E::Characterize(C::Setting { .. } | C::Trend(_)) => EHL_ERR_INPUT,
-        E::Bearing(ehl_bearing::bearing::BearingError::Invalid(_)) => EHL_ERR_INPUT,
+        E::Bearing(b) if b.is_refused_input() => EHL_ERR_INPUT,
         _ => EHL_ERR_COMPUTE,
     };
     fail(status, e.to_string())

@@ -1085,7 +1085,7 @@ fn predicted_start(
         .map(|(c, _)| {
             if stop.load(Ordering::Relaxed) {
                 // The caller stopped the run: the loop returns Cancelled after the prediction.
-                return Err(crate::method::MethodError::Law("cancelled".into()).into());
+                return Err(crate::method::MethodError::Cancelled.into());
             }
             let r = predictor.predict(c);
             progress(Progress::ContactDone { iteration: 0 });

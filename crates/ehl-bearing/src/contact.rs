@@ -351,25 +351,23 @@ pub fn characterize_quasi_static(
 ) -> Result<ContactFit, Error> {
     let t0 = Instant::now();
     if !(s.amplitude.is_finite() && s.amplitude > 0.0 && s.amplitude <= 0.9) {
-        return Err(crate::fit::FitError::Invalid(format!(
-            "amplitude = {}: expected 0 < ε ≤ 0.9",
-            s.amplitude
-        ))
+        return Err(crate::fit::FitError::Setting {
+            name: "amplitude",
+            value: s.amplitude.to_string(),
+            expected: "0 < ε ≤ 0.9",
+        }
         .into());
     }
     if !(4..=101).contains(&s.points) {
-        return Err(crate::fit::FitError::Invalid(format!(
-            "points = {}: expected 4 to 101 steady solutions",
-            s.points
-        ))
+        return Err(crate::fit::FitError::Setting {
+            name: "points",
+            value: s.points.to_string(),
+            expected: "4 to 101 steady solutions",
+        }
         .into());
     }
     if s.film_extrapolation && s.ehl.grid > 513 {
-        return Err(invalid(format!(
-            "film_extrapolation needs the twice finer grid: grid = {}, expected grid ≤ 513 \
-             (the finest grid is 1025)",
-            s.ehl.grid
-        )));
+        return Err(crate::fit::FitError::ExtrapolationGrid { grid: s.ehl.grid }.into());
     }
     let n = s.points;
     let loads: Vec<f64> = (0..n)
@@ -625,10 +623,6 @@ impl Default for HarmonicSettings {
     }
 }
 
-fn invalid(msg: String) -> Error {
-    crate::fit::FitError::Invalid(msg).into()
-}
-
 /// A setting of [`HarmonicSettings`] outside its range: the name the library's message uses, the
 /// key a user writes in a case file's `[method_options]` (`crate::method::Method::validate`),
 /// the value (with its unit where it has one) and the valid range.
@@ -644,10 +638,12 @@ impl HarmonicSettings {
     /// Checks every setting; the error names the setting, its value and the valid range.
     pub fn validate(&self) -> Result<(), Error> {
         match self.violation() {
-            Some(v) => Err(invalid(format!(
-                "{} = {}: expected {}",
-                v.name, v.value, v.range
-            ))),
+            Some(v) => Err(crate::fit::FitError::Setting {
+                name: v.name,
+                value: v.value,
+                expected: v.range,
+            }
+            .into()),
             None => Ok(()),
         }
     }
@@ -828,9 +824,7 @@ pub fn characterize_harmonic(
     s.validate()?;
     let mass = s.mass.unwrap_or(ball_mass);
     if !(mass.is_finite() && mass > 0.0) {
-        return Err(invalid(format!(
-            "ball mass = {mass} kg: expected finite and > 0"
-        )));
+        return Err(crate::fit::FitError::BallMass { mass_kg: mass }.into());
     }
     // Steady start at w0 and the linearized stiffness from w0·(1 ± 5 %).
     let centre = solve_steady(c, &s.ehl)?;
@@ -855,11 +849,11 @@ pub fn characterize_harmonic(
     let (lo, hi) = (side(0.95)?, side(1.05)?);
     let k_lin = 0.1 * c.load / (hi.approach - lo.approach);
     if !(k_lin.is_finite() && k_lin > 0.0) {
-        return Err(invalid(format!(
-            "the EHL approach does not grow with the load around w0 = {} N (secant stiffness \
-             {k_lin:e} N/m): the contact runs in the hydrodynamic regime",
-            c.load
-        )));
+        return Err(crate::fit::FitError::NoElasticApproach {
+            load_n: c.load,
+            secant_stiffness_n_m: k_lin,
+        }
+        .into());
     }
     let omega_n = (k_lin / mass).sqrt();
     let omega_n_hertz = (1.5 * c.load / (mass * centre.approach_hertz)).sqrt();

@@ -44,9 +44,6 @@ pub enum EhlError {
         /// The valid range, in words.
         range: &'static str,
     },
-    /// A contact file could not be read or has an invalid entry.
-    #[error("{0}")]
-    File(String),
     /// The iteration produced non-finite numbers or blew up in every start, including the load
     /// and α continuations.
     #[error(

@@ -89,7 +89,9 @@ pub(crate) fn method_input_error(e: crate::method::MethodError) -> InputError {
             value: name,
             expected: format!("one of {}", Method::NAMES.join(", ")),
         },
-        MethodError::Law(m) => InputError::field("method", "", m),
+        e @ (MethodError::LawShortOfLoad { .. }
+        | MethodError::NoPredictor { .. }
+        | MethodError::Cancelled) => InputError::field("method", "", e.to_string()),
     }
 }
 

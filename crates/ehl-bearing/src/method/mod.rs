@@ -51,9 +51,21 @@ pub enum MethodError {
         /// The name given.
         name: String,
     },
-    /// A fitted or predicted law that cannot serve (e.g. does not reach its load).
-    #[error("{0}")]
-    Law(String),
+    /// A fitted law that does not reach the load of its contact.
+    #[error("the fitted law does not reach the load {load_n} N")]
+    LawShortOfLoad {
+        /// The contact's load, N.
+        load_n: f64,
+    },
+    /// A load prediction asked of a method that has none.
+    #[error("method {method} has no load predictor")]
+    NoPredictor {
+        /// The method's name.
+        method: &'static str,
+    },
+    /// The caller stopped the run.
+    #[error("cancelled")]
+    Cancelled,
 }
 
 impl MethodError {
@@ -371,12 +383,9 @@ fn fit_samples(
 ) -> Result<CharacterizedContact, crate::Error> {
     let fit = fit_power_law(delta, q, &FitOptions::default())?;
     let law = fit.law()?;
-    let approach = law.approach_at(c.load).ok_or_else(|| {
-        MethodError::Law(format!(
-            "the fitted law does not reach the load {} N",
-            c.load
-        ))
-    })?;
+    let approach = law
+        .approach_at(c.load)
+        .ok_or_else(|| MethodError::LawShortOfLoad { load_n: c.load })?;
     let moes = c.moes();
     Ok(CharacterizedContact {
         law,
@@ -1027,7 +1036,10 @@ impl LoadPredictor for Method {
         match self {
             Method::QuasiStatic(s) => predict_steady(c, &s.ehl),
             Method::Harmonic(s) => predict_steady(c, &s.ehl),
-            other => Err(MethodError::Law(format!("method {other} has no load predictor")).into()),
+            other => Err(MethodError::NoPredictor {
+                method: other.name(),
+            }
+            .into()),
         }
     }
 }
