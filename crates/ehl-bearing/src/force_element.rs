@@ -214,9 +214,7 @@ fn prepare(
 
 fn solve(state: &mut ElementState, input: &ElementInput) -> Result<DynamicForce, BearingError> {
     let ElementState { model, warm, .. } = state;
-    let model = model
-        .as_ref()
-        .ok_or_else(|| BearingError::StateWithoutModel)?;
+    let model = model.as_ref().ok_or(BearingError::StateWithoutModel)?;
     // A failed solve must not poison the warm starts.
     let mut trial = warm.clone();
     let out = model.evaluate_dynamic(&input.displacement, &input.velocity, &mut trial)?;
@@ -825,7 +823,7 @@ impl LoadInterpolatedLaw {
         let compliance = |law: &FittedLaw, w: f64| -> Result<(f64, f64), crate::Error> {
             let delta = law
                 .approach_at(w)
-                .ok_or_else(|| BearingError::LawLoadUnreached { load_n: w })?;
+                .ok_or(BearingError::LawLoadUnreached { load_n: w })?;
             let stiffness = law.force(delta).1;
             if !(stiffness.is_finite() && stiffness > 0.0) {
                 return Err(BearingError::LawStiffness {

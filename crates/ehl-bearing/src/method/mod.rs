@@ -385,7 +385,7 @@ fn fit_samples(
     let law = fit.law()?;
     let approach = law
         .approach_at(c.load)
-        .ok_or_else(|| MethodError::LawShortOfLoad { load_n: c.load })?;
+        .ok_or(MethodError::LawShortOfLoad { load_n: c.load })?;
     let moes = c.moes();
     Ok(CharacterizedContact {
         law,
