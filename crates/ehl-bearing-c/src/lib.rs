@@ -518,7 +518,7 @@ pub unsafe extern "C" fn ehl_characterize(
         let m = case.method_or(method).map_err(lib_err)?;
         let settings = CharacterizeSettings::default();
         let ch = with_progress(progress, user, |report, cancel| {
-            characterize_bearing_with_control(case, &m, &settings, &|p| {
+            characterize_bearing_with_control(case, &m, &settings, None, &|p| {
                 report(p.to_json());
                 go_on(cancel)
             })

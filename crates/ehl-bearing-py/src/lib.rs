@@ -436,20 +436,20 @@ fn characterize(
     let progress = callable(py, progress, "progress")?;
     let c = case.case.clone();
     let m = method_of(&c, method)?;
-    let mut settings = CharacterizeSettings::default();
+    let settings = CharacterizeSettings::default();
+    let mut deadline = None;
     if let Some(t) = time_limit_s {
-        settings.deadline = Some(ehl_bearing::budget::Deadline::after_seconds(t).ok_or_else(
-            || {
-                err(format!(
-                    "time_limit_s = {t}: expected a finite number of seconds > 0 (at most a year)"
-                ))
-            },
-        )?);
+        deadline = Some(ehl_bearing::budget::Deadline::after_seconds(t).ok_or_else(|| {
+            err(format!(
+                "time_limit_s = {t}: expected a finite number of seconds > 0 (at most a year)"
+            ))
+        })?);
     }
-    let m = m.with_deadline(settings.deadline);
     let control = Control::new(progress);
     let r = py.allow_threads(|| {
-        characterize_bearing_with_control(&c, &m, &settings, &|p| control.event(p.to_json()))
+        characterize_bearing_with_control(&c, &m, &settings, deadline, &|p| {
+            control.event(p.to_json())
+        })
     });
     control.finish()?;
     Ok(Characterization {

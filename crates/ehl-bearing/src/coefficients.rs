@@ -118,7 +118,8 @@ pub fn from_characterization(
     let mut out = Vec::with_capacity(speeds_rpm.len());
     for (i, &rpm) in speeds_rpm.iter().enumerate() {
         let c = at_speed(case, rpm);
-        let ch = characterize_bearing_with_control(&c, method, settings, &|p| progress(i, p))?;
+        let ch =
+            characterize_bearing_with_control(&c, method, settings, None, &|p| progress(i, p))?;
         let element = LawElement::from_characterization(&c, &ch)?;
         let input = ElementInput::at(
             ch.equilibrium.displacement,

@@ -13,9 +13,10 @@
 //! is below its bound, records the (δ, δ̇, ∬p dA) history over the recorded periods, and fits
 //! Q = K·δ^d + ΔF (+ c·δ̇) to it. See `docs/contact.md`.
 
+use crate::budget::Deadline;
 use crate::ehl::{
-    solve_steady, solve_steady_extrapolated, solve_steady_from, EhlContact, EhlSettings,
-    EhlSolution, TransientSolver, TransientStep,
+    solve_steady_extrapolated_within, solve_steady_from_within, solve_steady_within, EhlContact,
+    EhlSettings, EhlSolution, TransientSolver, TransientStep,
 };
 use crate::fit::{fit_power_law, fit_power_law_damped, FitOptions, FittedLaw, PowerLawStdErrors};
 use crate::Error;
@@ -349,6 +350,16 @@ pub fn characterize_quasi_static(
     c: &EhlContact,
     s: &QuasiStaticSettings,
 ) -> Result<ContactFit, Error> {
+    characterize_quasi_static_within(c, s, None)
+}
+
+/// [`characterize_quasi_static`] within a wall-time budget: every EHL solve checks `deadline`
+/// (None: no budget) and ends with [`crate::ehl::EhlError::TimeLimit`] once it has passed.
+pub fn characterize_quasi_static_within(
+    c: &EhlContact,
+    s: &QuasiStaticSettings,
+    deadline: Option<Deadline>,
+) -> Result<ContactFit, Error> {
     let t0 = Instant::now();
     if !(s.amplitude.is_finite() && s.amplitude > 0.0 && s.amplitude <= 0.9) {
         return Err(crate::fit::FitError::Setting {
@@ -382,7 +393,7 @@ pub fn characterize_quasi_static(
         load: loads[mid],
         ..*c
     };
-    let centre = solve_steady(&c_mid, &s.ehl)?;
+    let centre = solve_steady_within(&c_mid, &s.ehl, deadline)?;
     // One domain for the whole family: the automatic inlet depends on the load (through Moes M,
     // with a kink at M = 1000), so a family solved on per-load domains carries a discretization
     // error that changes shape along it, which the fit absorbs into d and ΔF (measured in
@@ -398,10 +409,14 @@ pub fn characterize_quasi_static(
             ..*c
         };
         let sol = match sols.get(before).and_then(|x| x.as_ref()) {
-            Some(e) => {
-                solve_steady_extrapolated(&ck, &ehl, (prev, loads[from]), (e, loads[before]))?
-            }
-            _ => solve_steady_from(&ck, &ehl, prev)?,
+            Some(e) => solve_steady_extrapolated_within(
+                &ck,
+                &ehl,
+                (prev, loads[from]),
+                (e, loads[before]),
+                deadline,
+            )?,
+            _ => solve_steady_from_within(&ck, &ehl, prev, deadline)?,
         };
         sols[k] = Some(sol);
     }
@@ -427,7 +442,7 @@ pub fn characterize_quasi_static(
     let law = fit.law()?;
     let centre = &sols[mid];
     let film = if s.film_extrapolation {
-        Some(film_estimate(&c_mid, &ehl, centre)?)
+        Some(film_estimate(&c_mid, &ehl, centre, deadline)?)
     } else {
         None
     };
@@ -467,16 +482,18 @@ fn film_estimate(
     c: &EhlContact,
     ehl: &EhlSettings,
     centre: &EhlSolution,
+    deadline: Option<Deadline>,
 ) -> Result<FilmEstimate, Error> {
     let t0 = Instant::now();
     let grid_fine = 2 * ehl.grid - 1;
-    let fine = solve_steady_from(
+    let fine = solve_steady_from_within(
         c,
         &EhlSettings {
             grid: grid_fine,
             ..*ehl
         },
         centre,
+        deadline,
     )?;
     // (extrapolated value, size of the correction) from the fine and the coarse value.
     let rich =
@@ -779,6 +796,7 @@ fn peak_start(
     mass: f64,
     omega: f64,
     k_lin: f64,
+    deadline: Option<Deadline>,
 ) -> Option<(EhlSolution, f64)> {
     let delta_a = amplitude * c.load / (k_lin - mass * omega * omega);
     let load = c.load * (1.0 + amplitude) + mass * omega * omega * delta_a;
@@ -793,7 +811,8 @@ fn peak_start(
         half_width: Some(half_width * scale),
         ..*ehl
     };
-    let mut sol = solve_steady_from(&EhlContact { load, ..*c }, &settings, warm).ok()?;
+    let mut sol =
+        solve_steady_from_within(&EhlContact { load, ..*c }, &settings, warm, deadline).ok()?;
     let (x0, x1) = (centre.fields.x.first()?, sol.fields.x.first()?);
     if !sol.converged
         || sol.fields.x.len() != centre.fields.x.len()
@@ -820,6 +839,18 @@ pub fn characterize_harmonic(
     ball_mass: f64,
     s: &HarmonicSettings,
 ) -> Result<ContactFit, Error> {
+    characterize_harmonic_within(c, ball_mass, s, None)
+}
+
+/// [`characterize_harmonic`] within a wall-time budget: every EHL solve and every transient
+/// step checks `deadline` (None: no budget) and ends with [`crate::ehl::EhlError::TimeLimit`]
+/// once it has passed.
+pub fn characterize_harmonic_within(
+    c: &EhlContact,
+    ball_mass: f64,
+    s: &HarmonicSettings,
+    deadline: Option<Deadline>,
+) -> Result<ContactFit, Error> {
     let t0 = Instant::now();
     s.validate()?;
     let mass = s.mass.unwrap_or(ball_mass);
@@ -827,7 +858,7 @@ pub fn characterize_harmonic(
         return Err(crate::fit::FitError::BallMass { mass_kg: mass }.into());
     }
     // Steady start at w0 and the linearized stiffness from w0·(1 ± 5 %).
-    let centre = solve_steady(c, &s.ehl)?;
+    let centre = solve_steady_within(c, &s.ehl, deadline)?;
     if !centre.converged {
         return Err(crate::ehl::EhlError::NotConverged {
             stage: "steady start of the harmonic method",
@@ -837,13 +868,14 @@ pub fn characterize_harmonic(
         .into());
     }
     let side = |f: f64| {
-        solve_steady_from(
+        solve_steady_from_within(
             &EhlContact {
                 load: c.load * f,
                 ..*c
             },
             &s.ehl,
             &centre,
+            deadline,
         )
     };
     let (lo, hi) = (side(0.95)?, side(1.05)?);
@@ -888,7 +920,17 @@ pub fn characterize_harmonic(
     // period settles it (docs/contact.md). Otherwise, or if that solution fails: the steady
     // solution at w0 with the quasi-static rate δ̇(0) = ε·w0·Ω/k (phase 0 of w0·(1 + ε·sin Ωt)).
     let peak = if omega < 0.7 * omega_n {
-        peak_start(c, &s.ehl, &centre, &hi, s.amplitude, mass, omega, k_lin)
+        peak_start(
+            c,
+            &s.ehl,
+            &centre,
+            &hi,
+            s.amplitude,
+            mass,
+            omega,
+            k_lin,
+            deadline,
+        )
     } else {
         None
     };
@@ -917,7 +959,8 @@ pub fn characterize_harmonic(
             s.amplitude * c.load * omega / k_lin,
             s.max_cycles_per_step,
         )?,
-    };
+    }
+    .with_deadline(deadline);
     // Settling: a quarter period, then a sixteenth of a period at a time while the measured
     // periodicity exceeds its bound. The first `settling` steps are never recorded: they run at
     // the settling film tolerance.

@@ -676,7 +676,7 @@ fn converged_solution_does_not_depend_on_the_start() {
     ];
     let x: Vec<EhlSolution> = starts
         .iter()
-        .map(|st| solve_steady_starts(&c, &s, &[*st]).unwrap())
+        .map(|st| solve_steady_starts(&c, &s, &[*st], None).unwrap())
         .collect();
     for (st, a) in starts.iter().zip(&x) {
         println!(

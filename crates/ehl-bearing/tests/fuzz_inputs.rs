@@ -448,12 +448,12 @@ fn run_contact(text: &str) -> (Outcome, String) {
         grid: 17,
         coarsest: 9,
         max_cycles: 8,
-        deadline: ehl_bearing::budget::Deadline::after_seconds(EHL_BUDGET_S),
         ..Default::default()
     };
+    let deadline = ehl_bearing::budget::Deadline::after_seconds(EHL_BUDGET_S);
     // One start (the solver's first, with its cycle limit): the ladder of fallbacks is
     // exercised by the property tests of tests/ehl_edges.rs.
-    match solve_steady_starts(&file.contact, &s, &[StartStrategy::Given]) {
+    match solve_steady_starts(&file.contact, &s, &[StartStrategy::Given], deadline) {
         Err(ehl_bearing::ehl::EhlError::TimeLimit { .. }) => {
             (Outcome::TimeLimit, "time limit".into())
         }

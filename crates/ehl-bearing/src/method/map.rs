@@ -6,6 +6,7 @@ use super::{
     CharacterizedContact, ContactCharacterizer, ContactConditions, MapSettings, Method,
     QuasiStaticCharacterizer,
 };
+use crate::budget::Deadline;
 use crate::law_map::{hertz_deflection, LawGroups, LawMap};
 use crate::ContactLaw;
 use std::time::Instant;
@@ -28,7 +29,11 @@ pub struct MapCharacterizer {
 }
 
 impl ContactCharacterizer for MapCharacterizer {
-    fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error> {
+    fn characterize(
+        &self,
+        c: &ContactConditions,
+        deadline: Option<Deadline>,
+    ) -> Result<CharacterizedContact, crate::Error> {
         let t0 = Instant::now();
         let ehl = c.ehl_contact();
         let groups = LawGroups::of(&ehl)?;
@@ -38,7 +43,7 @@ impl ContactCharacterizer for MapCharacterizer {
                 let mut r = QuasiStaticCharacterizer {
                     settings: LawMap::embedded().spec.settings(),
                 }
-                .characterize(c)?;
+                .characterize(c, deadline)?;
                 r.method = format!("quasi-static (outside the map: {e})");
                 return Ok(r);
             }

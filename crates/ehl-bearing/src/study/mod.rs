@@ -38,8 +38,8 @@ pub use point::{
     POINTS_CSV_HEADER, POINTS_CSV_LUBRICATION_HEADER,
 };
 pub use runner::{
-    finish_study, merge_points, run_point, run_study, LubricationExtreme, LubricationSummary,
-    RunOptions, StudyError, StudyEvent, StudyOutputs, StudyRun,
+    finish_study, merge_points, run_point, run_point_within, run_study, LubricationExtreme,
+    LubricationSummary, RunOptions, StudyError, StudyEvent, StudyOutputs, StudyRun,
 };
 pub use spec::{Shard, Study, StudyPoint};
 pub use store::{MemoryStore, PointStore, StoreError};
