@@ -522,7 +522,7 @@ fn contact_files_refuse_descriptions_and_roughness() {
         "[ball_material]\nroughness_rq_um = 0.02",
     ] {
         let r = ehl_bearing::io::contact::parse_contact_toml(&contact(extra));
-        let e = format!("{:?}", r.err());
+        let e = r.err().map(|e| e.to_string()).unwrap_or_default();
         assert!(
             e.contains("iso_vg") || e.contains("roughness_rq_um"),
             "{extra}: {e}"

@@ -216,7 +216,37 @@ pub fn read_case(path: &Path) -> Result<Case, InputError> {
 /// Parse and validate case-file text; `origin` names the source in messages.
 pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
     let raw: RawCase = super::from_toml(text, origin)?;
-    let method = match (&raw.method, &raw.method_options) {
+    let method = case_method(&raw)?;
+    let b = &raw.bearing;
+    let geometry = geometry(b)?;
+    let ball_material = solid(raw.ball_material.as_ref(), "ball_material")?;
+    let ring_material = solid(raw.ring_material.as_ref(), "ring_material")?;
+    let (lubricant, lubricant_given, oil, ring_oils) = case_lubricant(&raw)?;
+    let roughness = roughness(raw.ball_material.as_ref(), raw.ring_material.as_ref())?;
+    let operating = operating(raw.operating.as_ref())?;
+    let settings = equilibrium_settings(&raw)?;
+    Ok(Case {
+        name: b.name.clone(),
+        bearing: Bearing {
+            geometry,
+            ball_material,
+            ring_material,
+        },
+        lubricant,
+        lubricant_given,
+        oil,
+        roughness,
+        ring_oils,
+        operating,
+        settings,
+        method,
+        method_options: raw.method_options.clone(),
+    })
+}
+
+/// The method of a case file (`method`, `[method_options]`), if given.
+fn case_method(raw: &RawCase) -> Result<Option<crate::method::Method>, InputError> {
+    Ok(match (&raw.method, &raw.method_options) {
         (Some(name), options) => Some(
             crate::method::Method::parse(name, options.as_ref()).map_err(method_input_error)?,
         ),
@@ -227,8 +257,11 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
             })
         }
         (None, None) => None,
-    };
-    let b = &raw.bearing;
+    })
+}
+
+/// The bearing's geometry from `[bearing]`.
+fn geometry(b: &RawBearing) -> Result<BearingGeometry, InputError> {
     let ball_count = require(
         b.ball_count,
         "bearing.ball_count",
@@ -330,10 +363,16 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
             ),
         ));
     }
-    let geometry = BearingGeometry::new(ball_count as usize, d * 1e-3, dm * 1e-3, fi, fo, alpha0)
-        .map_err(|e| InputError::field("bearing", "", e.to_string()))?;
-    let ball_material = solid(raw.ball_material.as_ref(), "ball_material")?;
-    let ring_material = solid(raw.ring_material.as_ref(), "ring_material")?;
+    BearingGeometry::new(ball_count as usize, d * 1e-3, dm * 1e-3, fi, fo, alpha0)
+        .map_err(|e| InputError::field("bearing", "", e.to_string()))
+}
+
+/// The lubricant (given, described at `operating.temperature_c`, or the default), whether the
+/// file gives it, the described oil's constants and those at the ring temperatures.
+#[allow(clippy::type_complexity)]
+fn case_lubricant(
+    raw: &RawCase,
+) -> Result<(Lubricant, bool, Option<OilProperties>, Option<RingOils>), InputError> {
     let temperature = raw.operating.as_ref().and_then(|o| o.temperature_c);
     let ring_temperatures = ring_temperatures(raw.operating.as_ref())?;
     let (lubricant, lubricant_given, oil, ring_oils) = match raw.lubricant.as_ref() {
@@ -397,10 +436,14 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
              docs/lubricant.md) for the temperature to matter",
         ));
     }
-    let roughness = roughness(raw.ball_material.as_ref(), raw.ring_material.as_ref())?;
-    let operating = operating(raw.operating.as_ref())?;
+    Ok((lubricant, lubricant_given, oil, ring_oils))
+}
+
+/// The equilibrium solver's settings from `[equilibrium]` (a bearing given by its clearance is a
+/// deep-groove bearing: shoulders on both sides).
+fn equilibrium_settings(raw: &RawCase) -> Result<EquilibriumSettings, InputError> {
     let mut settings = EquilibriumSettings::default();
-    if b.diametral_clearance_mm.is_some() {
+    if raw.bearing.diametral_clearance_mm.is_some() {
         // Given by its clearance: a deep-groove bearing, shoulders on both sides.
         settings.min_contact_angle = -PI / 2.0;
     }
@@ -449,23 +492,7 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
             settings.max_iterations = n as usize;
         }
     }
-    Ok(Case {
-        name: b.name.clone(),
-        bearing: Bearing {
-            geometry,
-            ball_material,
-            ring_material,
-        },
-        lubricant,
-        lubricant_given,
-        oil,
-        roughness,
-        ring_oils,
-        operating,
-        settings,
-        method,
-        method_options: raw.method_options.clone(),
-    })
+    Ok(settings)
 }
 
 fn require<T>(v: Option<T>, key: &str, hint: &str) -> Result<T, InputError> {
@@ -606,8 +633,6 @@ fn roughness(
     }
 }
 
-/// A described lubricant (grade or viscosities, base oil, density at 15 °C) at `t_c` °C: the
-/// constants for the models and their derivation.
 /// The inner and outer ring temperatures of `[operating]`, °C: both or neither.
 fn ring_temperatures(raw: Option<&RawOperating>) -> Result<Option<(f64, f64)>, InputError> {
     let Some(o) = raw else { return Ok(None) };
@@ -650,24 +675,23 @@ fn oil_at(desc: &OilDescription, t_c: f64, key: &str) -> Result<OilProperties, I
     })
 }
 
-fn described_lubricant(
-    r: &RawLubricant,
-    t_c: f64,
-) -> Result<(Lubricant, OilProperties, OilDescription), InputError> {
+/// An oil error of a described lubricant's key `lubricant.{k}`.
+fn oil_err(e: crate::oil::OilError, k: &str) -> InputError {
+    match e {
+        crate::oil::OilError::Range {
+            value, expected, ..
+        } => InputError::field(&format!("lubricant.{k}"), value, expected),
+        crate::oil::OilError::Missing { quantity, hint } => InputError::Missing {
+            field: quantity,
+            hint,
+        },
+    }
+}
+
+/// A described lubricant's kinematic viscosities at 40 °C and 100 °C, mm²/s: ν40 from the ISO
+/// grade or given, ν100 given or from the viscosity index (ASTM D2270).
+fn described_viscosities(r: &RawLubricant) -> Result<(f64, f64), InputError> {
     let key = |k: &str| format!("lubricant.{k}");
-    let first = r.description_key().unwrap_or("iso_vg");
-    if r.viscosity_pa_s.is_some() {
-        return Err(InputError::Conflict {
-            first: key("viscosity_pa_s"),
-            second: key(first),
-        });
-    }
-    if r.density_kg_m3.is_some() {
-        return Err(InputError::Conflict {
-            first: key("density_kg_m3"),
-            second: key(first),
-        });
-    }
     let nu40 = match (r.iso_vg, r.viscosity_40c_mm2_s) {
         (Some(_), Some(_)) => {
             return Err(InputError::Conflict {
@@ -709,15 +733,6 @@ fn described_lubricant(
             v
         }
     };
-    let oil_err = |e: crate::oil::OilError, k: &str| match e {
-        crate::oil::OilError::Range {
-            value, expected, ..
-        } => InputError::field(&key(k), value, expected),
-        crate::oil::OilError::Missing { quantity, hint } => InputError::Missing {
-            field: quantity,
-            hint,
-        },
-    };
     let nu100 = match (r.viscosity_100c_mm2_s, r.viscosity_index) {
         (Some(_), Some(_)) => {
             return Err(InputError::Conflict {
@@ -747,6 +762,30 @@ fn described_lubricant(
             crate::oil::nu100_from_vi(nu40, vi).map_err(|e| oil_err(e, "viscosity_index"))?
         }
     };
+    Ok((nu40, nu100))
+}
+
+/// A described lubricant (grade or viscosities, base oil, density at 15 °C) at `t_c` °C: the
+/// constants for the models and their derivation.
+fn described_lubricant(
+    r: &RawLubricant,
+    t_c: f64,
+) -> Result<(Lubricant, OilProperties, OilDescription), InputError> {
+    let key = |k: &str| format!("lubricant.{k}");
+    let first = r.description_key().unwrap_or("iso_vg");
+    if r.viscosity_pa_s.is_some() {
+        return Err(InputError::Conflict {
+            first: key("viscosity_pa_s"),
+            second: key(first),
+        });
+    }
+    if r.density_kg_m3.is_some() {
+        return Err(InputError::Conflict {
+            first: key("density_kg_m3"),
+            second: key(first),
+        });
+    }
+    let (nu40, nu100) = described_viscosities(r)?;
     let base_oil = match &r.base_oil {
         None => BaseOil::Mineral,
         Some(b) => BaseOil::parse(b).ok_or_else(|| {
