@@ -930,57 +930,6 @@ fn operating(raw: Option<&RawOperating>) -> Result<OperatingPoint, InputError> {
         outer_ring_temperature_c: None,
     };
     let o = raw.unwrap_or(&empty);
-    let rpm = PI / 30.0;
-    let speed = |v: Option<f64>, key: &str| -> Result<f64, InputError> {
-        let s = v.unwrap_or(0.0);
-        if s.is_finite() && s.abs() <= 1e6 {
-            Ok(s * rpm)
-        } else {
-            Err(InputError::field(key, s, "a speed from −1e6 to 1e6 rpm"))
-        }
-    };
-    // (load key, load unit, load→SI factor, displacement key, unit, displacement→SI factor)
-    let dof = |load: Option<f64>,
-               lkey: &str,
-               lunit: &str,
-               disp: Option<f64>,
-               dkey: &str,
-               dunit: &str,
-               dfac: f64|
-     -> Result<Control, InputError> {
-        match (load, disp) {
-            (Some(_), Some(_)) => Err(InputError::Conflict {
-                first: format!("operating.{lkey}"),
-                second: format!("operating.{dkey}"),
-            }),
-            (Some(f), None) => Ok(Control::Load(finite(
-                f,
-                &format!("operating.{lkey}"),
-                lunit,
-            )?)),
-            (None, Some(x)) => {
-                let x = finite(x, &format!("operating.{dkey}"), dunit)?;
-                Ok(Control::Displacement(x * dfac))
-            }
-            (None, None) => Ok(Control::Load(0.0)),
-        }
-    };
-    let tilt_limit = |c: Control, key: &str| match c {
-        Control::Displacement(t) if t.abs() > 1f64.to_radians() => Err(InputError::field(
-            &format!("operating.{key}"),
-            t.to_degrees(),
-            "a tilt within ±1 degree (the model assumes small rotations)",
-        )),
-        _ => Ok(c),
-    };
-    let disp_limit = |c: Control, key: &str| match c {
-        Control::Displacement(x) if x.abs() > 1e-3 => Err(InputError::field(
-            &format!("operating.{key}"),
-            x * 1e3,
-            "a displacement within ±1 mm",
-        )),
-        _ => Ok(c),
-    };
     Ok(OperatingPoint {
         inner_speed: speed(o.inner_speed_rpm, "operating.inner_speed_rpm")?,
         outer_speed: speed(o.outer_speed_rpm, "operating.outer_speed_rpm")?,
@@ -1048,4 +997,68 @@ fn operating(raw: Option<&RawOperating>) -> Result<OperatingPoint, InputError> {
         ],
         race_control: o.race_control.unwrap_or_default(),
     })
+}
+
+/// A ring speed of `[operating]` in rpm (absent: 0) → rad/s.
+fn speed(v: Option<f64>, key: &str) -> Result<f64, InputError> {
+    let rpm = PI / 30.0;
+    let s = v.unwrap_or(0.0);
+    if s.is_finite() && s.abs() <= 1e6 {
+        Ok(s * rpm)
+    } else {
+        Err(InputError::field(key, s, "a speed from −1e6 to 1e6 rpm"))
+    }
+}
+
+/// One degree of freedom of `[operating]`: its load (key `lkey`, unit `lunit`) or its
+/// displacement (key `dkey`, unit `dunit`, `dfac` to SI), not both; neither is a load of 0.
+fn dof(
+    load: Option<f64>,
+    lkey: &str,
+    lunit: &str,
+    disp: Option<f64>,
+    dkey: &str,
+    dunit: &str,
+    dfac: f64,
+) -> Result<Control, InputError> {
+    match (load, disp) {
+        (Some(_), Some(_)) => Err(InputError::Conflict {
+            first: format!("operating.{lkey}"),
+            second: format!("operating.{dkey}"),
+        }),
+        (Some(f), None) => Ok(Control::Load(finite(
+            f,
+            &format!("operating.{lkey}"),
+            lunit,
+        )?)),
+        (None, Some(x)) => {
+            let x = finite(x, &format!("operating.{dkey}"), dunit)?;
+            Ok(Control::Displacement(x * dfac))
+        }
+        (None, None) => Ok(Control::Load(0.0)),
+    }
+}
+
+/// An imposed tilt within ±1 degree (the model assumes small rotations).
+fn tilt_limit(c: Control, key: &str) -> Result<Control, InputError> {
+    match c {
+        Control::Displacement(t) if t.abs() > 1f64.to_radians() => Err(InputError::field(
+            &format!("operating.{key}"),
+            t.to_degrees(),
+            "a tilt within ±1 degree (the model assumes small rotations)",
+        )),
+        _ => Ok(c),
+    }
+}
+
+/// An imposed displacement within ±1 mm.
+fn disp_limit(c: Control, key: &str) -> Result<Control, InputError> {
+    match c {
+        Control::Displacement(x) if x.abs() > 1e-3 => Err(InputError::field(
+            &format!("operating.{key}"),
+            x * 1e3,
+            "a displacement within ±1 mm",
+        )),
+        _ => Ok(c),
+    }
 }
