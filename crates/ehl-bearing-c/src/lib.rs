@@ -11,6 +11,7 @@
 #![allow(clippy::missing_safety_doc)] // The header states each function's contract.
 
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws};
+use ehl_bearing::case::Case;
 use ehl_bearing::characterize::{
     characterization_json, characterize_bearing_with_control, BearingCharacterization,
     CharacterizationReport, CharacterizeSettings,
@@ -18,7 +19,7 @@ use ehl_bearing::characterize::{
 use ehl_bearing::force_element::{
     ElementInput, ElementState, ForceElement, LawElement, TrendForceElement,
 };
-use ehl_bearing::io::{parse_case, read_case, Case};
+use ehl_bearing::io::{parse_case, read_case};
 use std::cell::RefCell;
 use std::ffi::{c_char, c_int, c_void, CStr, CString};
 use std::ops::ControlFlow;
@@ -100,7 +101,7 @@ fn lib_err(e: impl Into<ehl_bearing::Error>) -> Failure {
     let status = match &e {
         E::Input(_) | E::Method(_) | E::Fit(_) => EHL_ERR_INPUT,
         E::Characterize(C::Setting { .. } | C::Trend(_)) => EHL_ERR_INPUT,
-        E::Bearing(ehl_bearing::bearing::BearingError::Invalid(_)) => EHL_ERR_INPUT,
+        E::Bearing(b) if b.is_refused_input() => EHL_ERR_INPUT,
         _ => EHL_ERR_COMPUTE,
     };
     fail(status, e.to_string())
@@ -320,7 +321,7 @@ pub unsafe extern "C" fn ehl_case_with_inner_speed_rpm(
                 EHL_ERR_INPUT,
                 format!(
                     "with_inner_speed_rpm({}): {e}",
-                    ehl_bearing::io::number_text(rpm)
+                    ehl_bearing::case::number_text(rpm)
                 ),
             )
         })?;
@@ -517,7 +518,7 @@ pub unsafe extern "C" fn ehl_characterize(
         let m = case.method_or(method).map_err(lib_err)?;
         let settings = CharacterizeSettings::default();
         let ch = with_progress(progress, user, |report, cancel| {
-            characterize_bearing_with_control(case, &m, &settings, &|p| {
+            characterize_bearing_with_control(case, &m, &settings, None, &|p| {
                 report(p.to_json());
                 go_on(cancel)
             })

@@ -20,11 +20,12 @@
 //! - `summary synthetic converged iterations q[5] K[25]`: the characterization's summary.
 
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws};
+use ehl_bearing::case::Case;
 use ehl_bearing::characterize::{characterize_bearing, CharacterizeSettings};
 use ehl_bearing::force_element::{
     ElementInput, ElementState, ForceElement, LawElement, TrendForceElement,
 };
-use ehl_bearing::io::{read_case, Case};
+use ehl_bearing::io::read_case;
 use std::fmt::Write;
 use std::path::Path;
 

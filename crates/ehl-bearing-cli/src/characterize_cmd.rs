@@ -6,12 +6,13 @@ use crate::cli_support::{
     with_threads, write_atomic,
 };
 use anyhow::{bail, Context};
+use ehl_bearing::case::Case;
 use ehl_bearing::characterize::{
     characterization_json, characterize_bearing_with_progress, BearingCharacterization,
     CharacterizeSettings, ContactRow, LawSource,
 };
 use ehl_bearing::contact::{HarmonicSettings, QuasiStaticSettings};
-use ehl_bearing::io::{read_case, Case};
+use ehl_bearing::io::read_case;
 use ehl_bearing::method::{HertzCharacterizer, Method, SyntheticCharacterizer};
 use serde_json::Value;
 use std::path::PathBuf;
@@ -143,7 +144,7 @@ pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
     let ch = case
         .method_or(args.method.as_deref())
         .map_err(|e| anyhow::anyhow!("--method: {e}"))?;
-    let ch = with_amplitude(ch, args.amplitude)?.with_deadline(deadline);
+    let ch = with_amplitude(ch, args.amplitude)?;
     if let Some(dir) = &args.output {
         check_output_dir(dir, "-o")?;
     }
@@ -155,13 +156,12 @@ pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
         min_load_fraction: args.min_load_fraction,
         load_reuse_tolerance: args.load_reuse_tolerance,
         predict_loads: !args.no_load_prediction,
-        deadline,
         ..CharacterizeSettings::default()
     };
     let multi = progress_container();
     let (bar, callback) = contact_progress(&multi);
     let c = with_threads(args.threads, || {
-        characterize_bearing_with_progress(&case, &ch, &settings, &callback)
+        characterize_bearing_with_progress(&case, &ch, &settings, deadline, &callback)
             .map_err(|e| anyhow::anyhow!(option_names(&e.to_string())))
             .with_context(|| format!("characterizing {}", args.case.display()))
     });

@@ -4,9 +4,9 @@
 
 use anyhow::{bail, Context};
 use ehl_bearing::budget::Deadline;
+use ehl_bearing::case::Case;
 use ehl_bearing::characterize::Progress;
 pub use ehl_bearing::io::write_atomic;
-use ehl_bearing::io::Case;
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 

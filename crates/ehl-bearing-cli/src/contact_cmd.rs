@@ -2,8 +2,9 @@
 //! characterize one lubricated contact by the law Q = K·δ^d + ΔF.
 
 use anyhow::{bail, Context, Result};
-use ehl_bearing::contact::{characterize_harmonic, characterize_quasi_static, ContactFit};
-use ehl_bearing::ehl;
+use ehl_bearing::contact::{
+    characterize_harmonic_within, characterize_quasi_static_within, ContactFit,
+};
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
@@ -329,7 +330,7 @@ fn refuse_options(options: &[(bool, &str)], scope: &str) -> Result<()> {
 /// Run `contact`.
 pub fn run(args: &ContactArgs) -> Result<()> {
     let text = ehl_bearing::io::read_text(&args.contact)?;
-    let file = ehl::input::parse_contact_file(&text)
+    let file = ehl_bearing::io::contact::parse_contact_file(&text)
         .with_context(|| format!("in {}", args.contact.display()))?;
     let c = file.contact;
     let deadline = crate::cli_support::deadline(args.time_limit)?;
@@ -372,7 +373,6 @@ pub fn run(args: &ContactArgs) -> Result<()> {
             method_of(args)?
         }
     };
-    let method = method.with_deadline(deadline);
     if let Some(g) = method.grid() {
         let s = ehl_bearing::ehl::EhlSettings {
             grid: g,
@@ -392,7 +392,7 @@ pub fn run(args: &ContactArgs) -> Result<()> {
                     args.contact.display()
                 ),
             };
-            characterize_harmonic(&c, mass, &s).map_err(option_names)?
+            characterize_harmonic_within(&c, mass, &s, deadline).map_err(option_names)?
         }
         ehl_bearing::method::Method::QuasiStatic(s) => {
             // The estimate needs the twice finer grid: none beyond 513² (1025 is the finest).
@@ -400,7 +400,7 @@ pub fn run(args: &ContactArgs) -> Result<()> {
                 film_extrapolation: !args.no_film_extrapolation && s.ehl.grid <= 513,
                 ..s
             };
-            characterize_quasi_static(&c, &s).map_err(option_names)?
+            characterize_quasi_static_within(&c, &s, deadline).map_err(option_names)?
         }
         other => bail!("method {other} does not characterize a single contact"),
     };

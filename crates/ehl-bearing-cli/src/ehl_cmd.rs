@@ -232,10 +232,10 @@ pub fn write_fields(r: &EhlSolution, dir: &Path) -> Result<()> {
 
 /// Runs `ehl-bearing ehl`.
 pub fn run(args: &EhlArgs) -> Result<()> {
-    let mut s = settings(args);
+    let s = settings(args);
     s.validate()
         .context("--grid, --inlet, --half-width or --max-cycles")?;
-    s.deadline = crate::cli_support::deadline(args.time_limit)?;
+    let deadline = crate::cli_support::deadline(args.time_limit)?;
     if let Some(dir) = &args.fields {
         crate::cli_support::check_output_dir(dir, "--fields")?;
     }
@@ -244,14 +244,14 @@ pub fn run(args: &EhlArgs) -> Result<()> {
     let result = match (&args.contact, args.moes_m, args.moes_l) {
         (Some(path), _, _) => {
             let text = ehl_bearing::io::read_text(path)?;
-            let c = ehl::input::parse_contact_toml(&text)
+            let c = ehl_bearing::io::contact::parse_contact_toml(&text)
                 .with_context(|| format!("in {}", path.display()))?;
             for w in ehl_bearing::plausibility::check_contact(&c)
                 .with_context(|| format!("{}: outside what the models describe", path.display()))?
             {
                 eprintln!("warning: {}: {w}", path.display());
             }
-            ehl::solve_steady(&c, &s)?
+            ehl::solve_steady_within(&c, &s, deadline)?
         }
         (None, Some(m), Some(l)) => {
             let case = MoesCase::new(
@@ -267,7 +267,7 @@ pub fn run(args: &EhlArgs) -> Result<()> {
                     DensityArg::Incompressible => DensityModel::Incompressible,
                 },
             );
-            ehl::solve_moes(&case, &s).with_context(|| {
+            ehl::solve_moes_within(&case, &s, deadline).with_context(|| {
                 format!("--moes-m {m} --moes-l {l} --ry-over-rx {}", args.ry_over_rx)
             })?
         }

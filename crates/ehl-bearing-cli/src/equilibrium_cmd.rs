@@ -2,7 +2,8 @@
 
 use anyhow::Context;
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws, Control, Equilibrium, Race, DOF_NAMES};
-use ehl_bearing::io::{json::equilibrium_json, read_case, Case};
+use ehl_bearing::case::Case;
+use ehl_bearing::io::{json::equilibrium_json, read_case};
 use std::path::PathBuf;
 
 /// Arguments of `equilibrium`.

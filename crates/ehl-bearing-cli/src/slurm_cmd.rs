@@ -5,7 +5,8 @@
 //! points to compute.
 
 use crate::progress;
-use ehl_bearing::study::{read_study, Study};
+use ehl_bearing::io::read_study;
+use ehl_bearing::study::Study;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

@@ -18,10 +18,10 @@
 use crate::cli_support::{contact_progress, progress_container, with_threads};
 use crate::progress;
 use anyhow::Context;
-use ehl_bearing::io::FsStore;
+use ehl_bearing::io::{read_study, FsStore};
 use ehl_bearing::study::{
-    finish_study, merge_points, read_study, run_study, PointStore, ResultRow, RunOptions, Shard,
-    Study, StudyEvent, StudyOutputs, TrendModel,
+    finish_study, merge_points, run_study, PointStore, ResultRow, RunOptions, Shard, Study,
+    StudyEvent, StudyOutputs, TrendModel,
 };
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;

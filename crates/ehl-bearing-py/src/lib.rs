@@ -15,9 +15,10 @@ use ehl_bearing::characterize::{
 use ehl_bearing::force_element::{
     ElementInput, ElementOutput, ElementState, ForceElement, LawElement, TrendForceElement,
 };
-use ehl_bearing::io::{json::equilibrium_json, parse_case, read_case, Case, FsStore};
+use ehl_bearing::case::Case;
+use ehl_bearing::io::{json::equilibrium_json, parse_case, read_case, read_study, FsStore};
 use ehl_bearing::study::{
-    finish_study, points_csv, read_study, results_csv, run_study, RunOptions, StudyEvent,
+    finish_study, points_csv, results_csv, run_study, RunOptions, StudyEvent,
 };
 use numpy::{
     AllowTypeChange, PyArray1, PyArray2, PyArrayLike1, PyReadonlyArray1, PyReadonlyArray2,
@@ -249,7 +250,7 @@ impl PyCase {
         ehl_bearing::plausibility::check_case(&c).map_err(|e| {
             err(format!(
                 "with_inner_speed_rpm({}): {e}",
-                ehl_bearing::io::number_text(rpm)
+                ehl_bearing::case::number_text(rpm)
             ))
         })?;
         Ok(PyCase { case: c })
@@ -295,7 +296,8 @@ fn ehl(
     grid: Option<usize>,
     fields: bool,
 ) -> PyResult<PyObject> {
-    use ehl_bearing::ehl::{input::parse_contact_file, solve_steady, EhlSettings};
+    use ehl_bearing::ehl::{solve_steady, EhlSettings};
+    use ehl_bearing::io::contact::parse_contact_file;
     let file = parse_contact_file(contact_toml).map_err(err)?;
     let mut s = EhlSettings::default();
     if let Some(g) = grid {
@@ -327,7 +329,7 @@ fn contact(
     film_extrapolation: bool,
 ) -> PyResult<PyObject> {
     use ehl_bearing::contact::{characterize_harmonic, characterize_quasi_static};
-    use ehl_bearing::ehl::input::parse_contact_file;
+    use ehl_bearing::io::contact::parse_contact_file;
     use ehl_bearing::method::Method;
     let file = parse_contact_file(contact_toml).map_err(err)?;
     let m = Method::parse(method, None).map_err(err)?;
@@ -434,20 +436,20 @@ fn characterize(
     let progress = callable(py, progress, "progress")?;
     let c = case.case.clone();
     let m = method_of(&c, method)?;
-    let mut settings = CharacterizeSettings::default();
+    let settings = CharacterizeSettings::default();
+    let mut deadline = None;
     if let Some(t) = time_limit_s {
-        settings.deadline = Some(ehl_bearing::budget::Deadline::after_seconds(t).ok_or_else(
-            || {
-                err(format!(
-                    "time_limit_s = {t}: expected a finite number of seconds > 0 (at most a year)"
-                ))
-            },
-        )?);
+        deadline = Some(ehl_bearing::budget::Deadline::after_seconds(t).ok_or_else(|| {
+            err(format!(
+                "time_limit_s = {t}: expected a finite number of seconds > 0 (at most a year)"
+            ))
+        })?);
     }
-    let m = m.with_deadline(settings.deadline);
     let control = Control::new(progress);
     let r = py.allow_threads(|| {
-        characterize_bearing_with_control(&c, &m, &settings, &|p| control.event(p.to_json()))
+        characterize_bearing_with_control(&c, &m, &settings, deadline, &|p| {
+            control.event(p.to_json())
+        })
     });
     control.finish()?;
     Ok(Characterization {

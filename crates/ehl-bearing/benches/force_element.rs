@@ -11,7 +11,8 @@ use ehl_bearing::force_element::{
     ElementInput, ElementState, ForceElement, LawElement, TrendForceElement,
 };
 use ehl_bearing::io::parse_case;
-use ehl_bearing::study::{fit_trends, parse_study, run_point};
+use ehl_bearing::io::parse_study;
+use ehl_bearing::study::{fit_trends, run_point};
 use std::path::Path;
 
 const SEED: &str = include_str!("../../../examples/7006.toml");

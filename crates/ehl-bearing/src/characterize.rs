@@ -27,9 +27,10 @@
 use crate::bearing::{
     solve_equilibrium, BearingError, ContactLaws, ContactState, Equilibrium, Race,
 };
+use crate::budget::Deadline;
+use crate::case::Case;
 use crate::contact_law::ContactLaw;
 use crate::fit::{FittedLaw, RangeStatus};
-use crate::io::Case;
 use crate::method::Method;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -81,7 +82,8 @@ pub enum CharacterizeError {
         /// hydrodynamic regime, the load floor `min_load_fraction` with its value.
         hint: String,
     },
-    /// The wall-time budget ([`CharacterizeSettings::deadline`]) ran out.
+    /// The wall-time budget (the `deadline` argument of [`characterize_bearing_with_control`])
+    /// ran out.
     #[error(
         "characterization stopped at its time limit of {limit_s} s after {seconds:.1} s and \
          {iterations} finished iterations (largest relative load change after each: {})",
@@ -192,11 +194,6 @@ pub struct CharacterizeSettings {
     /// Start the loop from loads predicted with the method's [`ContactCharacterizer::predictor`]
     /// laws instead of the dry Hertz loads, when the method offers a predictor (default true).
     pub predict_loads: bool,
-    /// Wall-time budget of the loop (default none), checked before every iteration; when it has
-    /// passed the loop ends with [`CharacterizeError::TimeLimit`]. The EHL solves inside take
-    /// theirs from the method ([`crate::method::Method::with_deadline`]). Not serialized.
-    #[serde(skip)]
-    pub deadline: Option<crate::budget::Deadline>,
 }
 
 impl Default for CharacterizeSettings {
@@ -209,7 +206,6 @@ impl Default for CharacterizeSettings {
             error_if_not_converged: false,
             load_reuse_tolerance: 0.01,
             predict_loads: true,
-            deadline: None,
         }
     }
 }
@@ -596,7 +592,7 @@ pub fn characterize_bearing(
     ch: &dyn ContactCharacterizer,
     settings: &CharacterizeSettings,
 ) -> Result<BearingCharacterization, CharacterizeError> {
-    characterize_bearing_with_progress(case, ch, settings, &|_| {})
+    characterize_bearing_with_progress(case, ch, settings, None, &|_| {})
 }
 
 /// Progress of [`characterize_bearing_with_progress`] (for progress bars; no effect on results).
@@ -650,14 +646,16 @@ impl Progress {
     }
 }
 
-/// As [`characterize_bearing`], calling `progress` as contacts and iterations finish.
+/// As [`characterize_bearing`], within the wall-time budget `deadline` (None: none; see
+/// [`characterize_bearing_with_control`]), calling `progress` as contacts and iterations finish.
 pub fn characterize_bearing_with_progress(
     case: &Case,
     ch: &dyn ContactCharacterizer,
     settings: &CharacterizeSettings,
+    deadline: Option<Deadline>,
     progress: &(dyn Fn(Progress) + Sync),
 ) -> Result<BearingCharacterization, CharacterizeError> {
-    characterize_bearing_with_control(case, ch, settings, &|p| {
+    characterize_bearing_with_control(case, ch, settings, deadline, &|p| {
         progress(p);
         ControlFlow::Continue(())
     })
@@ -668,12 +666,17 @@ pub fn characterize_bearing_with_progress(
 /// starts and the call
 /// returns [`CharacterizeError::Cancelled`] as soon as those already running finish (a contact
 /// takes up to seconds by the quasi-static method, tens of seconds by the harmonic one; bound
-/// them with [`CharacterizeSettings::deadline`]). Callers use it for a cancel button, Ctrl-C, or
-/// an exception raised in a Python or C callback.
+/// them with `deadline`). Callers use it for a cancel button, Ctrl-C, or an exception raised in a
+/// Python or C callback.
+///
+/// `deadline` is the run's wall-time budget (None: none): the loop checks it before every
+/// iteration and ends with [`CharacterizeError::TimeLimit`] once it has passed; the contacts'
+/// characterizations and load predictions get it too (their EHL solves stop at it).
 pub fn characterize_bearing_with_control(
     case: &Case,
     ch: &dyn ContactCharacterizer,
     settings: &CharacterizeSettings,
+    deadline: Option<Deadline>,
     control: &(dyn Fn(Progress) -> ControlFlow<()> + Sync),
 ) -> Result<BearingCharacterization, CharacterizeError> {
     let stop = AtomicBool::new(false);
@@ -689,7 +692,15 @@ pub fn characterize_bearing_with_control(
     let dry = solve_equilibrium(&case.bearing, &dry_laws, &case.operating, &case.settings)
         .map_err(CharacterizeError::DryEquilibrium)?;
     let (start, prediction) = if settings.predict_loads {
-        predicted_start(case, ch, settings, &dry_laws, &dry, (progress, &stop))
+        predicted_start(
+            case,
+            ch,
+            settings,
+            &dry_laws,
+            &dry,
+            (progress, &stop),
+            deadline,
+        )
     } else {
         (None, None)
     };
@@ -705,7 +716,7 @@ pub fn characterize_bearing_with_control(
     let mut contacts: Vec<LoopContact> = Vec::new();
     for iteration in 1..=settings.max_iterations {
         cancelled.check(iteration, history.len(), t0)?;
-        if let Some(d) = settings.deadline.filter(|d| d.expired()) {
+        if let Some(d) = deadline.filter(|d| d.expired()) {
             return Err(CharacterizeError::TimeLimit {
                 limit_s: d.limit_seconds(),
                 seconds: d.elapsed_seconds(),
@@ -728,7 +739,15 @@ pub fn characterize_bearing_with_control(
             fraction: settings.min_load_fraction,
             largest: contact_loads(&eq).into_iter().fold(0.0_f64, f64::max),
         };
-        let fresh = characterize_runs(ch, &conds, &runs, (iteration, floor), progress, &stop);
+        let fresh = characterize_runs(
+            ch,
+            &conds,
+            &runs,
+            (iteration, floor),
+            progress,
+            &stop,
+            deadline,
+        );
         cancelled.check(iteration, history.len(), t0)?;
         let mut fresh = fresh.into_iter().collect::<Result<Vec<_>, _>>()?;
         let assembled = assemble_laws(&plan, &fresh, &cache, &conds, &keys, iteration, floor)?;
@@ -902,6 +921,7 @@ fn characterize_runs(
     (iteration, floor): (usize, LoadFloor),
     progress: &(dyn Fn(Progress) + Sync),
     stop: &AtomicBool,
+    deadline: Option<Deadline>,
 ) -> Vec<Result<Option<CharacterizedContact>, CharacterizeError>> {
     let results: Vec<Option<Result<CharacterizedContact, crate::Error>>> = runs
         .par_iter()
@@ -909,7 +929,7 @@ fn characterize_runs(
             if stop.load(Ordering::Relaxed) {
                 return None;
             }
-            let r = ch.characterize(&conds[i].0);
+            let r = ch.characterize(&conds[i].0, deadline);
             progress(Progress::ContactDone { iteration });
             Some(r)
         })
@@ -1079,6 +1099,7 @@ fn predicted_start(
     dry_laws: &ContactLaws,
     dry: &Equilibrium,
     (progress, stop): (&(dyn Fn(Progress) + Sync), &AtomicBool),
+    deadline: Option<Deadline>,
 ) -> (Option<Equilibrium>, Option<PredictionRecord>) {
     let t0 = Instant::now();
     let Some(predictor) = ch.predictor() else {
@@ -1094,9 +1115,9 @@ fn predicted_start(
         .map(|(c, _)| {
             if stop.load(Ordering::Relaxed) {
                 // The caller stopped the run: the loop returns Cancelled after the prediction.
-                return Err(crate::method::MethodError::Law("cancelled".into()).into());
+                return Err(crate::method::MethodError::Cancelled.into());
             }
-            let r = predictor.predict(c);
+            let r = predictor.predict(c, deadline);
             progress(Progress::ContactDone { iteration: 0 });
             r
         })

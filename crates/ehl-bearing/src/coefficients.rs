@@ -14,11 +14,11 @@
 //! kxx = K_yy, kxy = K_yz, kyx = K_zy, kyy = K_zz, kzz = K_xx, and likewise for C.
 
 use crate::bearing::{solve_equilibrium, ContactLaws, Control};
+use crate::case::Case;
 use crate::characterize::{
     characterize_bearing_with_control, CharacterizeSettings, ContactCharacterizer, Progress,
 };
 use crate::force_element::{ElementInput, ElementState, ForceElement, LawElement};
-use crate::io::Case;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::ops::ControlFlow;
@@ -66,11 +66,11 @@ pub const MAX_SPEEDS: usize = 1000;
 fn check_speeds(case: &Case, speeds_rpm: &[f64]) -> Result<(), crate::Error> {
     if speeds_rpm.is_empty() {
         return Err(
-            crate::io::InputError::field("speeds", "[]", "at least one speed in rpm").into(),
+            crate::case::InputError::field("speeds", "[]", "at least one speed in rpm").into(),
         );
     }
     if speeds_rpm.len() > MAX_SPEEDS {
-        return Err(crate::io::InputError::field(
+        return Err(crate::case::InputError::field(
             "speeds",
             format!("{} values", speeds_rpm.len()),
             format!("at most {MAX_SPEEDS} speeds (each is a characterization)"),
@@ -79,7 +79,7 @@ fn check_speeds(case: &Case, speeds_rpm: &[f64]) -> Result<(), crate::Error> {
     }
     for (i, &n) in speeds_rpm.iter().enumerate() {
         if !(n.is_finite() && n.abs() <= 1e6) {
-            return Err(crate::io::InputError::field(
+            return Err(crate::case::InputError::field(
                 &format!("speeds[{i}]"),
                 n,
                 "a finite speed in rpm, |n| ≤ 1e6",
@@ -88,11 +88,11 @@ fn check_speeds(case: &Case, speeds_rpm: &[f64]) -> Result<(), crate::Error> {
         }
         match crate::plausibility::check_case(&at_speed(case, n)) {
             Ok(_) => {}
-            Err(crate::io::InputError::Field {
+            Err(crate::case::InputError::Field {
                 field, expected, ..
             }) if field == "operating.inner_speed_rpm" => {
                 return Err(
-                    crate::io::InputError::field(&format!("speeds[{i}]"), n, expected).into(),
+                    crate::case::InputError::field(&format!("speeds[{i}]"), n, expected).into(),
                 )
             }
             Err(e) => return Err(e.into()),
@@ -118,7 +118,8 @@ pub fn from_characterization(
     let mut out = Vec::with_capacity(speeds_rpm.len());
     for (i, &rpm) in speeds_rpm.iter().enumerate() {
         let c = at_speed(case, rpm);
-        let ch = characterize_bearing_with_control(&c, method, settings, &|p| progress(i, p))?;
+        let ch =
+            characterize_bearing_with_control(&c, method, settings, None, &|p| progress(i, p))?;
         let element = LawElement::from_characterization(&c, &ch)?;
         let input = ElementInput::at(
             ch.equilibrium.displacement,

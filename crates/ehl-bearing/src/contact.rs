@@ -13,9 +13,10 @@
 //! is below its bound, records the (δ, δ̇, ∬p dA) history over the recorded periods, and fits
 //! Q = K·δ^d + ΔF (+ c·δ̇) to it. See `docs/contact.md`.
 
+use crate::budget::Deadline;
 use crate::ehl::{
-    solve_steady, solve_steady_extrapolated, solve_steady_from, EhlContact, EhlSettings,
-    EhlSolution, TransientSolver, TransientStep,
+    solve_steady_extrapolated_within, solve_steady_from_within, solve_steady_within, EhlContact,
+    EhlSettings, EhlSolution, TransientSolver, TransientStep,
 };
 use crate::fit::{fit_power_law, fit_power_law_damped, FitOptions, FittedLaw, PowerLawStdErrors};
 use crate::Error;
@@ -349,27 +350,35 @@ pub fn characterize_quasi_static(
     c: &EhlContact,
     s: &QuasiStaticSettings,
 ) -> Result<ContactFit, Error> {
+    characterize_quasi_static_within(c, s, None)
+}
+
+/// [`characterize_quasi_static`] within a wall-time budget: every EHL solve checks `deadline`
+/// (None: no budget) and ends with [`crate::ehl::EhlError::TimeLimit`] once it has passed.
+pub fn characterize_quasi_static_within(
+    c: &EhlContact,
+    s: &QuasiStaticSettings,
+    deadline: Option<Deadline>,
+) -> Result<ContactFit, Error> {
     let t0 = Instant::now();
     if !(s.amplitude.is_finite() && s.amplitude > 0.0 && s.amplitude <= 0.9) {
-        return Err(crate::fit::FitError::Invalid(format!(
-            "amplitude = {}: expected 0 < ε ≤ 0.9",
-            s.amplitude
-        ))
+        return Err(crate::fit::FitError::Setting {
+            name: "amplitude",
+            value: s.amplitude.to_string(),
+            expected: "0 < ε ≤ 0.9",
+        }
         .into());
     }
     if !(4..=101).contains(&s.points) {
-        return Err(crate::fit::FitError::Invalid(format!(
-            "points = {}: expected 4 to 101 steady solutions",
-            s.points
-        ))
+        return Err(crate::fit::FitError::Setting {
+            name: "points",
+            value: s.points.to_string(),
+            expected: "4 to 101 steady solutions",
+        }
         .into());
     }
     if s.film_extrapolation && s.ehl.grid > 513 {
-        return Err(invalid(format!(
-            "film_extrapolation needs the twice finer grid: grid = {}, expected grid ≤ 513 \
-             (the finest grid is 1025)",
-            s.ehl.grid
-        )));
+        return Err(crate::fit::FitError::ExtrapolationGrid { grid: s.ehl.grid }.into());
     }
     let n = s.points;
     let loads: Vec<f64> = (0..n)
@@ -384,7 +393,7 @@ pub fn characterize_quasi_static(
         load: loads[mid],
         ..*c
     };
-    let centre = solve_steady(&c_mid, &s.ehl)?;
+    let centre = solve_steady_within(&c_mid, &s.ehl, deadline)?;
     // One domain for the whole family: the automatic inlet depends on the load (through Moes M,
     // with a kink at M = 1000), so a family solved on per-load domains carries a discretization
     // error that changes shape along it, which the fit absorbs into d and ΔF (measured in
@@ -400,10 +409,14 @@ pub fn characterize_quasi_static(
             ..*c
         };
         let sol = match sols.get(before).and_then(|x| x.as_ref()) {
-            Some(e) => {
-                solve_steady_extrapolated(&ck, &ehl, (prev, loads[from]), (e, loads[before]))?
-            }
-            _ => solve_steady_from(&ck, &ehl, prev)?,
+            Some(e) => solve_steady_extrapolated_within(
+                &ck,
+                &ehl,
+                (prev, loads[from]),
+                (e, loads[before]),
+                deadline,
+            )?,
+            _ => solve_steady_from_within(&ck, &ehl, prev, deadline)?,
         };
         sols[k] = Some(sol);
     }
@@ -429,7 +442,7 @@ pub fn characterize_quasi_static(
     let law = fit.law()?;
     let centre = &sols[mid];
     let film = if s.film_extrapolation {
-        Some(film_estimate(&c_mid, &ehl, centre)?)
+        Some(film_estimate(&c_mid, &ehl, centre, deadline)?)
     } else {
         None
     };
@@ -469,16 +482,18 @@ fn film_estimate(
     c: &EhlContact,
     ehl: &EhlSettings,
     centre: &EhlSolution,
+    deadline: Option<Deadline>,
 ) -> Result<FilmEstimate, Error> {
     let t0 = Instant::now();
     let grid_fine = 2 * ehl.grid - 1;
-    let fine = solve_steady_from(
+    let fine = solve_steady_from_within(
         c,
         &EhlSettings {
             grid: grid_fine,
             ..*ehl
         },
         centre,
+        deadline,
     )?;
     // (extrapolated value, size of the correction) from the fine and the coarse value.
     let rich =
@@ -625,10 +640,6 @@ impl Default for HarmonicSettings {
     }
 }
 
-fn invalid(msg: String) -> Error {
-    crate::fit::FitError::Invalid(msg).into()
-}
-
 /// A setting of [`HarmonicSettings`] outside its range: the name the library's message uses, the
 /// key a user writes in a case file's `[method_options]` (`crate::method::Method::validate`),
 /// the value (with its unit where it has one) and the valid range.
@@ -644,10 +655,12 @@ impl HarmonicSettings {
     /// Checks every setting; the error names the setting, its value and the valid range.
     pub fn validate(&self) -> Result<(), Error> {
         match self.violation() {
-            Some(v) => Err(invalid(format!(
-                "{} = {}: expected {}",
-                v.name, v.value, v.range
-            ))),
+            Some(v) => Err(crate::fit::FitError::Setting {
+                name: v.name,
+                value: v.value,
+                expected: v.range,
+            }
+            .into()),
             None => Ok(()),
         }
     }
@@ -783,6 +796,7 @@ fn peak_start(
     mass: f64,
     omega: f64,
     k_lin: f64,
+    deadline: Option<Deadline>,
 ) -> Option<(EhlSolution, f64)> {
     let delta_a = amplitude * c.load / (k_lin - mass * omega * omega);
     let load = c.load * (1.0 + amplitude) + mass * omega * omega * delta_a;
@@ -797,7 +811,8 @@ fn peak_start(
         half_width: Some(half_width * scale),
         ..*ehl
     };
-    let mut sol = solve_steady_from(&EhlContact { load, ..*c }, &settings, warm).ok()?;
+    let mut sol =
+        solve_steady_from_within(&EhlContact { load, ..*c }, &settings, warm, deadline).ok()?;
     let (x0, x1) = (centre.fields.x.first()?, sol.fields.x.first()?);
     if !sol.converged
         || sol.fields.x.len() != centre.fields.x.len()
@@ -824,16 +839,26 @@ pub fn characterize_harmonic(
     ball_mass: f64,
     s: &HarmonicSettings,
 ) -> Result<ContactFit, Error> {
+    characterize_harmonic_within(c, ball_mass, s, None)
+}
+
+/// [`characterize_harmonic`] within a wall-time budget: every EHL solve and every transient
+/// step checks `deadline` (None: no budget) and ends with [`crate::ehl::EhlError::TimeLimit`]
+/// once it has passed.
+pub fn characterize_harmonic_within(
+    c: &EhlContact,
+    ball_mass: f64,
+    s: &HarmonicSettings,
+    deadline: Option<Deadline>,
+) -> Result<ContactFit, Error> {
     let t0 = Instant::now();
     s.validate()?;
     let mass = s.mass.unwrap_or(ball_mass);
     if !(mass.is_finite() && mass > 0.0) {
-        return Err(invalid(format!(
-            "ball mass = {mass} kg: expected finite and > 0"
-        )));
+        return Err(crate::fit::FitError::BallMass { mass_kg: mass }.into());
     }
     // Steady start at w0 and the linearized stiffness from w0·(1 ± 5 %).
-    let centre = solve_steady(c, &s.ehl)?;
+    let centre = solve_steady_within(c, &s.ehl, deadline)?;
     if !centre.converged {
         return Err(crate::ehl::EhlError::NotConverged {
             stage: "steady start of the harmonic method",
@@ -843,23 +868,24 @@ pub fn characterize_harmonic(
         .into());
     }
     let side = |f: f64| {
-        solve_steady_from(
+        solve_steady_from_within(
             &EhlContact {
                 load: c.load * f,
                 ..*c
             },
             &s.ehl,
             &centre,
+            deadline,
         )
     };
     let (lo, hi) = (side(0.95)?, side(1.05)?);
     let k_lin = 0.1 * c.load / (hi.approach - lo.approach);
     if !(k_lin.is_finite() && k_lin > 0.0) {
-        return Err(invalid(format!(
-            "the EHL approach does not grow with the load around w0 = {} N (secant stiffness \
-             {k_lin:e} N/m): the contact runs in the hydrodynamic regime",
-            c.load
-        )));
+        return Err(crate::fit::FitError::NoElasticApproach {
+            load_n: c.load,
+            secant_stiffness_n_m: k_lin,
+        }
+        .into());
     }
     let omega_n = (k_lin / mass).sqrt();
     let omega_n_hertz = (1.5 * c.load / (mass * centre.approach_hertz)).sqrt();
@@ -894,7 +920,17 @@ pub fn characterize_harmonic(
     // period settles it (docs/contact.md). Otherwise, or if that solution fails: the steady
     // solution at w0 with the quasi-static rate δ̇(0) = ε·w0·Ω/k (phase 0 of w0·(1 + ε·sin Ωt)).
     let peak = if omega < 0.7 * omega_n {
-        peak_start(c, &s.ehl, &centre, &hi, s.amplitude, mass, omega, k_lin)
+        peak_start(
+            c,
+            &s.ehl,
+            &centre,
+            &hi,
+            s.amplitude,
+            mass,
+            omega,
+            k_lin,
+            deadline,
+        )
     } else {
         None
     };
@@ -923,7 +959,8 @@ pub fn characterize_harmonic(
             s.amplitude * c.load * omega / k_lin,
             s.max_cycles_per_step,
         )?,
-    };
+    }
+    .with_deadline(deadline);
     // Settling: a quarter period, then a sixteenth of a period at a time while the measured
     // periodicity exceeds its bound. The first `settling` steps are never recorded: they run at
     // the settling film tolerance.

@@ -13,7 +13,7 @@ pub enum Error {
     Bearing(#[from] crate::bearing::BearingError),
     /// Case files and other inputs.
     #[error(transparent)]
-    Input(#[from] crate::io::InputError),
+    Input(#[from] crate::case::InputError),
     /// EHL contact solver.
     #[error(transparent)]
     Ehl(#[from] crate::ehl::EhlError),

@@ -31,9 +31,63 @@ pub use power_law::{
 /// Errors of the fit. Every variant names the offending input and carries its numbers.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum FitError {
-    /// Invalid input or settings not covered by a more specific variant.
-    #[error("invalid fit input: {0}")]
-    Invalid(String),
+    /// A setting of a characterization outside its range (the value with its unit).
+    #[error("invalid fit input: {name} = {value}: expected {expected}")]
+    Setting {
+        /// The setting, e.g. `amplitude`.
+        name: &'static str,
+        /// The value given, with its unit where it has one.
+        value: String,
+        /// The valid range.
+        expected: &'static str,
+    },
+    /// Film extrapolation asked for on a grid that has no twice finer grid.
+    #[error(
+        "invalid fit input: film_extrapolation needs the twice finer grid: grid = {grid}, \
+         expected grid ≤ 513 (the finest grid is 1025)"
+    )]
+    ExtrapolationGrid {
+        /// The grid given.
+        grid: usize,
+    },
+    /// A ball mass that is not finite and positive.
+    #[error("invalid fit input: ball mass = {mass_kg} kg: expected finite and > 0")]
+    BallMass {
+        /// The mass, kg.
+        mass_kg: f64,
+    },
+    /// The EHL approach does not grow with the load (hydrodynamic regime): no harmonic law.
+    #[error(
+        "invalid fit input: the EHL approach does not grow with the load around w0 = {load_n} N \
+         (secant stiffness {secant_stiffness_n_m:e} N/m): the contact runs in the hydrodynamic \
+         regime"
+    )]
+    NoElasticApproach {
+        /// Load w0, N.
+        load_n: f64,
+        /// Secant stiffness between 0.95·w0 and 1.05·w0, N/m.
+        secant_stiffness_n_m: f64,
+    },
+    /// Levenberg–Marquardt settings that are not finite and non-negative.
+    #[error(
+        "invalid fit input: Levenberg–Marquardt settings must be finite and non-negative with a \
+         positive initial damping: {settings:?}"
+    )]
+    LmSettings {
+        /// The settings given.
+        settings: crate::fit::lm::LmConvergence,
+    },
+    /// The start grid of the exponent d is empty or not finite.
+    #[error(
+        "invalid fit input: d_start_range must be finite with 0 < min ≤ max and d_grid_points ≥ \
+         2, got {d_start_range:?} and {d_grid_points}"
+    )]
+    DStartGrid {
+        /// The range given.
+        d_start_range: [f64; 2],
+        /// Grid points given.
+        d_grid_points: usize,
+    },
     /// Two input arrays that must have the same length do not.
     #[error("length mismatch in {what}: expected {expected}, found {found}")]
     LengthMismatch {
@@ -124,9 +178,84 @@ pub enum FitError {
         /// Root-mean-square residual at the last iterate, N.
         rms_residual: f64,
     },
-    /// Parameters that do not make a valid contact law.
-    #[error("invalid contact law: {0}")]
-    InvalidLaw(String),
+    /// A law parameter that is not finite.
+    #[error(
+        "invalid contact law: non-finite parameter: K = {k}, d = {d}, ΔF = {delta_f}, δ range \
+         [{delta_min}, {delta_max}] m, joint fraction {fraction}"
+    )]
+    LawNotFinite {
+        /// K, N/m^d.
+        k: f64,
+        /// d.
+        d: f64,
+        /// ΔF, N.
+        delta_f: f64,
+        /// δ_min, m.
+        delta_min: f64,
+        /// δ_max, m.
+        delta_max: f64,
+        /// Joint fraction.
+        fraction: f64,
+    },
+    /// K or d not positive.
+    #[error(
+        "invalid contact law: K = {k} N/m^d and d = {d} must be positive for an increasing law"
+    )]
+    LawNotIncreasing {
+        /// K, N/m^d.
+        k: f64,
+        /// d.
+        d: f64,
+    },
+    /// A fitted range that is not 0 < δ_min ≤ δ_max.
+    #[error(
+        "invalid contact law: fitted range [{delta_min}, {delta_max}] m must satisfy 0 < δ_min ≤ \
+         δ_max"
+    )]
+    LawRange {
+        /// δ_min, m.
+        delta_min: f64,
+        /// δ_max, m.
+        delta_max: f64,
+    },
+    /// A joint fraction outside (0, 1].
+    #[error("invalid contact law: joint fraction {fraction} must lie in (0, 1]")]
+    LawJointFraction {
+        /// The fraction given.
+        fraction: f64,
+    },
+    /// A law whose force at the smallest fitted approach is not positive.
+    #[error(
+        "invalid contact law: the law gives Q = {q_min} N ≤ 0 at the smallest fitted approach \
+         {delta_min} m (ΔF = {delta_f} N)"
+    )]
+    LawForceNotPositive {
+        /// Q(δ_min), N.
+        q_min: f64,
+        /// δ_min, m.
+        delta_min: f64,
+        /// ΔF, N.
+        delta_f: f64,
+    },
+    /// A degenerate exponential extension below the joint.
+    #[error(
+        "invalid contact law: degenerate extension at δ_j = {delta_joint} m: Q_j = {force_joint} \
+         N, s = {tail_rate} 1/m"
+    )]
+    LawExtension {
+        /// δ_j, m.
+        delta_joint: f64,
+        /// Q_j, N.
+        force_joint: f64,
+        /// Tail rate s, 1/m.
+        tail_rate: f64,
+    },
+    /// A damping coefficient that is not finite.
+    #[error("invalid contact law: damping c = {c} N·s/m is not finite")]
+    LawDamping {
+        /// c, N·s/m.
+        c: f64,
+    },
 }
 
 /// The message of [`FitError::HydrodynamicRegime`]. It names the method option as a case or

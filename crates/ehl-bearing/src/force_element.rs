@@ -21,12 +21,12 @@ use crate::bearing::{cage_speed_of, Bearing, ForceResult};
 use crate::bearing::{
     BearingError, BearingModel, ContactLaws, DynamicForce, Kinematics, Race, RaceControl,
 };
+use crate::case::Case;
 use crate::characterize::{
     BearingCharacterization, CharacterizationReport, CharacterizeError, ContactRow,
 };
 use crate::contact_law::ContactLaw;
 use crate::fit::FittedLaw;
-use crate::io::Case;
 use crate::trends::{RaceTrends, SpeedLaws, TrendModel};
 use serde::Serialize;
 use std::sync::Arc;
@@ -214,9 +214,7 @@ fn prepare(
 
 fn solve(state: &mut ElementState, input: &ElementInput) -> Result<DynamicForce, BearingError> {
     let ElementState { model, warm, .. } = state;
-    let model = model
-        .as_ref()
-        .ok_or_else(|| BearingError::Invalid("force element state without a model".into()))?;
+    let model = model.as_ref().ok_or(BearingError::StateWithoutModel)?;
     // A failed solve must not poison the warm starts.
     let mut trial = warm.clone();
     let out = model.evaluate_dynamic(&input.displacement, &input.velocity, &mut trial)?;
@@ -318,10 +316,10 @@ impl LawElement {
         bearing.validate()?;
         let z = bearing.geometry.ball_count;
         if laws.len() != 2 * z {
-            return Err(BearingError::Invalid(format!(
-                "{} contact laws given, the bearing has {z} balls (2·Z laws needed)",
-                laws.len()
-            ))
+            return Err(BearingError::ElementLawCount {
+                given: laws.len(),
+                balls: z,
+            }
             .into());
         }
         let pairs: Vec<[FittedLaw; 2]> = laws.chunks(2).map(|p| [p[0], p[1]]).collect();
@@ -376,10 +374,10 @@ impl LawElement {
                 "inner" => 0,
                 "outer" => 1,
                 other => {
-                    return Err(BearingError::Invalid(format!(
-                        "contact row of ball {}: race = {other:?}; expected \"inner\" or \"outer\"",
-                        row.ball
-                    ))
+                    return Err(BearingError::ContactRace {
+                        ball: row.ball,
+                        race: other.to_string(),
+                    }
                     .into())
                 }
             };
@@ -819,23 +817,19 @@ impl LoadInterpolatedLaw {
         pts.sort_by(|a, b| a.0.total_cmp(&b.0));
         pts.dedup_by(|b, a| b.0 - a.0 <= 1e-9 * b.0);
         let (Some(&(_, low)), Some(&(_, high))) = (pts.first(), pts.last()) else {
-            return Err(BearingError::Invalid(
-                "laws by load: no contact with a finite, positive characterization load".into(),
-            )
-            .into());
+            return Err(BearingError::NoLawLoad.into());
         };
         // Compliance dδ/dQ of `law` at load `w`, and its approach there.
         let compliance = |law: &FittedLaw, w: f64| -> Result<(f64, f64), crate::Error> {
-            let delta = law.approach_at(w).ok_or_else(|| {
-                BearingError::Invalid(format!(
-                    "laws by load: a law does not reach the load w = {w} N"
-                ))
-            })?;
+            let delta = law
+                .approach_at(w)
+                .ok_or(BearingError::LawLoadUnreached { load_n: w })?;
             let stiffness = law.force(delta).1;
             if !(stiffness.is_finite() && stiffness > 0.0) {
-                return Err(BearingError::Invalid(format!(
-                    "laws by load: dQ/dδ = {stiffness} N/m at w = {w} N; expected a finite, positive contact stiffness"
-                ))
+                return Err(BearingError::LawStiffness {
+                    stiffness_n_m: stiffness,
+                    load_n: w,
+                }
                 .into());
             }
             Ok((delta, 1.0 / stiffness))

@@ -16,6 +16,7 @@
 
 pub mod bearing;
 pub mod budget;
+pub mod case;
 pub mod characterize;
 pub mod coefficients;
 pub mod contact;
@@ -42,6 +43,7 @@ pub use error::{Error, Result};
 /// What a program that characterizes a bearing and uses it in a rotor model needs, in one import.
 pub mod prelude {
     pub use crate::bearing::{Bearing, RaceControl};
+    pub use crate::case::Case;
     pub use crate::characterize::{
         characterize_bearing, BearingCharacterization, CharacterizeSettings,
     };
@@ -50,9 +52,9 @@ pub mod prelude {
         ElementInput, ElementOutput, ElementState, ForceElement, LawElement, LoadInterpolatedLaw,
         TrendForceElement,
     };
-    pub use crate::io::{read_case, Case, FsStore};
+    pub use crate::io::{read_case, read_study, FsStore};
     pub use crate::method::Method;
-    pub use crate::study::{finish_study, read_study, run_study, RunOptions, Shard, Study};
+    pub use crate::study::{finish_study, run_study, RunOptions, Shard, Study};
 }
 
 // The README's Rust code blocks are compiled as doc tests.

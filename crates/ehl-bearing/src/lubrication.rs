@@ -35,13 +35,14 @@
 //!   central film and 1 + 3.34·[(Rx/b)²·h_min/Rx]^0.56 for the minimum film, and below it
 //!   h_s = h·((m − 1)/(m* − 1))^0.29 (central) and ^0.25 (minimum). A fit to starved EHL
 //!   solutions; checked here against this crate's own steady solver with the inlet boundary at m
-//!   (docs/lubricant.md §3: the solver gives 3–7 % of the flooded film more reduction for
-//!   m ≥ 1.25). The reduction reported is that of the minimum film; above [`STARVATION_WARN`] it
+//!   (docs/lubricant.md §3: minimum films within 0.03 of the flooded film for m ≥ 1.5; at
+//!   m ≤ 1.25 the solver reduces more). The reduction reported is that of the minimum film; above [`STARVATION_WARN`] it
 //!   is a warning, at m ≤ 1 (the meniscus inside the Hertzian contact) the contact is flagged.
 
 use crate::bearing::{ContactState, Race};
+use crate::case::Case;
+pub use crate::case::{RingOils, Roughness};
 use crate::ehl::formulas::{hamrock_dowson_central, hamrock_dowson_min};
-use crate::io::Case;
 use crate::material::reduced_modulus;
 use serde::{Deserialize, Serialize};
 
@@ -111,43 +112,6 @@ pub fn starvation(hc: f64, hmin: f64, rx: f64, b: f64, meniscus_m: f64) -> Starv
         reduction: 1.0 - fm,
         central_reduction: 1.0 - starvation_factor(m, mc, true),
         min_film_m: hmin * fm,
-    }
-}
-
-/// A described oil's constants at the inner and outer ring temperatures
-/// (`operating.inner_ring_temperature_c`, `operating.outer_ring_temperature_c`): each raceway's
-/// figures, EHL solves and laws use its ring's; κ uses the oil at `operating.temperature_c`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct RingOils {
-    /// At the inner ring's temperature.
-    pub inner: crate::oil::OilProperties,
-    /// At the outer ring's temperature.
-    pub outer: crate::oil::OilProperties,
-}
-
-impl RingOils {
-    /// The oil of raceway `race`.
-    pub fn of(&self, race: Race) -> &crate::oil::OilProperties {
-        match race {
-            Race::Inner => &self.inner,
-            Race::Outer => &self.outer,
-        }
-    }
-}
-
-/// Surface roughness of balls and rings, m (RMS, Rq).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Roughness {
-    /// Ball roughness Rq, m.
-    pub ball_rq_m: f64,
-    /// Raceway roughness Rq, m.
-    pub ring_rq_m: f64,
-}
-
-impl Roughness {
-    /// Composite roughness σ = √(Rq_ball² + Rq_race²), m.
-    pub fn composite(&self) -> f64 {
-        composite_roughness(self.ball_rq_m, self.ring_rq_m)
     }
 }
 

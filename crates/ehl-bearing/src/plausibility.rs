@@ -20,9 +20,9 @@
 //!   the stiffest solid, has about 1050–1200 GPa).
 
 use crate::bearing::{solve_equilibrium, ContactLaws, Control, Race};
+use crate::case::{Case, InputError};
 use crate::ehl::EhlContact;
 use crate::hertz::HertzGeometry;
-use crate::io::{Case, InputError};
 
 /// Hertz pressure above which a warning is given, Pa (ISO 76 static limit of ball bearings).
 pub const PRESSURE_WARN: f64 = 4.2e9;
@@ -101,7 +101,7 @@ fn check_load_bounds(case: &Case) -> Result<(), InputError> {
         if v.is_nan() || v.abs() > bound {
             return Err(InputError::field(
                 &format!("operating.{}", names[k]),
-                crate::io::number_text(*v),
+                crate::case::number_text(*v),
                 format!(
                     "|value| ≤ {bound:.4e} {unit}: {} balls each at the {:.1} GPa limit of the \
                      inner contact ({cap:.4e} N per ball){arm} carry no more (docs/robustness.md)",
@@ -133,7 +133,7 @@ pub fn check_case(case: &Case) -> Result<Vec<String>, InputError> {
     if ndm > NDM_MAX {
         return Err(InputError::field(
             speed_key.0,
-            crate::io::number_text(speed_key.1),
+            crate::case::number_text(speed_key.1),
             format!(
                 "a speed factor n·d_m ≤ {NDM_MAX:.1e} rpm·mm (here {ndm:.3e} with d_m = {dm_mm} mm, \
                  i.e. at most {:.0} rpm relative ring speed): beyond any rolling bearing, where \

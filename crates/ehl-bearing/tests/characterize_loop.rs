@@ -4,6 +4,7 @@
 //! reference method, independence of the number of threads, and the law cache.
 
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws, Race};
+use ehl_bearing::case::Case;
 use ehl_bearing::characterize::{
     characterization_json, characterize_bearing, BearingCharacterization, CharacterizeError,
     CharacterizeSettings, CharacterizedContact, ContactCharacterizer, ContactConditions,
@@ -11,7 +12,7 @@ use ehl_bearing::characterize::{
 };
 use ehl_bearing::contact_law::{ContactLaw, HertzLaw};
 use ehl_bearing::hertz::HertzGeometry;
-use ehl_bearing::io::{read_case, Case};
+use ehl_bearing::io::read_case;
 use std::sync::Arc;
 
 fn seed() -> Case {
@@ -340,16 +341,19 @@ fn cache_reuses_near_identical_contacts_with_a_bounded_error() {
     // Ry/Rx only (M and L do not enter), so |ΔK/K| ≤ key distance.
     for c in &cached.contacts {
         let direct = ch
-            .characterize(&ContactConditions {
-                race: c.race,
-                load: c.characterized.load,
-                rx: c.state.rx,
-                ry: c.state.ry,
-                sum_velocity: c.state.sum_velocity,
-                e_reduced: seed().bearing.reduced_modulus(),
-                lubricant: seed().lubricant,
-                ball_mass: seed().bearing.ball_mass(),
-            })
+            .characterize(
+                &ContactConditions {
+                    race: c.race,
+                    load: c.characterized.load,
+                    rx: c.state.rx,
+                    ry: c.state.ry,
+                    sum_velocity: c.state.sum_velocity,
+                    e_reduced: seed().bearing.reduced_modulus(),
+                    lubricant: seed().lubricant,
+                    ball_mass: seed().bearing.ball_mass(),
+                },
+                None,
+            )
             .unwrap();
         let err = (c.characterized.k / direct.k - 1.0).abs();
         assert!(err <= c.key_distance + 1e-6, "{err} > {}", c.key_distance);
@@ -392,7 +396,7 @@ fn quasi_static_characterizer_is_the_contact_module_behind_the_trait() {
         lubricant: case.lubricant,
         ball_mass: case.bearing.ball_mass(),
     };
-    let got = ch.characterize(&c).unwrap();
+    let got = ch.characterize(&c, None).unwrap();
     let direct = characterize_quasi_static(
         &ehl_bearing::ehl::EhlContact {
             load: 300.0,
@@ -433,8 +437,9 @@ impl ContactCharacterizer for PredictingSynthetic {
     fn characterize(
         &self,
         c: &ContactConditions,
+        deadline: Option<ehl_bearing::budget::Deadline>,
     ) -> Result<CharacterizedContact, ehl_bearing::Error> {
-        self.0.characterize(c)
+        self.0.characterize(c, deadline)
     }
     fn method(&self) -> ehl_bearing::method::Method {
         self.0.method()
@@ -448,7 +453,11 @@ impl ContactCharacterizer for PredictingSynthetic {
 }
 
 impl LoadPredictor for PredictingSynthetic {
-    fn predict(&self, c: &ContactConditions) -> Result<PredictedLaw, ehl_bearing::Error> {
+    fn predict(
+        &self,
+        c: &ContactConditions,
+        _deadline: Option<ehl_bearing::budget::Deadline>,
+    ) -> Result<PredictedLaw, ehl_bearing::Error> {
         let h = HertzGeometry::new(c.rx, c.ry, c.e_reduced)?;
         let (k, d, lift) = self.0.parameters(c.load, c.sum_velocity, h.stiffness);
         let delta = ((c.load - lift) / k).powf(1.0 / d);
@@ -735,7 +744,7 @@ fn a_progress_callback_can_stop_the_loop() {
         .build()
         .unwrap();
     let r = pool.install(|| {
-        characterize_bearing_with_control(&case, &hertz, &s, &|p| match p {
+        characterize_bearing_with_control(&case, &hertz, &s, None, &|p| match p {
             Progress::ContactDone { iteration: 1 } => {
                 done.fetch_add(1, Ordering::Relaxed);
                 ControlFlow::Break(())
@@ -756,14 +765,15 @@ fn a_progress_callback_can_stop_the_loop() {
         (1..=2).contains(&n),
         "{n} contacts finished after the stop (22 planned)"
     );
-    let msg = characterize_bearing_with_control(&case, &hertz, &s, &|_| ControlFlow::Break(()))
-        .unwrap_err()
-        .to_string();
+    let msg =
+        characterize_bearing_with_control(&case, &hertz, &s, None, &|_| ControlFlow::Break(()))
+            .unwrap_err()
+            .to_string();
     assert!(msg.contains("cancelled by its caller"), "{msg}");
     // Continue all the way gives the plain result.
     let plain = characterization_json(&run(&hertz, &s), false).to_string();
     let controlled =
-        characterize_bearing_with_control(&case, &hertz, &s, &|_| ControlFlow::Continue(()))
+        characterize_bearing_with_control(&case, &hertz, &s, None, &|_| ControlFlow::Continue(()))
             .unwrap();
     assert_eq!(plain, characterization_json(&controlled, false).to_string());
 }

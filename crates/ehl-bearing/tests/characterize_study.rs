@@ -3,11 +3,12 @@
 //! against the characterized equilibria it came from.
 
 mod seeded;
+use ehl_bearing::case::InputError;
 use ehl_bearing::characterize::SyntheticCharacterizer;
-use ehl_bearing::io::InputError;
+use ehl_bearing::io::parse_study;
 use ehl_bearing::study::{
-    fit_trends, parse_study, run_point, JacobianMode, PointRecord, ResultRow, Study,
-    TrendForceElement, TrendModel,
+    fit_trends, run_point, JacobianMode, PointRecord, ResultRow, Study, TrendForceElement,
+    TrendModel,
 };
 use proptest::prelude::*;
 use std::path::Path;
@@ -50,7 +51,7 @@ fn displacement(p: &PointRecord) -> [f64; 5] {
 
 #[test]
 fn example_study_file_parses() {
-    let s = ehl_bearing::study::read_study(&examples().join("study_7006.toml")).unwrap();
+    let s = ehl_bearing::io::read_study(&examples().join("study_7006.toml")).unwrap();
     assert_eq!(s.inner_speeds_rpm, vec![3000.0, 4000.0, 5000.0]);
     assert_eq!(s.load_scales, vec![0.5, 1.0, 1.5, 2.0]);
     assert_eq!(s.method.name(), "quasi-static");
@@ -59,7 +60,7 @@ fn example_study_file_parses() {
     assert_eq!(s.settings.load_reuse_tolerance, 0.01);
     assert!(s.settings.predict_loads);
     // The harmonic seed study (docs/study.md §3.4): the three speeds at scale 1, lighter excitation.
-    let h = ehl_bearing::study::read_study(&examples().join("study_7006_harmonic.toml")).unwrap();
+    let h = ehl_bearing::io::read_study(&examples().join("study_7006_harmonic.toml")).unwrap();
     assert_eq!(h.method.name(), "harmonic");
     assert_eq!(h.inner_speeds_rpm, vec![3000.0, 4000.0, 5000.0]);
     assert_eq!(h.points().len(), 3);

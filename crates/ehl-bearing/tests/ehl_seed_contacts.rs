@@ -114,7 +114,7 @@ fn seed_contact_table() {
             }
         }
         let r = match only {
-            Some(k) => match solve_steady_starts(&c, &s, &[StartStrategy::LADDER[k - 1]]) {
+            Some(k) => match solve_steady_starts(&c, &s, &[StartStrategy::LADDER[k - 1]], None) {
                 Ok(r) => r,
                 Err(e) => {
                     println!("{rpm} {ball} {race} start {k}: {e}");

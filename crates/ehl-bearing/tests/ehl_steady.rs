@@ -4,6 +4,7 @@
 mod seeded;
 use ehl_bearing::ehl::formulas::{nijenbanning_asymptotes, nijenbanning_central};
 use ehl_bearing::ehl::*;
+use ehl_bearing::io::contact as input;
 use ehl_bearing::material::Lubricant;
 
 fn barus(m: f64, l: f64, r: f64) -> MoesCase {
@@ -675,7 +676,7 @@ fn converged_solution_does_not_depend_on_the_start() {
     ];
     let x: Vec<EhlSolution> = starts
         .iter()
-        .map(|st| solve_steady_starts(&c, &s, &[*st]).unwrap())
+        .map(|st| solve_steady_starts(&c, &s, &[*st], None).unwrap())
         .collect();
     for (st, a) in starts.iter().zip(&x) {
         println!(

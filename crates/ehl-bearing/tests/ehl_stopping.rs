@@ -84,19 +84,19 @@ fn iteration_error_by_cycle() {
     let heavy = seed(600.0, 10.85, 2.9487e-3, 178.5e-3);
     run(
         "seed inner 600 N 5000 rpm",
-        &|s| solve_steady_starts(&heavy, s, &[StartStrategy::Given]).expect("solves"),
+        &|s| solve_steady_starts(&heavy, s, &[StartStrategy::Given], None).expect("solves"),
         grid,
     );
     let light = seed(122.5, 10.858789909551989, 2.956517394901299e-3, 0.1785);
     run(
         "seed inner 122 N 5000 rpm",
-        &|s| solve_steady_starts(&light, s, &[StartStrategy::Conservative]).expect("solves"),
+        &|s| solve_steady_starts(&light, s, &[StartStrategy::Conservative], None).expect("solves"),
         grid,
     );
     let outer = seed(561.7, 10.858789909551989, 3.6e-3, 42.0e-3);
     run(
         "outer-like 562 N Ry/Rx 11.7",
-        &|s| solve_steady_starts(&outer, s, &[StartStrategy::Given]).expect("solves"),
+        &|s| solve_steady_starts(&outer, s, &[StartStrategy::Given], None).expect("solves"),
         grid,
     );
 }

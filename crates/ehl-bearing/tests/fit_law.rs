@@ -118,7 +118,18 @@ fn invalid_laws_are_errors() {
     ];
     for (k, d, df, a, b) in cases {
         let e = FittedLaw::new(k, d, df, a, b).unwrap_err();
-        assert!(matches!(e, FitError::InvalidLaw(_)), "{e}");
+        assert!(
+            matches!(
+                e,
+                FitError::LawNotFinite { .. }
+                    | FitError::LawNotIncreasing { .. }
+                    | FitError::LawRange { .. }
+                    | FitError::LawJointFraction { .. }
+                    | FitError::LawForceNotPositive { .. }
+                    | FitError::LawExtension { .. }
+            ),
+            "{e}"
+        );
     }
     let e = FittedLaw::with_joint_fraction(1e10, 1.5, 40.0, 2e-6, 6e-6, 1.5).unwrap_err();
     println!("example message: {e}");

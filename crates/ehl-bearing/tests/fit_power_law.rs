@@ -364,7 +364,7 @@ fn bad_input_names_the_problem() {
     };
     assert!(matches!(
         fit_power_law(&delta, &q, &bad).unwrap_err(),
-        FitError::Invalid(_)
+        FitError::DStartGrid { .. }
     ));
     println!(
         "example message: {}",

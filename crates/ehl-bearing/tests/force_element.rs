@@ -5,13 +5,14 @@
 
 mod seeded;
 use ehl_bearing::bearing::{solve_equilibrium, Control};
+use ehl_bearing::case::Case;
 use ehl_bearing::characterize::{characterize_bearing, CharacterizeSettings};
 use ehl_bearing::fit::FittedLaw;
 use ehl_bearing::force_element::{
     ElementInput, ElementState, ForceElement, LawElement, TrendForceElement,
 };
 use ehl_bearing::hertz::HertzGeometry;
-use ehl_bearing::io::{read_case, Case};
+use ehl_bearing::io::read_case;
 use ehl_bearing::method::{HertzCharacterizer, Method};
 use proptest::prelude::*;
 use std::f64::consts::PI;

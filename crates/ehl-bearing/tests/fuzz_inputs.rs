@@ -24,13 +24,11 @@
 
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws};
 use ehl_bearing::characterize::{characterize_bearing, CharacterizeSettings};
-use ehl_bearing::ehl::{
-    input::parse_contact_file, solve_steady_starts, EhlSettings, StartStrategy,
-};
-use ehl_bearing::io::parse_case;
+use ehl_bearing::ehl::{solve_steady_starts, EhlSettings, StartStrategy};
+use ehl_bearing::io::parse_study;
+use ehl_bearing::io::{contact::parse_contact_file, parse_case};
 use ehl_bearing::method::Method;
 use ehl_bearing::plausibility::{check_case, check_contact};
-use ehl_bearing::study::parse_study;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
@@ -376,7 +374,7 @@ fn run_input(kind: Kind, text: &str, dir: &Path, with_loop: bool) -> (Outcome, S
 }
 
 /// The dry equilibrium of a valid case, its numbers checked.
-fn dry(case: &ehl_bearing::io::Case) -> (Outcome, String) {
+fn dry(case: &ehl_bearing::case::Case) -> (Outcome, String) {
     let laws = match ContactLaws::hertz(&case.bearing) {
         Ok(l) => l,
         Err(e) => return (Outcome::Rejected, e.to_string()),
@@ -450,12 +448,12 @@ fn run_contact(text: &str) -> (Outcome, String) {
         grid: 17,
         coarsest: 9,
         max_cycles: 8,
-        deadline: ehl_bearing::budget::Deadline::after_seconds(EHL_BUDGET_S),
         ..Default::default()
     };
+    let deadline = ehl_bearing::budget::Deadline::after_seconds(EHL_BUDGET_S);
     // One start (the solver's first, with its cycle limit): the ladder of fallbacks is
     // exercised by the property tests of tests/ehl_edges.rs.
-    match solve_steady_starts(&file.contact, &s, &[StartStrategy::Given]) {
+    match solve_steady_starts(&file.contact, &s, &[StartStrategy::Given], deadline) {
         Err(ehl_bearing::ehl::EhlError::TimeLimit { .. }) => {
             (Outcome::TimeLimit, "time limit".into())
         }

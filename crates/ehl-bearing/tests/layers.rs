@@ -8,40 +8,11 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// Imports running back up that are known, as (from, to, reason).
-const ALLOWED: &[(&str, &str, &str)] = &[
-    (
-        "characterize",
-        "io",
-        "the loop takes a Case, which still lives in io/case.rs",
-    ),
-    (
-        "coefficients",
-        "io",
-        "takes a Case; speed errors are io's InputError",
-    ),
-    (
-        "ehl",
-        "io",
-        "ehl/input.rs reads contact files with io's raw TOML solid and lubricant tables",
-    ),
-    ("force_element", "io", "builds elements from a Case"),
-    (
-        "lubrication",
-        "characterize",
-        "assess_characterization reads the loop's result",
-    ),
-    ("lubrication", "io", "the assessment takes a Case"),
-    (
-        "plausibility",
-        "io",
-        "checks a Case; its messages use io's number_text and InputError",
-    ),
-    (
-        "study",
-        "io",
-        "study files are parsed in study/spec.rs with io's TOML helpers and Case",
-    ),
-];
+const ALLOWED: &[(&str, &str, &str)] = &[(
+    "lubrication",
+    "characterize",
+    "assess_characterization reads the loop's result",
+)];
 
 struct Layers {
     floor: BTreeMap<String, u32>,

@@ -2,7 +2,8 @@
 //! data; the lubrication figures (crate::lubrication) against hand calculations from the cited
 //! formulas; the case-file keys, valid and invalid.
 
-use ehl_bearing::io::{parse_case, InputError};
+use ehl_bearing::case::InputError;
+use ehl_bearing::io::parse_case;
 use ehl_bearing::lubrication::{
     assess, composite_roughness, rated_viscosity_mm2_s, thermal_factor, thermal_loading,
 };
@@ -278,7 +279,7 @@ fn case(
     lubricant: &str,
     operating: &str,
     materials: &str,
-) -> Result<ehl_bearing::io::Case, InputError> {
+) -> Result<ehl_bearing::case::Case, InputError> {
     let text = format!(
         "{BEARING}\n{materials}\n[lubricant]\n{lubricant}\n[operating]\ninner_speed_rpm = 5000.0\nforce_axial_n = 1000.0\n{operating}\n"
     );
@@ -550,8 +551,8 @@ fn contact_files_refuse_descriptions_and_roughness() {
         "[lubricant]\niso_vg = 32",
         "[ball_material]\nroughness_rq_um = 0.02",
     ] {
-        let r = ehl_bearing::ehl::input::parse_contact_toml(&contact(extra));
-        let e = format!("{:?}", r.err());
+        let r = ehl_bearing::io::contact::parse_contact_toml(&contact(extra));
+        let e = r.err().map(|e| e.to_string()).unwrap_or_default();
         assert!(
             e.contains("iso_vg") || e.contains("roughness_rq_um"),
             "{extra}: {e}"
@@ -844,9 +845,10 @@ fn the_loop_characterizes_each_raceway_with_its_rings_oil() {
         fn characterize(
             &self,
             c: &ContactConditions,
+            deadline: Option<ehl_bearing::budget::Deadline>,
         ) -> Result<CharacterizedContact, ehl_bearing::Error> {
             self.seen.lock().unwrap().push((c.race, c.lubricant));
-            self.inner.characterize(c)
+            self.inner.characterize(c, deadline)
         }
         fn method(&self) -> Method {
             self.inner.method()

@@ -4,9 +4,10 @@
 //! at Z·f_cage, the run-up, mirrored bearings, and implicit against lagged bearing forces.
 
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws, Control};
+use ehl_bearing::case::Case;
 use ehl_bearing::fit::FittedLaw;
 use ehl_bearing::force_element::{ForceElement, LawElement, LoadInterpolatedLaw};
-use ehl_bearing::io::{read_case, Case};
+use ehl_bearing::io::read_case;
 use ehl_bearing::rotor::{
     BearingSite, CageMotion, Coupling, RotorError, RotorMatrices, RotorModel, SpeedProfile, Start,
     TimeOptions, Unbalance,

@@ -4,9 +4,10 @@
 //! with the inlet boundary moved to the meniscus, and the case key `inlet_meniscus_distance_mm`.
 
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws};
+use ehl_bearing::case::InputError;
 use ehl_bearing::ehl::{solve_steady, EhlContact, EhlSettings};
 use ehl_bearing::hertz::HertzGeometry;
-use ehl_bearing::io::{parse_case, InputError};
+use ehl_bearing::io::parse_case;
 use ehl_bearing::lubrication::{
     assess, starvation, starvation_boundary, starvation_factor, STARVATION_WARN,
 };

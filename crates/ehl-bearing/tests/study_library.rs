@@ -2,9 +2,10 @@
 //! same outputs as one run, point records read back into the same value, another study's points
 //! are refused before any work, and outputs need every point.
 
+use ehl_bearing::io::parse_study;
 use ehl_bearing::study::{
-    finish_study, merge_points, parse_study, run_study, MemoryStore, PointRecord, PointStore,
-    RunOptions, Shard, StoreError, Study, StudyError, StudyEvent,
+    finish_study, merge_points, run_study, MemoryStore, PointRecord, PointStore, RunOptions, Shard,
+    StoreError, Study, StudyError, StudyEvent,
 };
 use std::path::Path;
 use std::sync::Mutex;

@@ -14,8 +14,9 @@
 
 use ehl_bearing::contact::{characterize_quasi_static, QuasiStaticSettings};
 use ehl_bearing::ehl::EhlContact;
+use ehl_bearing::io::read_study;
 use ehl_bearing::material::{reduced_modulus, Lubricant, Solid};
-use ehl_bearing::study::{read_study, run_point, PointStore};
+use ehl_bearing::study::{run_point, PointStore};
 use std::path::Path;
 
 /// One fitted point: characterization load (N), d and ΔF (N) with their standard errors.

@@ -490,12 +490,11 @@ impl BearingModel {
         let g = &bearing.geometry;
         let z = g.ball_count;
         if laws.inner.len() != z || laws.outer.len() != z {
-            return Err(BearingError::Invalid(format!(
-                "contact laws given for {} inner and {} outer contacts, bearing has {} balls",
-                laws.inner.len(),
-                laws.outer.len(),
-                z
-            )));
+            return Err(BearingError::LawCount {
+                inner: laws.inner.len(),
+                outer: laws.outer.len(),
+                balls: z,
+            });
         }
         for (name, v) in [("inner_speed", inner_speed), ("outer_speed", outer_speed)] {
             if !v.is_finite() {
@@ -1100,12 +1099,11 @@ impl BearingModel {
     pub fn set_laws(&mut self, laws: ContactLaws) -> Result<(), BearingError> {
         let z = self.psi.len();
         if laws.inner.len() != z || laws.outer.len() != z {
-            return Err(BearingError::Invalid(format!(
-                "contact laws given for {} inner and {} outer contacts, bearing has {} balls",
-                laws.inner.len(),
-                laws.outer.len(),
-                z
-            )));
+            return Err(BearingError::LawCount {
+                inner: laws.inner.len(),
+                outer: laws.outer.len(),
+                balls: z,
+            });
         }
         self.laws = laws;
         Ok(())
@@ -1139,11 +1137,10 @@ impl BearingModel {
             }
         }
         if warm.len() != self.psi.len() {
-            return Err(BearingError::Invalid(format!(
-                "warm-start state for {} balls, bearing has {}",
-                warm.len(),
-                self.psi.len()
-            )));
+            return Err(BearingError::WarmStartSize {
+                given: warm.len(),
+                balls: self.psi.len(),
+            });
         }
         let z = self.psi.len();
         let mut out = DynamicForce {

@@ -215,8 +215,7 @@ impl Bearing {
     /// Hertz constants of a contact at contact angle `alpha` (rad).
     pub fn hertz(&self, race: Race, alpha: f64) -> Result<HertzGeometry, BearingError> {
         let (rx, ry) = self.geometry.curvature_radii(race, alpha);
-        HertzGeometry::new(rx, ry, self.reduced_modulus())
-            .map_err(|e| BearingError::Invalid(e.to_string()))
+        Ok(HertzGeometry::new(rx, ry, self.reduced_modulus())?)
     }
 
     /// Validate geometry and materials.

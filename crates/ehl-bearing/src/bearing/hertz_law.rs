@@ -93,9 +93,12 @@ impl OperatingAngleHertzLaw {
                 });
             }
             if n >= 256 {
-                return Err(BearingError::Invalid(format!(
-                    "the Hertz constant of the {race:?} contact could not be represented over the contact angle to {FIT_TOLERANCE:e} (error {worst:.2e} with {n} terms)"
-                )));
+                return Err(BearingError::HertzSeries {
+                    race,
+                    tolerance: FIT_TOLERANCE,
+                    worst,
+                    terms: n,
+                });
             }
             n *= 2;
         }

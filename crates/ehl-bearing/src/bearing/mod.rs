@@ -31,9 +31,90 @@ pub enum BearingError {
         /// The valid range.
         expected: String,
     },
-    /// Other invalid input.
+    /// Contact laws for a number of contacts other than the bearing's.
+    #[error(
+        "invalid bearing input: contact laws given for {inner} inner and {outer} outer contacts, \
+         bearing has {balls} balls"
+    )]
+    LawCount {
+        /// Inner-raceway laws given.
+        inner: usize,
+        /// Outer-raceway laws given.
+        outer: usize,
+        /// Balls of the bearing.
+        balls: usize,
+    },
+    /// A warm-start state for a number of balls other than the bearing's.
+    #[error("invalid bearing input: warm-start state for {given} balls, bearing has {balls}")]
+    WarmStartSize {
+        /// Balls of the state.
+        given: usize,
+        /// Balls of the bearing.
+        balls: usize,
+    },
+    /// A contact's Hertz constants could not be computed.
     #[error("invalid bearing input: {0}")]
-    Invalid(String),
+    Hertz(#[from] crate::hertz::HertzError),
+    /// The Hertz constant over the contact angle could not be represented by the series.
+    #[error(
+        "invalid bearing input: the Hertz constant of the {race:?} contact could not be \
+         represented over the contact angle to {tolerance:e} (error {worst:.2e} with {terms} terms)"
+    )]
+    HertzSeries {
+        /// The raceway.
+        race: Race,
+        /// Relative tolerance asked for.
+        tolerance: f64,
+        /// Largest relative error reached.
+        worst: f64,
+        /// Terms of the last series tried.
+        terms: usize,
+    },
+    /// A force element's state used before its model was set.
+    #[error("invalid bearing input: force element state without a model")]
+    StateWithoutModel,
+    /// A number of per-contact laws other than 2·Z.
+    #[error(
+        "invalid bearing input: {given} contact laws given, the bearing has {balls} balls (2·Z \
+         laws needed)"
+    )]
+    ElementLawCount {
+        /// Laws given.
+        given: usize,
+        /// Balls of the bearing.
+        balls: usize,
+    },
+    /// A contact row whose raceway is neither inner nor outer.
+    #[error("invalid bearing input: contact row of ball {ball}: race = {race:?}; expected \"inner\" or \"outer\"")]
+    ContactRace {
+        /// Ball index.
+        ball: usize,
+        /// The raceway given.
+        race: String,
+    },
+    /// Laws by load from contacts of which none has a finite, positive load.
+    #[error(
+        "invalid bearing input: laws by load: no contact with a finite, positive \
+         characterization load"
+    )]
+    NoLawLoad,
+    /// A law of the laws by load that does not reach a load.
+    #[error("invalid bearing input: laws by load: a law does not reach the load w = {load_n} N")]
+    LawLoadUnreached {
+        /// The load, N.
+        load_n: f64,
+    },
+    /// A law of the laws by load whose stiffness at a load is not finite and positive.
+    #[error(
+        "invalid bearing input: laws by load: dQ/dδ = {stiffness_n_m} N/m at w = {load_n} N; \
+         expected a finite, positive contact stiffness"
+    )]
+    LawStiffness {
+        /// dQ/dδ, N/m.
+        stiffness_n_m: f64,
+        /// The load, N.
+        load_n: f64,
+    },
     /// The equilibrium Newton iteration did not converge.
     #[error("bearing equilibrium did not converge after {iterations} iterations: residual {residual:.3e} N (tolerance {tolerance:.3e} N); the load may be one the bearing cannot carry")]
     NotConverged {
@@ -58,6 +139,28 @@ pub enum BearingError {
         /// What went out of range.
         reason: String,
     },
+}
+
+impl BearingError {
+    /// Whether the error is an input the bearing model refuses (laws or states of the wrong
+    /// size, contacts it cannot describe, laws by load it cannot build) rather than a failed
+    /// equilibrium or a field out of range ([`BearingError::InvalidField`]).
+    pub fn is_refused_input(&self) -> bool {
+        use BearingError::*;
+        matches!(
+            self,
+            LawCount { .. }
+                | WarmStartSize { .. }
+                | Hertz(_)
+                | HertzSeries { .. }
+                | StateWithoutModel
+                | ElementLawCount { .. }
+                | ContactRace { .. }
+                | NoLawLoad
+                | LawLoadUnreached { .. }
+                | LawStiffness { .. }
+        )
+    }
 }
 
 impl BearingError {

@@ -15,7 +15,6 @@
 
 pub mod deformation;
 pub mod formulas;
-pub mod input;
 mod multigrid;
 mod rheology;
 mod steady;
@@ -27,8 +26,9 @@ use thiserror::Error;
 pub use crate::material::{DensityModel, ViscosityModel};
 pub(crate) use steady::validate_settings;
 pub use steady::{
-    solve_moes, solve_steady, solve_steady_extrapolated, solve_steady_from, solve_steady_starts,
-    start_order, MOES_L_MAX,
+    solve_moes, solve_moes_within, solve_steady, solve_steady_extrapolated,
+    solve_steady_extrapolated_within, solve_steady_from, solve_steady_from_within,
+    solve_steady_starts, solve_steady_within, start_order, MOES_L_MAX,
 };
 pub use transient::{TransientSolver, TransientStep};
 
@@ -45,9 +45,6 @@ pub enum EhlError {
         /// The valid range, in words.
         range: &'static str,
     },
-    /// A contact file could not be read or has an invalid entry.
-    #[error("{0}")]
-    File(String),
     /// The iteration produced non-finite numbers or blew up in every start, including the load
     /// and α continuations.
     #[error(
@@ -66,7 +63,8 @@ pub enum EhlError {
         /// Lowest relative residual reached before the divergence (NaN if none).
         residual: f64,
     },
-    /// The wall-time budget ([`EhlSettings::deadline`]) ran out before the solve converged.
+    /// The wall-time budget (the `deadline` argument of [`solve_steady_within`] and the other `_within` solves, or
+    /// [`TransientSolver::with_deadline`]) ran out before the solve converged.
     #[error(
         "EHL solve stopped at its time limit of {limit_s} s after {seconds:.1} s and {cycles} \
          cycles (M = {m:.4}, L = {l:.4}, Ry/Rx = {ratio:.4}; relative residual after each cycle \
@@ -197,11 +195,6 @@ pub struct EhlSettings {
     pub jd_threshold: f64,
     /// FAS cycles on each intermediate level of the full-multigrid start (default 2).
     pub fmg_cycles: usize,
-    /// Wall-time budget (default none): checked before every multigrid cycle and between the
-    /// starts; when it has passed the solve ends with [`EhlError::TimeLimit`]. Not part of the
-    /// settings' serialized form (results do not depend on it).
-    #[serde(skip)]
-    pub deadline: Option<crate::budget::Deadline>,
 }
 
 /// Default of [`EhlSettings::discretization_fraction`].
@@ -249,7 +242,6 @@ impl Default for EhlSettings {
             h0_gain: 0.05,
             jd_threshold: 0.3,
             fmg_cycles: 2,
-            deadline: None,
         }
     }
 }

@@ -8,6 +8,7 @@ use super::{
     EhlSolution, MoesCase, StartStrategy, DISCRETIZATION_CAP, DISCRETIZATION_FLOOR,
     DISCRETIZATION_RESIDUAL_GUARD,
 };
+use crate::budget::Deadline;
 use crate::hertz::HertzGeometry;
 use crate::material::{Lubricant, ROELANDS_LN_ETA_INF, ROELANDS_P0};
 use std::f64::consts::PI;
@@ -341,6 +342,7 @@ fn iterate(
     start: Start,
     h_est: f64,
     max_cycles: usize,
+    deadline: Option<Deadline>,
 ) -> Result<Core, (usize, f64)> {
     let mut prm = params(s);
     prm.h0_relax *= pr.h0_gain_scale;
@@ -401,7 +403,7 @@ fn iterate(
     let centre = |h: &Hierarchy| centre_of(h, top);
     for _ in 0..max_cycles {
         // The wall-time budget ends the iteration like the cycle limit; the caller reports it.
-        if crate::budget::expired(&s.deadline) {
+        if crate::budget::expired(&deadline) {
             break;
         }
         let hc_old = centre(&hier);
@@ -567,19 +569,32 @@ fn finish(
 /// [`EhlSolution::attempt_log`]. A run that stops at `max_cycles` is returned with
 /// `converged: false`.
 pub fn solve_steady(c: &EhlContact, s: &EhlSettings) -> Result<EhlSolution, EhlError> {
+    solve_steady_within(c, s, None)
+}
+
+/// [`solve_steady`] within a wall-time budget: `deadline` is checked before every multigrid
+/// cycle and between the starts; when it has passed the solve ends with
+/// [`EhlError::TimeLimit`] (None: no budget).
+pub fn solve_steady_within(
+    c: &EhlContact,
+    s: &EhlSettings,
+    deadline: Option<Deadline>,
+) -> Result<EhlSolution, EhlError> {
     let t0 = Instant::now();
     let (pr, sc) = setup(c, s)?;
     let order = order_for(&pr, &sc);
-    solve_ordered(c, s, &pr, &sc, &order, Vec::new(), 0, t0)
+    solve_ordered(c, s, &pr, &sc, &order, Vec::new(), 0, t0, deadline)
 }
 
 /// [`solve_steady`] with the starts tried in the given order (for studies of the start choice;
-/// `StartStrategy::Warm` entries are ignored, an empty order gives an error). An order without
-/// the later fallbacks can fail where [`solve_steady`] succeeds.
+/// `StartStrategy::Warm` entries are ignored, an empty order gives an error), within the
+/// wall-time budget `deadline` (as [`solve_steady_within`]). An order without the later
+/// fallbacks can fail where [`solve_steady`] succeeds.
 pub fn solve_steady_starts(
     c: &EhlContact,
     s: &EhlSettings,
     order: &[StartStrategy],
+    deadline: Option<Deadline>,
 ) -> Result<EhlSolution, EhlError> {
     let t0 = Instant::now();
     let (pr, sc) = setup(c, s)?;
@@ -590,7 +605,7 @@ pub fn solve_steady_starts(
             "at least one cold start",
         ));
     }
-    solve_ordered(c, s, &pr, &sc, order, Vec::new(), 0, t0)
+    solve_ordered(c, s, &pr, &sc, order, Vec::new(), 0, t0, deadline)
 }
 
 /// The order in which [`solve_steady`] tries its starts for this contact (docs/ehl.md §2):
@@ -667,6 +682,7 @@ fn solve_ordered(
     mut log: Vec<EhlAttempt>,
     mut cycles: usize,
     t0: Instant,
+    deadline: Option<Deadline>,
 ) -> Result<EhlSolution, EhlError> {
     let h_est = h_estimate(sc);
     let ladder = fallback_ladder(s);
@@ -676,7 +692,7 @@ fn solve_ordered(
     let mut alpha_best: Option<(Vec<f64>, f64, usize)> = None;
     let mut last_history: Vec<f64> = Vec::new();
     let time_limit = |cycles: usize, history: &[f64]| {
-        s.deadline.map(|d| EhlError::TimeLimit {
+        deadline.map(|d| EhlError::TimeLimit {
             limit_s: d.limit_seconds(),
             seconds: t0.elapsed().as_secs_f64(),
             cycles,
@@ -687,7 +703,7 @@ fn solve_ordered(
         })
     };
     for &st in order {
-        if crate::budget::expired(&s.deadline) {
+        if crate::budget::expired(&deadline) {
             if let Some(e) = time_limit(cycles, &last_history) {
                 return Err(e);
             }
@@ -703,7 +719,7 @@ fn solve_ordered(
             | StartStrategy::Conservative
             | StartStrategy::DampedLines => {
                 let sk = &ladder[st.number() - 1];
-                match iterate(pr, sk, Start::Hertz, h_est, s.max_cycles) {
+                match iterate(pr, sk, Start::Hertz, h_est, s.max_cycles, deadline) {
                     Ok(core) => {
                         cycles += core.cycles;
                         if !core.history.is_empty() {
@@ -727,7 +743,7 @@ fn solve_ordered(
                 }
             }
             StartStrategy::LoadContinuation => {
-                let r = continuation(c, &ladder[CONSERVATIVE], sc, cycles, t0);
+                let r = continuation(c, &ladder[CONSERVATIVE], sc, cycles, t0, deadline);
                 let (outcome, res) = match &r {
                     Ok(sol) => {
                         cycles = sol.cycles;
@@ -763,7 +779,7 @@ fn solve_ordered(
                 }
             }
             StartStrategy::AlphaContinuation => {
-                match alpha_continuation(c, pr, sc, &ladder, cycles, t0) {
+                match alpha_continuation(c, pr, sc, &ladder, cycles, t0, deadline) {
                     Ok(mut r) => {
                         record(
                             &mut log,
@@ -795,7 +811,7 @@ fn solve_ordered(
             }
             StartStrategy::SingleGrid => match alpha_best.take() {
                 Some((p, h0, steps)) => {
-                    match polish(c, pr, sc, &ladder[0], p, h0, cycles, steps, t0) {
+                    match polish(c, pr, sc, &ladder[0], p, h0, cycles, steps, t0, deadline) {
                         Ok(mut r) => {
                             record(
                                 &mut log,
@@ -826,7 +842,7 @@ fn solve_ordered(
             },
         }
     }
-    if crate::budget::expired(&s.deadline) {
+    if crate::budget::expired(&deadline) {
         if let Some(e) = time_limit(cycles, &last_history) {
             return Err(e);
         }
@@ -911,6 +927,7 @@ fn polish(
     cycles_total: usize,
     steps: usize,
     t0: Instant,
+    deadline: Option<Deadline>,
 ) -> Result<EhlSolution, (usize, f64)> {
     let single = EhlSettings {
         omega_gs: s.omega_gs.min(ALPHA_OMEGA_GS),
@@ -922,7 +939,7 @@ fn polish(
         h0: Some(h0),
         disc: None,
     };
-    match iterate(pr, &single, start, h_estimate(sc), s.max_cycles) {
+    match iterate(pr, &single, start, h_estimate(sc), s.max_cycles, deadline) {
         Ok(core) => {
             let n = cycles_total + core.cycles;
             if core.converged {
@@ -975,6 +992,7 @@ fn alpha_continuation(
     ladder: &[EhlSettings; LADDER],
     mut cycles_total: usize,
     t0: Instant,
+    deadline: Option<Deadline>,
 ) -> Result<EhlSolution, AlphaFailure> {
     let mut lowest = f64::NAN;
     let mut best: Option<(Vec<f64>, f64, usize)> = None;
@@ -994,7 +1012,7 @@ fn alpha_continuation(
         // (the discretization-following rule is for solutions that are returned; stopping
         // this one at the grid's error left Barus, L 25, M 5 diverging later in the steps).
         let sk = &intermediate(sk);
-        match iterate(&pr0, sk, Start::Hertz, h_est0, sk.max_cycles) {
+        match iterate(&pr0, sk, Start::Hertz, h_est0, sk.max_cycles, deadline) {
             Ok(core) => {
                 cycles_total += core.cycles;
                 if core.converged {
@@ -1022,7 +1040,7 @@ fn alpha_continuation(
     let mut q = ALPHA_STEP;
     let mut steps = 1;
     loop {
-        if crate::budget::expired(&warm.deadline) {
+        if crate::budget::expired(&deadline) {
             return Err(AlphaFailure {
                 cycles: cycles_total,
                 lowest,
@@ -1046,7 +1064,7 @@ fn alpha_continuation(
             ALPHA_STEP_CYCLES.min(warm.max_cycles)
         };
         steps += 1;
-        let ok = match iterate(&prk, &warm, start, h_estimate(&sck), maxc) {
+        let ok = match iterate(&prk, &warm, start, h_estimate(&sck), maxc, deadline) {
             Ok(core) => {
                 cycles_total += core.cycles;
                 if last {
@@ -1142,6 +1160,7 @@ fn continuation(
     sc: &Scales,
     mut cycles_total: usize,
     t0: Instant,
+    deadline: Option<Deadline>,
 ) -> Result<EhlSolution, EhlError> {
     let m_start = (sc.m / 2.0).min(20.0);
     let mut loads = Vec::new();
@@ -1155,7 +1174,7 @@ fn continuation(
     let mut last_res = f64::NAN;
     let steps = loads.len();
     for (k, &load) in loads.iter().enumerate() {
-        if crate::budget::expired(&s.deadline) && k + 1 < steps {
+        if crate::budget::expired(&deadline) && k + 1 < steps {
             // Straight to the last step, which stops at once and returns its iterate.
             continue;
         }
@@ -1177,7 +1196,7 @@ fn continuation(
             6.min(s.max_cycles)
         };
         let sk = if last { *s } else { intermediate(s) };
-        match iterate(&pr, &sk, start, h_est, maxc) {
+        match iterate(&pr, &sk, start, h_est, maxc, deadline) {
             Ok(core) => {
                 cycles_total += core.cycles;
                 last_res = core.residual;
@@ -1223,7 +1242,17 @@ pub fn solve_steady_from(
     s: &EhlSettings,
     previous: &EhlSolution,
 ) -> Result<EhlSolution, EhlError> {
-    solve_warm(c, s, previous, None)
+    solve_warm(c, s, previous, None, None)
+}
+
+/// [`solve_steady_from`] within a wall-time budget (as [`solve_steady_within`]).
+pub fn solve_steady_from_within(
+    c: &EhlContact,
+    s: &EhlSettings,
+    previous: &EhlSolution,
+    deadline: Option<Deadline>,
+) -> Result<EhlSolution, EhlError> {
+    solve_warm(c, s, previous, None, deadline)
 }
 
 /// Pressure of a solution at the dimensionless nodes of a new problem, at the same point in
@@ -1263,12 +1292,23 @@ pub fn solve_steady_extrapolated(
     previous: (&EhlSolution, f64),
     earlier: (&EhlSolution, f64),
 ) -> Result<EhlSolution, EhlError> {
+    solve_steady_extrapolated_within(c, s, previous, earlier, None)
+}
+
+/// [`solve_steady_extrapolated`] within a wall-time budget (as [`solve_steady_within`]).
+pub fn solve_steady_extrapolated_within(
+    c: &EhlContact,
+    s: &EhlSettings,
+    previous: (&EhlSolution, f64),
+    earlier: (&EhlSolution, f64),
+    deadline: Option<Deadline>,
+) -> Result<EhlSolution, EhlError> {
     let (w1, w0) = (previous.1, earlier.1);
     let r = (c.load - w1) / (w1 - w0);
     if !(r.is_finite() && r.abs() <= 4.0) {
-        return solve_warm(c, s, previous.0, None);
+        return solve_warm(c, s, previous.0, None, deadline);
     }
-    solve_warm(c, s, previous.0, Some((earlier.0, r)))
+    solve_warm(c, s, previous.0, Some((earlier.0, r)), deadline)
 }
 
 fn solve_warm(
@@ -1276,6 +1316,7 @@ fn solve_warm(
     s: &EhlSettings,
     previous: &EhlSolution,
     earlier: Option<(&EhlSolution, f64)>,
+    deadline: Option<Deadline>,
 ) -> Result<EhlSolution, EhlError> {
     let t0 = Instant::now();
     let (pr, sc) = setup(c, s)?;
@@ -1286,7 +1327,7 @@ fn solve_warm(
             && f.p_dimensionless.len() == f.p.len()
     };
     if !valid(&previous.fields) {
-        return solve_steady(c, s);
+        return solve_steady_within(c, s, deadline);
     }
     let earlier = earlier.filter(|(e, _)| valid(&e.fields));
     let n = s.grid;
@@ -1322,6 +1363,7 @@ fn solve_warm(
         },
         h_est,
         s.max_cycles,
+        deadline,
     ) {
         Ok(core) => {
             let n = core.cycles;
@@ -1352,7 +1394,7 @@ fn solve_warm(
             n
         }
     };
-    solve_ordered(c, s, &pr, &sc, &order, log, spent, t0)
+    solve_ordered(c, s, &pr, &sc, &order, log, spent, t0, deadline)
 }
 
 /// Largest Moes material parameter L accepted by [`solve_moes`] (dimensionless).
@@ -1363,6 +1405,15 @@ pub const MOES_L_MAX: f64 = 100.0;
 /// load follow from M and L. The dimensionless results depend only on (M, L, Ry/Rx, α p0,
 /// ln η0 + 9.67), the dimensional ones refer to that contact.
 pub fn solve_moes(c: &MoesCase, s: &EhlSettings) -> Result<EhlSolution, EhlError> {
+    solve_moes_within(c, s, None)
+}
+
+/// [`solve_moes`] within a wall-time budget (as [`solve_steady_within`]).
+pub fn solve_moes_within(
+    c: &MoesCase,
+    s: &EhlSettings,
+    deadline: Option<Deadline>,
+) -> Result<EhlSolution, EhlError> {
     check_pos("M", c.m)?;
     if !(c.l.is_finite() && c.l > 0.0 && c.l <= MOES_L_MAX) {
         return Err(invalid(
@@ -1398,5 +1449,5 @@ pub fn solve_moes(c: &MoesCase, s: &EhlSettings) -> Result<EhlSolution, EhlError
             density_model: c.density,
         },
     };
-    solve_steady(&contact, s)
+    solve_steady_within(&contact, s, deadline)
 }

@@ -63,6 +63,8 @@ pub struct TransientSolver {
     sc: Scales,
     prm: MgParams,
     s: EhlSettings,
+    /// Wall-time budget of the run (None: none), [`TransientSolver::with_deadline`].
+    deadline: Option<crate::budget::Deadline>,
     max_cycles: usize,
     hier: Hierarchy,
     w0: f64,
@@ -193,6 +195,7 @@ impl TransientSolver {
             sc,
             prm,
             s: *settings,
+            deadline: None,
             max_cycles: max_cycles_per_step,
             w0: c.load,
             mass,
@@ -250,6 +253,13 @@ impl TransientSolver {
         }
         self.s.tol_film = tol_film;
         Ok(())
+    }
+
+    /// The run with a wall-time budget: checked before every step and every cycle; when it has
+    /// passed a step ends with [`EhlError::TimeLimit`] (None: no budget).
+    pub fn with_deadline(mut self, deadline: Option<crate::budget::Deadline>) -> Self {
+        self.deadline = deadline;
+        self
     }
 
     /// The steady solution the run started from.
@@ -314,7 +324,7 @@ impl TransientSolver {
                 range: "finite",
             });
         }
-        if let Some(d) = self.s.deadline.filter(|d| d.expired()) {
+        if let Some(d) = self.deadline.filter(|d| d.expired()) {
             return Err(EhlError::TimeLimit {
                 limit_s: d.limit_seconds(),
                 seconds: d.elapsed_seconds(),
@@ -399,7 +409,7 @@ impl TransientSolver {
         // Whether `residual` and `force_residual` describe the current state.
         let mut evaluated = false;
         for cycle in 0..self.max_cycles {
-            if crate::budget::expired(&self.s.deadline) {
+            if crate::budget::expired(&self.deadline) {
                 break;
             }
             let hc_old = centre(&self.hier);

@@ -94,30 +94,34 @@ impl FittedLaw {
     ) -> Result<Self, FitError> {
         let vals = [k, d, delta_f, delta_min, delta_max, fraction];
         if vals.iter().any(|v| !v.is_finite()) {
-            return Err(FitError::InvalidLaw(format!(
-                "non-finite parameter: K = {k}, d = {d}, ΔF = {delta_f}, δ range [{delta_min}, {delta_max}] m, joint fraction {fraction}"
-            )));
+            return Err(FitError::LawNotFinite {
+                k,
+                d,
+                delta_f,
+                delta_min,
+                delta_max,
+                fraction,
+            });
         }
         if !(k > 0.0 && d > 0.0) {
-            return Err(FitError::InvalidLaw(format!(
-                "K = {k} N/m^d and d = {d} must be positive for an increasing law"
-            )));
+            return Err(FitError::LawNotIncreasing { k, d });
         }
         if !(delta_min > 0.0 && delta_max >= delta_min) {
-            return Err(FitError::InvalidLaw(format!(
-                "fitted range [{delta_min}, {delta_max}] m must satisfy 0 < δ_min ≤ δ_max"
-            )));
+            return Err(FitError::LawRange {
+                delta_min,
+                delta_max,
+            });
         }
         if !(fraction > 0.0 && fraction <= 1.0) {
-            return Err(FitError::InvalidLaw(format!(
-                "joint fraction {fraction} must lie in (0, 1]"
-            )));
+            return Err(FitError::LawJointFraction { fraction });
         }
         let q_min = k * delta_min.powf(d) + delta_f;
         if q_min.is_nan() || q_min <= 0.0 {
-            return Err(FitError::InvalidLaw(format!(
-                "the law gives Q = {q_min} N ≤ 0 at the smallest fitted approach {delta_min} m (ΔF = {delta_f} N)"
-            )));
+            return Err(FitError::LawForceNotPositive {
+                q_min,
+                delta_min,
+                delta_f,
+            });
         }
         let mut delta_joint = fraction * delta_min;
         let num = 0.5 * q_min - delta_f;
@@ -128,9 +132,11 @@ impl FittedLaw {
         let slope_joint = k * d * delta_joint.powf(d - 1.0);
         let tail_rate = slope_joint / force_joint;
         if !(force_joint > 0.0 && tail_rate > 0.0 && tail_rate.is_finite()) {
-            return Err(FitError::InvalidLaw(format!(
-                "degenerate extension at δ_j = {delta_joint} m: Q_j = {force_joint} N, s = {tail_rate} 1/m"
-            )));
+            return Err(FitError::LawExtension {
+                delta_joint,
+                force_joint,
+                tail_rate,
+            });
         }
         Ok(Self {
             k,
@@ -148,9 +154,7 @@ impl FittedLaw {
     /// The same law with a damping coefficient c (N·s/m, finite) for [`FittedLaw::force_with_rate`].
     pub fn with_damping(mut self, c: f64) -> Result<Self, FitError> {
         if !c.is_finite() {
-            return Err(FitError::InvalidLaw(format!(
-                "damping c = {c} N·s/m is not finite"
-            )));
+            return Err(FitError::LawDamping { c });
         }
         self.c = Some(c);
         Ok(self)

@@ -169,9 +169,7 @@ pub fn levenberg_marquardt<P: LeastSquaresProblem + ?Sized>(
     }
     let tols = [conv.x_tol, conv.g_tol, conv.f_tol, conv.initial_damping];
     if tols.iter().any(|t| !(t.is_finite() && *t >= 0.0)) || conv.initial_damping <= 0.0 {
-        return Err(FitError::Invalid(format!(
-            "Levenberg–Marquardt settings must be finite and non-negative with a positive initial damping: {conv:?}"
-        )));
+        return Err(FitError::LmSettings { settings: *conv });
     }
     check_finite("initial parameters", x0)?;
 

@@ -208,10 +208,10 @@ impl LeastSquaresProblem for ScaledPowerLaw {
 fn validate_options(opts: &FitOptions) -> Result<(), FitError> {
     let [lo, hi] = opts.d_start_range;
     if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi >= lo) || opts.d_grid_points < 2 {
-        return Err(FitError::Invalid(format!(
-            "d_start_range must be finite with 0 < min ≤ max and d_grid_points ≥ 2, got {:?} and {}",
-            opts.d_start_range, opts.d_grid_points
-        )));
+        return Err(FitError::DStartGrid {
+            d_start_range: opts.d_start_range,
+            d_grid_points: opts.d_grid_points,
+        });
     }
     Ok(())
 }

@@ -64,89 +64,15 @@
 //!                                # model; README, "Modelling choices of the bearing model")
 //! ```
 
-use super::InputError;
 use crate::bearing::{
     Bearing, BearingGeometry, Control, EquilibriumSettings, Kinematics, OperatingPoint, RaceControl,
 };
-use crate::lubrication::{RingOils, Roughness};
+use crate::case::{Case, InputError, RingOils, Roughness};
 use crate::material::{DensityModel, Lubricant, Solid, ViscosityModel};
 use crate::oil::{BaseOil, OilDescription, OilProperties};
 use serde::Deserialize;
 use std::f64::consts::PI;
 use std::path::Path;
-
-/// A validated bearing case, in SI units.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Case {
-    /// Optional bearing name.
-    pub name: Option<String>,
-    /// Geometry and materials.
-    pub bearing: Bearing,
-    /// Lubricant (the default mineral oil when the file has no `[lubricant]`).
-    pub lubricant: Lubricant,
-    /// Whether the lubricant was given in the file (false: the default was used).
-    pub lubricant_given: bool,
-    /// The described lubricant's derived constants at the operating temperature, with their
-    /// sources (None: the lubricant is given by its constants or not at all).
-    pub oil: Option<OilProperties>,
-    /// Surface roughness of balls and rings (None: not given).
-    pub roughness: Option<Roughness>,
-    /// The described lubricant's constants at the inner and outer ring temperatures
-    /// (`operating.inner_ring_temperature_c`, `operating.outer_ring_temperature_c`; None: not
-    /// given). Each raceway's contacts are characterized with its ring's oil
-    /// ([`Case::lubricant_of`]) and get their lubrication figures from it; κ and the report's
-    /// η0, α are at `operating.temperature_c` (docs/lubricant.md §3.1).
-    pub ring_oils: Option<RingOils>,
-    /// Distance from each contact's centre to the upstream oil meniscus along the rolling
-    /// direction, m (`operating.inlet_meniscus_distance_mm`; None: fully flooded, the default).
-    /// Used by the starvation estimate of the lubrication figures only (docs/lubricant.md §3).
-    pub inlet_meniscus_distance_m: Option<f64>,
-    /// Speeds, loads and race control.
-    pub operating: OperatingPoint,
-    /// Equilibrium solver settings.
-    pub settings: EquilibriumSettings,
-    /// Characterization method given in the file (`method`, `[method_options]`), if any.
-    pub method: Option<crate::method::Method>,
-    /// The file's `[method_options]` table as given (so that a command-line override of the
-    /// method name can apply the same options).
-    pub method_options: Option<toml::Table>,
-}
-
-impl Case {
-    /// The lubricant at the contacts of raceway `race`: the described oil's constants at the
-    /// ring's temperature when ring temperatures are given (`operating.inner_ring_temperature_c`,
-    /// `outer_ring_temperature_c`), else [`Case::lubricant`]; the viscosity and density models
-    /// are the case's.
-    pub fn lubricant_of(&self, race: crate::bearing::Race) -> Lubricant {
-        match &self.ring_oils {
-            Some(r) => {
-                let o = r.of(race);
-                Lubricant {
-                    viscosity: o.viscosity_pa_s,
-                    pressure_viscosity: o.pressure_viscosity_1_pa,
-                    density: o.density_kg_m3,
-                    ..self.lubricant
-                }
-            }
-            None => self.lubricant,
-        }
-    }
-
-    /// The method to characterize this case with: `name` if given (with the file's
-    /// `[method_options]` when `name` is the file's own method), else the file's method, else the
-    /// default (quasi-static).
-    pub fn method_or(
-        &self,
-        name: Option<&str>,
-    ) -> Result<crate::method::Method, crate::method::MethodError> {
-        match (name, &self.method) {
-            (Some(n), Some(m)) if n == m.name() => Ok(*m),
-            (Some(n), _) => crate::method::Method::parse(n, None),
-            (None, Some(m)) => Ok(*m),
-            (None, None) => Ok(crate::method::Method::default()),
-        }
-    }
-}
 
 /// A method error as an input error naming the key of the file.
 pub(crate) fn method_input_error(e: crate::method::MethodError) -> InputError {
@@ -166,7 +92,9 @@ pub(crate) fn method_input_error(e: crate::method::MethodError) -> InputError {
             value: name,
             expected: format!("one of {}", Method::NAMES.join(", ")),
         },
-        MethodError::Law(m) => InputError::field("method", "", m),
+        e @ (MethodError::LawShortOfLoad { .. }
+        | MethodError::NoPredictor { .. }
+        | MethodError::Cancelled) => InputError::field("method", "", e.to_string()),
     }
 }
 
@@ -292,7 +220,39 @@ pub fn read_case(path: &Path) -> Result<Case, InputError> {
 /// Parse and validate case-file text; `origin` names the source in messages.
 pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
     let raw: RawCase = super::from_toml(text, origin)?;
-    let method = match (&raw.method, &raw.method_options) {
+    let method = case_method(&raw)?;
+    let b = &raw.bearing;
+    let geometry = geometry(b)?;
+    let ball_material = solid(raw.ball_material.as_ref(), "ball_material")?;
+    let ring_material = solid(raw.ring_material.as_ref(), "ring_material")?;
+    let (lubricant, lubricant_given, oil, ring_oils) = case_lubricant(&raw)?;
+    let roughness = roughness(raw.ball_material.as_ref(), raw.ring_material.as_ref())?;
+    let inlet_meniscus_distance_m = inlet_meniscus_distance(raw.operating.as_ref())?;
+    let operating = operating(raw.operating.as_ref())?;
+    let settings = equilibrium_settings(&raw)?;
+    Ok(Case {
+        name: b.name.clone(),
+        bearing: Bearing {
+            geometry,
+            ball_material,
+            ring_material,
+        },
+        lubricant,
+        lubricant_given,
+        oil,
+        roughness,
+        ring_oils,
+        inlet_meniscus_distance_m,
+        operating,
+        settings,
+        method,
+        method_options: raw.method_options.clone(),
+    })
+}
+
+/// The method of a case file (`method`, `[method_options]`), if given.
+fn case_method(raw: &RawCase) -> Result<Option<crate::method::Method>, InputError> {
+    Ok(match (&raw.method, &raw.method_options) {
         (Some(name), options) => Some(
             crate::method::Method::parse(name, options.as_ref()).map_err(method_input_error)?,
         ),
@@ -303,8 +263,11 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
             })
         }
         (None, None) => None,
-    };
-    let b = &raw.bearing;
+    })
+}
+
+/// The bearing's geometry from `[bearing]`.
+fn geometry(b: &RawBearing) -> Result<BearingGeometry, InputError> {
     let ball_count = require(
         b.ball_count,
         "bearing.ball_count",
@@ -406,10 +369,16 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
             ),
         ));
     }
-    let geometry = BearingGeometry::new(ball_count as usize, d * 1e-3, dm * 1e-3, fi, fo, alpha0)
-        .map_err(|e| InputError::field("bearing", "", e.to_string()))?;
-    let ball_material = solid(raw.ball_material.as_ref(), "ball_material")?;
-    let ring_material = solid(raw.ring_material.as_ref(), "ring_material")?;
+    BearingGeometry::new(ball_count as usize, d * 1e-3, dm * 1e-3, fi, fo, alpha0)
+        .map_err(|e| InputError::field("bearing", "", e.to_string()))
+}
+
+/// The lubricant (given, described at `operating.temperature_c`, or the default), whether the
+/// file gives it, the described oil's constants and those at the ring temperatures.
+#[allow(clippy::type_complexity)]
+fn case_lubricant(
+    raw: &RawCase,
+) -> Result<(Lubricant, bool, Option<OilProperties>, Option<RingOils>), InputError> {
     let temperature = raw.operating.as_ref().and_then(|o| o.temperature_c);
     let ring_temperatures = ring_temperatures(raw.operating.as_ref())?;
     let (lubricant, lubricant_given, oil, ring_oils) = match raw.lubricant.as_ref() {
@@ -473,11 +442,14 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
              docs/lubricant.md) for the temperature to matter",
         ));
     }
-    let roughness = roughness(raw.ball_material.as_ref(), raw.ring_material.as_ref())?;
-    let inlet_meniscus_distance_m = inlet_meniscus_distance(raw.operating.as_ref())?;
-    let operating = operating(raw.operating.as_ref())?;
+    Ok((lubricant, lubricant_given, oil, ring_oils))
+}
+
+/// The equilibrium solver's settings from `[equilibrium]` (a bearing given by its clearance is a
+/// deep-groove bearing: shoulders on both sides).
+fn equilibrium_settings(raw: &RawCase) -> Result<EquilibriumSettings, InputError> {
     let mut settings = EquilibriumSettings::default();
-    if b.diametral_clearance_mm.is_some() {
+    if raw.bearing.diametral_clearance_mm.is_some() {
         // Given by its clearance: a deep-groove bearing, shoulders on both sides.
         settings.min_contact_angle = -PI / 2.0;
     }
@@ -526,24 +498,7 @@ pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
             settings.max_iterations = n as usize;
         }
     }
-    Ok(Case {
-        name: b.name.clone(),
-        bearing: Bearing {
-            geometry,
-            ball_material,
-            ring_material,
-        },
-        lubricant,
-        lubricant_given,
-        oil,
-        roughness,
-        ring_oils,
-        inlet_meniscus_distance_m,
-        operating,
-        settings,
-        method,
-        method_options: raw.method_options.clone(),
-    })
+    Ok(settings)
 }
 
 fn require<T>(v: Option<T>, key: &str, hint: &str) -> Result<T, InputError> {
@@ -684,8 +639,6 @@ fn roughness(
     }
 }
 
-/// A described lubricant (grade or viscosities, base oil, density at 15 °C) at `t_c` °C: the
-/// constants for the models and their derivation.
 /// The inner and outer ring temperatures of `[operating]`, °C: both or neither.
 fn ring_temperatures(raw: Option<&RawOperating>) -> Result<Option<(f64, f64)>, InputError> {
     let Some(o) = raw else { return Ok(None) };
@@ -743,24 +696,23 @@ fn oil_at(desc: &OilDescription, t_c: f64, key: &str) -> Result<OilProperties, I
     })
 }
 
-fn described_lubricant(
-    r: &RawLubricant,
-    t_c: f64,
-) -> Result<(Lubricant, OilProperties, OilDescription), InputError> {
+/// An oil error of a described lubricant's key `lubricant.{k}`.
+fn oil_err(e: crate::oil::OilError, k: &str) -> InputError {
+    match e {
+        crate::oil::OilError::Range {
+            value, expected, ..
+        } => InputError::field(&format!("lubricant.{k}"), value, expected),
+        crate::oil::OilError::Missing { quantity, hint } => InputError::Missing {
+            field: quantity,
+            hint,
+        },
+    }
+}
+
+/// A described lubricant's kinematic viscosities at 40 °C and 100 °C, mm²/s: ν40 from the ISO
+/// grade or given, ν100 given or from the viscosity index (ASTM D2270).
+fn described_viscosities(r: &RawLubricant) -> Result<(f64, f64), InputError> {
     let key = |k: &str| format!("lubricant.{k}");
-    let first = r.description_key().unwrap_or("iso_vg");
-    if r.viscosity_pa_s.is_some() {
-        return Err(InputError::Conflict {
-            first: key("viscosity_pa_s"),
-            second: key(first),
-        });
-    }
-    if r.density_kg_m3.is_some() {
-        return Err(InputError::Conflict {
-            first: key("density_kg_m3"),
-            second: key(first),
-        });
-    }
     let nu40 = match (r.iso_vg, r.viscosity_40c_mm2_s) {
         (Some(_), Some(_)) => {
             return Err(InputError::Conflict {
@@ -802,15 +754,6 @@ fn described_lubricant(
             v
         }
     };
-    let oil_err = |e: crate::oil::OilError, k: &str| match e {
-        crate::oil::OilError::Range {
-            value, expected, ..
-        } => InputError::field(&key(k), value, expected),
-        crate::oil::OilError::Missing { quantity, hint } => InputError::Missing {
-            field: quantity,
-            hint,
-        },
-    };
     let nu100 = match (r.viscosity_100c_mm2_s, r.viscosity_index) {
         (Some(_), Some(_)) => {
             return Err(InputError::Conflict {
@@ -840,6 +783,30 @@ fn described_lubricant(
             crate::oil::nu100_from_vi(nu40, vi).map_err(|e| oil_err(e, "viscosity_index"))?
         }
     };
+    Ok((nu40, nu100))
+}
+
+/// A described lubricant (grade or viscosities, base oil, density at 15 °C) at `t_c` °C: the
+/// constants for the models and their derivation.
+fn described_lubricant(
+    r: &RawLubricant,
+    t_c: f64,
+) -> Result<(Lubricant, OilProperties, OilDescription), InputError> {
+    let key = |k: &str| format!("lubricant.{k}");
+    let first = r.description_key().unwrap_or("iso_vg");
+    if r.viscosity_pa_s.is_some() {
+        return Err(InputError::Conflict {
+            first: key("viscosity_pa_s"),
+            second: key(first),
+        });
+    }
+    if r.density_kg_m3.is_some() {
+        return Err(InputError::Conflict {
+            first: key("density_kg_m3"),
+            second: key(first),
+        });
+    }
+    let (nu40, nu100) = described_viscosities(r)?;
     let base_oil = match &r.base_oil {
         None => BaseOil::Mineral,
         Some(b) => BaseOil::parse(b).ok_or_else(|| {
@@ -985,57 +952,6 @@ fn operating(raw: Option<&RawOperating>) -> Result<OperatingPoint, InputError> {
         inlet_meniscus_distance_mm: None,
     };
     let o = raw.unwrap_or(&empty);
-    let rpm = PI / 30.0;
-    let speed = |v: Option<f64>, key: &str| -> Result<f64, InputError> {
-        let s = v.unwrap_or(0.0);
-        if s.is_finite() && s.abs() <= 1e6 {
-            Ok(s * rpm)
-        } else {
-            Err(InputError::field(key, s, "a speed from −1e6 to 1e6 rpm"))
-        }
-    };
-    // (load key, load unit, load→SI factor, displacement key, unit, displacement→SI factor)
-    let dof = |load: Option<f64>,
-               lkey: &str,
-               lunit: &str,
-               disp: Option<f64>,
-               dkey: &str,
-               dunit: &str,
-               dfac: f64|
-     -> Result<Control, InputError> {
-        match (load, disp) {
-            (Some(_), Some(_)) => Err(InputError::Conflict {
-                first: format!("operating.{lkey}"),
-                second: format!("operating.{dkey}"),
-            }),
-            (Some(f), None) => Ok(Control::Load(finite(
-                f,
-                &format!("operating.{lkey}"),
-                lunit,
-            )?)),
-            (None, Some(x)) => {
-                let x = finite(x, &format!("operating.{dkey}"), dunit)?;
-                Ok(Control::Displacement(x * dfac))
-            }
-            (None, None) => Ok(Control::Load(0.0)),
-        }
-    };
-    let tilt_limit = |c: Control, key: &str| match c {
-        Control::Displacement(t) if t.abs() > 1f64.to_radians() => Err(InputError::field(
-            &format!("operating.{key}"),
-            t.to_degrees(),
-            "a tilt within ±1 degree (the model assumes small rotations)",
-        )),
-        _ => Ok(c),
-    };
-    let disp_limit = |c: Control, key: &str| match c {
-        Control::Displacement(x) if x.abs() > 1e-3 => Err(InputError::field(
-            &format!("operating.{key}"),
-            x * 1e3,
-            "a displacement within ±1 mm",
-        )),
-        _ => Ok(c),
-    };
     Ok(OperatingPoint {
         inner_speed: speed(o.inner_speed_rpm, "operating.inner_speed_rpm")?,
         outer_speed: speed(o.outer_speed_rpm, "operating.outer_speed_rpm")?,
@@ -1103,4 +1019,68 @@ fn operating(raw: Option<&RawOperating>) -> Result<OperatingPoint, InputError> {
         ],
         race_control: o.race_control.unwrap_or_default(),
     })
+}
+
+/// A ring speed of `[operating]` in rpm (absent: 0) → rad/s.
+fn speed(v: Option<f64>, key: &str) -> Result<f64, InputError> {
+    let rpm = PI / 30.0;
+    let s = v.unwrap_or(0.0);
+    if s.is_finite() && s.abs() <= 1e6 {
+        Ok(s * rpm)
+    } else {
+        Err(InputError::field(key, s, "a speed from −1e6 to 1e6 rpm"))
+    }
+}
+
+/// One degree of freedom of `[operating]`: its load (key `lkey`, unit `lunit`) or its
+/// displacement (key `dkey`, unit `dunit`, `dfac` to SI), not both; neither is a load of 0.
+fn dof(
+    load: Option<f64>,
+    lkey: &str,
+    lunit: &str,
+    disp: Option<f64>,
+    dkey: &str,
+    dunit: &str,
+    dfac: f64,
+) -> Result<Control, InputError> {
+    match (load, disp) {
+        (Some(_), Some(_)) => Err(InputError::Conflict {
+            first: format!("operating.{lkey}"),
+            second: format!("operating.{dkey}"),
+        }),
+        (Some(f), None) => Ok(Control::Load(finite(
+            f,
+            &format!("operating.{lkey}"),
+            lunit,
+        )?)),
+        (None, Some(x)) => {
+            let x = finite(x, &format!("operating.{dkey}"), dunit)?;
+            Ok(Control::Displacement(x * dfac))
+        }
+        (None, None) => Ok(Control::Load(0.0)),
+    }
+}
+
+/// An imposed tilt within ±1 degree (the model assumes small rotations).
+fn tilt_limit(c: Control, key: &str) -> Result<Control, InputError> {
+    match c {
+        Control::Displacement(t) if t.abs() > 1f64.to_radians() => Err(InputError::field(
+            &format!("operating.{key}"),
+            t.to_degrees(),
+            "a tilt within ±1 degree (the model assumes small rotations)",
+        )),
+        _ => Ok(c),
+    }
+}
+
+/// An imposed displacement within ±1 mm.
+fn disp_limit(c: Control, key: &str) -> Result<Control, InputError> {
+    match c {
+        Control::Displacement(x) if x.abs() > 1e-3 => Err(InputError::field(
+            &format!("operating.{key}"),
+            x * 1e3,
+            "a displacement within ±1 mm",
+        )),
+        _ => Ok(c),
+    }
 }

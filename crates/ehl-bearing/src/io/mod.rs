@@ -4,72 +4,16 @@
 //! valid range; unknown keys are rejected. Nothing here panics on user input.
 
 pub mod case;
+pub mod contact;
 pub mod json;
 pub mod store;
+pub mod study;
 
-pub use case::{parse_case, read_case, Case};
+pub use case::{parse_case, read_case};
 pub use store::{read_own_file, write_atomic, FsStore, OwnFileError};
+pub use study::{parse_study, read_study};
 
-use thiserror::Error;
-
-/// Errors reading user input.
-#[derive(Debug, Error, Clone, PartialEq)]
-pub enum InputError {
-    /// A field has an invalid value.
-    #[error("{field} = {value}: expected {expected}")]
-    Field {
-        /// The key, with its table, e.g. `bearing.ball_diameter_mm`.
-        field: String,
-        /// The value given.
-        value: String,
-        /// The valid range.
-        expected: String,
-    },
-    /// Two keys that exclude each other were both given.
-    #[error("{first} and {second} are both given: give one or the other")]
-    Conflict {
-        /// One key.
-        first: String,
-        /// The other key.
-        second: String,
-    },
-    /// A required key is missing.
-    #[error("{field} is missing: {hint}")]
-    Missing {
-        /// The key.
-        field: String,
-        /// What to give.
-        hint: String,
-    },
-    /// The file is not valid TOML for a case (syntax, wrong type, unknown key).
-    #[error("{path}: {message}")]
-    Syntax {
-        /// File name (or `<input>`).
-        path: String,
-        /// The parser's message, with line and column.
-        message: String,
-    },
-    /// The file could not be read.
-    #[error("cannot read {path}: {message}")]
-    Io {
-        /// File name.
-        path: String,
-        /// The OS error.
-        message: String,
-    },
-}
-
-/// Shortest round-trip text of `v` for names and messages: positional (`3000`, `0.5`) when at
-/// most 20 characters, else exponent form (`1e-300`, `1e300`, where positional text runs to
-/// 300 digits). Distinct values give distinct texts (only the exponent form has an `e`).
-pub fn number_text(v: f64) -> String {
-    let positional = format!("{v}");
-    if positional.len() <= 20 {
-        positional
-    } else {
-        format!("{v:e}")
-    }
-}
+use crate::case::InputError;
 
 /// Largest input file read (case, contact, study, trend files are a few kB): 16 MiB.
 pub const MAX_INPUT_BYTES: u64 = 16 << 20;
@@ -115,14 +59,4 @@ pub(crate) fn from_toml<T: serde::de::DeserializeOwned>(
             },
         }
     })
-}
-
-impl InputError {
-    pub(crate) fn field(field: &str, value: impl ToString, expected: impl Into<String>) -> Self {
-        InputError::Field {
-            field: field.to_string(),
-            value: value.to_string(),
-            expected: expected.into(),
-        }
-    }
 }

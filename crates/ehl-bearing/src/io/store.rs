@@ -133,15 +133,43 @@ fn file_kind(t: &std::fs::FileType) -> &'static str {
 pub enum OwnFileError {
     /// The file could not be read (permissions, I/O).
     Io(std::io::Error),
-    /// The path is not a file this program could have written: what it is instead.
-    Foreign(String),
+    /// The path is not a regular file (a folder, FIFO, device or a link to one).
+    NotRegular {
+        /// What it is instead.
+        kind: &'static str,
+    },
+    /// The file is larger than any this program writes.
+    TooLarge {
+        /// Its size, bytes.
+        bytes: u64,
+        /// The limit, MiB.
+        limit_mib: u64,
+    },
+}
+
+impl OwnFileError {
+    /// What the path is instead of a file this program could have written (None for an I/O
+    /// error).
+    pub fn foreign(&self) -> Option<String> {
+        match self {
+            OwnFileError::Io(_) => None,
+            OwnFileError::NotRegular { kind } => Some(format!("not a regular file ({kind})")),
+            OwnFileError::TooLarge { bytes, limit_mib } => {
+                Some(format!("{bytes} bytes, larger than {limit_mib} MiB"))
+            }
+        }
+    }
 }
 
 impl std::fmt::Display for OwnFileError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             OwnFileError::Io(e) => write!(f, "{e}"),
-            OwnFileError::Foreign(what) => write!(f, "{what}: not a file of this program"),
+            other => write!(
+                f,
+                "{}: not a file of this program",
+                other.foreign().unwrap_or_default()
+            ),
         }
     }
 }
@@ -159,14 +187,15 @@ pub fn read_own_file(path: &Path) -> Result<Option<String>, OwnFileError> {
         Err(e) => return Err(OwnFileError::Io(e)),
     };
     if !meta.is_file() {
-        return Err(OwnFileError::Foreign(format!(
-            "not a regular file ({})",
-            file_kind(&meta.file_type())
-        )));
+        return Err(OwnFileError::NotRegular {
+            kind: file_kind(&meta.file_type()),
+        });
     }
     let limit = super::MAX_INPUT_BYTES;
-    let too_large =
-        |n: u64| OwnFileError::Foreign(format!("{n} bytes, larger than {} MiB", limit >> 20));
+    let too_large = |bytes: u64| OwnFileError::TooLarge {
+        bytes,
+        limit_mib: limit >> 20,
+    };
     if meta.len() > limit {
         return Err(too_large(meta.len()));
     }
@@ -190,11 +219,12 @@ impl PointStore for FsStore {
         match read_own_file(&path) {
             Ok(text) => Ok(text),
             Err(OwnFileError::Io(e)) => Err(err("reading", &path, e)),
-            Err(OwnFileError::Foreign(what)) => Err(err(
+            Err(foreign) => Err(err(
                 "reading",
                 &path,
                 format!(
-                    "{what}: not a point file of this program; remove it to recompute the point"
+                    "{}: not a point file of this program; remove it to recompute the point",
+                    foreign.foreign().unwrap_or_default()
                 ),
             )),
         }

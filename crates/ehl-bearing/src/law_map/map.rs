@@ -219,7 +219,9 @@ pub struct LawMapSpec {
 impl LawMapSpec {
     /// Parses and validates a spec file's text.
     pub fn from_toml(text: &str) -> Result<LawMapSpec, LawMapError> {
-        let s: LawMapSpec = toml::from_str(text).map_err(|e| LawMapError::File(e.to_string()))?;
+        let s: LawMapSpec = toml::from_str(text).map_err(|e| LawMapError::Parse {
+            message: e.to_string(),
+        })?;
         s.validate()?;
         Ok(s)
     }
@@ -247,22 +249,20 @@ impl LawMapSpec {
             let fixed = self.fixed(g).is_some() as usize;
             let needed = g.needed(self.viscosity_model, self.density_model);
             if needed && axes + fixed != 1 {
-                return Err(LawMapError::File(format!(
-                    "group {}: given {} time(s) (as an axis {axes}, fixed {fixed}); the models \
-                     {:?}/{:?} need it exactly once",
-                    g.name(),
-                    axes + fixed,
-                    self.viscosity_model,
-                    self.density_model
-                )));
+                return Err(LawMapError::GroupCount {
+                    group: g.name(),
+                    axes,
+                    fixed,
+                    viscosity_model: self.viscosity_model,
+                    density_model: self.density_model,
+                });
             }
             if !needed && axes + fixed != 0 {
-                return Err(LawMapError::File(format!(
-                    "group {}: given, but the models {:?}/{:?} do not depend on it",
-                    g.name(),
-                    self.viscosity_model,
-                    self.density_model
-                )));
+                return Err(LawMapError::GroupNotUsed {
+                    group: g.name(),
+                    viscosity_model: self.viscosity_model,
+                    density_model: self.density_model,
+                });
             }
             if let Some(v) = self.fixed(g) {
                 if !(v.is_finite() && v > 0.0) {
@@ -271,18 +271,18 @@ impl LawMapSpec {
             }
         }
         if self.axes.is_empty() || self.axes.len() > 5 {
-            return Err(LawMapError::File(format!(
-                "{} axes: expected 1 to 5",
-                self.axes.len()
-            )));
+            return Err(LawMapError::AxisCount {
+                axes: self.axes.len(),
+            });
         }
         for a in &self.axes {
             let name = format!("axis {}", a.group.name());
             if !(a.min.is_finite() && a.max.is_finite() && a.min > 0.0 && a.max > a.min) {
-                return Err(LawMapError::File(format!(
-                    "{name}: min = {}, max = {}: expected 0 < min < max, finite",
-                    a.min, a.max
-                )));
+                return Err(LawMapError::AxisRange {
+                    group: a.group.name(),
+                    min: a.min,
+                    max: a.max,
+                });
             }
             if !(3..=65).contains(&a.nodes) || a.nodes % 2 == 0 {
                 return Err(inv(
@@ -299,10 +299,7 @@ impl LawMapSpec {
                 "at most 200000",
             ));
         }
-        self.settings()
-            .ehl
-            .validate()
-            .map_err(|e| LawMapError::File(e.to_string()))?;
+        self.settings().ehl.validate().map_err(LawMapError::Ehl)?;
         if !(self.amplitude.is_finite() && self.amplitude > 0.0 && self.amplitude <= 0.9) {
             return Err(inv("amplitude", self.amplitude, "0 < ε ≤ 0.9"));
         }
@@ -471,21 +468,23 @@ fn values_of(l: &DimensionlessLaw) -> [f64; 6] {
 impl LawMap {
     /// Parses a map file (JSON) and checks it against its spec.
     pub fn from_json(text: &str) -> Result<LawMap, LawMapError> {
-        let m: LawMap = serde_json::from_str(text).map_err(|e| LawMapError::File(e.to_string()))?;
+        let m: LawMap = serde_json::from_str(text).map_err(|e| LawMapError::Parse {
+            message: e.to_string(),
+        })?;
         if m.format != FORMAT {
-            return Err(LawMapError::File(format!(
-                "format = {:?}: expected {FORMAT:?}",
-                m.format
-            )));
+            return Err(LawMapError::Format {
+                format: m.format.clone(),
+                expected: FORMAT,
+            });
         }
         m.spec.validate()?;
         let n = m.spec.node_count();
         if m.laws.len() != n || m.quality.len() != n {
-            return Err(LawMapError::File(format!(
-                "{} laws and {} quality entries for {n} nodes",
-                m.laws.len(),
-                m.quality.len()
-            )));
+            return Err(LawMapError::NodeCount {
+                laws: m.laws.len(),
+                quality: m.quality.len(),
+                nodes: n,
+            });
         }
         Ok(m)
     }

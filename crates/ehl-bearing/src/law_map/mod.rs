@@ -43,9 +43,80 @@ pub enum LawMapError {
         /// The valid range.
         expected: String,
     },
-    /// A map's spec or file that cannot be used.
+    /// A spec (TOML) or map (JSON) file that does not parse: the parser's message.
+    #[error("law map: {message}")]
+    Parse {
+        /// The TOML or JSON parser's message, with line and column.
+        message: String,
+    },
+    /// A group the spec's rheology models need, not given exactly once.
+    #[error(
+        "law map: group {group}: given {given} time(s) (as an axis {axes}, fixed {fixed}); the \
+         models {viscosity_model:?}/{density_model:?} need it exactly once",
+        given = axes + fixed
+    )]
+    GroupCount {
+        /// The group's name.
+        group: &'static str,
+        /// Times given as an axis.
+        axes: usize,
+        /// Times given as a fixed value.
+        fixed: usize,
+        /// The spec's viscosity model.
+        viscosity_model: ViscosityModel,
+        /// The spec's density model.
+        density_model: DensityModel,
+    },
+    /// A group given that the spec's rheology models do not depend on.
+    #[error(
+        "law map: group {group}: given, but the models {viscosity_model:?}/{density_model:?} do \
+         not depend on it"
+    )]
+    GroupNotUsed {
+        /// The group's name.
+        group: &'static str,
+        /// The spec's viscosity model.
+        viscosity_model: ViscosityModel,
+        /// The spec's density model.
+        density_model: DensityModel,
+    },
+    /// A number of axes outside 1 to 5.
+    #[error("law map: {axes} axes: expected 1 to 5")]
+    AxisCount {
+        /// Axes given.
+        axes: usize,
+    },
+    /// An axis whose range is not 0 < min < max.
+    #[error("law map: axis {group}: min = {min}, max = {max}: expected 0 < min < max, finite")]
+    AxisRange {
+        /// The axis's group.
+        group: &'static str,
+        /// Its lower end.
+        min: f64,
+        /// Its upper end.
+        max: f64,
+    },
+    /// The spec's EHL settings out of range.
     #[error("law map: {0}")]
-    File(String),
+    Ehl(crate::ehl::EhlError),
+    /// A map file of another format.
+    #[error("law map: format = {format:?}: expected {expected:?}")]
+    Format {
+        /// The format given.
+        format: String,
+        /// The format read.
+        expected: &'static str,
+    },
+    /// A map file whose laws or quality entries do not match its nodes.
+    #[error("law map: {laws} laws and {quality} quality entries for {nodes} nodes")]
+    NodeCount {
+        /// Laws given.
+        laws: usize,
+        /// Quality entries given.
+        quality: usize,
+        /// Nodes of the spec.
+        nodes: usize,
+    },
     /// A contact whose rheology models are not the map's.
     #[error("the contact's models {contact} are not the map's ({map})")]
     Models {

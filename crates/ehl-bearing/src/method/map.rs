@@ -6,6 +6,7 @@ use super::{
     predict_steady, CharacterizedContact, ContactCharacterizer, ContactConditions, LoadPredictor,
     MapSettings, Method, PredictedLaw, QuasiStaticCharacterizer,
 };
+use crate::budget::Deadline;
 use crate::hertz::HertzGeometry;
 use crate::law_map::{hertz_deflection, LawGroups, LawMap};
 use crate::ContactLaw;
@@ -29,7 +30,11 @@ pub struct MapCharacterizer {
 }
 
 impl ContactCharacterizer for MapCharacterizer {
-    fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error> {
+    fn characterize(
+        &self,
+        c: &ContactConditions,
+        deadline: Option<Deadline>,
+    ) -> Result<CharacterizedContact, crate::Error> {
         let t0 = Instant::now();
         let ehl = c.ehl_contact();
         let groups = LawGroups::of(&ehl)?;
@@ -39,7 +44,7 @@ impl ContactCharacterizer for MapCharacterizer {
                 let mut r = QuasiStaticCharacterizer {
                     settings: LawMap::embedded().spec.settings(),
                 }
-                .characterize(c)?;
+                .characterize(c, deadline)?;
                 r.method = format!("quasi-static (outside the map: {e})");
                 return Ok(r);
             }
@@ -92,7 +97,11 @@ impl LoadPredictor for MapCharacterizer {
     /// quasi-static method's predictor at the map's settings (one loosely converged steady EHL
     /// solution, [`predict_steady`]); without, the map's error (the loop keeps that contact's
     /// dry law for the start).
-    fn predict(&self, c: &ContactConditions) -> Result<PredictedLaw, crate::Error> {
+    fn predict(
+        &self,
+        c: &ContactConditions,
+        deadline: Option<Deadline>,
+    ) -> Result<PredictedLaw, crate::Error> {
         let ehl = c.ehl_contact();
         let groups = LawGroups::of(&ehl)?;
         match LawMap::query_embedded(&groups) {
@@ -108,7 +117,7 @@ impl LoadPredictor for MapCharacterizer {
                 )?)
             }
             Err(_) if self.settings.fallback => {
-                predict_steady(c, &LawMap::embedded().spec.settings().ehl)
+                predict_steady(c, &LawMap::embedded().spec.settings().ehl, deadline)
             }
             Err(e) => Err(e.into()),
         }

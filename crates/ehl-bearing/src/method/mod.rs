@@ -19,9 +19,10 @@
 //! is used by [`crate::characterize`] and [`crate::study`], never the other way round.
 
 use crate::bearing::Race;
-use crate::contact::{characterize_harmonic, HarmonicSettings, QuasiStaticSettings};
+use crate::budget::Deadline;
+use crate::contact::{characterize_harmonic_within, HarmonicSettings, QuasiStaticSettings};
 use crate::contact_law::ContactLaw;
-use crate::ehl::{solve_steady, EhlContact, EhlSettings};
+use crate::ehl::{solve_steady_within, EhlContact, EhlSettings};
 use crate::fit::{fit_power_law, FitOptions, FittedLaw};
 use crate::hertz::HertzGeometry;
 use crate::material::Lubricant;
@@ -51,9 +52,21 @@ pub enum MethodError {
         /// The name given.
         name: String,
     },
-    /// A fitted or predicted law that cannot serve (e.g. does not reach its load).
-    #[error("{0}")]
-    Law(String),
+    /// A fitted law that does not reach the load of its contact.
+    #[error("the fitted law does not reach the load {load_n} N")]
+    LawShortOfLoad {
+        /// The contact's load, N.
+        load_n: f64,
+    },
+    /// A load prediction asked of a method that has none.
+    #[error("method {method} has no load predictor")]
+    NoPredictor {
+        /// The method's name.
+        method: &'static str,
+    },
+    /// The caller stopped the run.
+    #[error("cancelled")]
+    Cancelled,
 }
 
 impl MethodError {
@@ -245,8 +258,13 @@ pub struct CharacterizedContact {
 /// fits Q = K·δ^d + ΔF. Implementations must be deterministic (same input, same bits) for the
 /// loop's results not to depend on the number of threads.
 pub trait ContactCharacterizer: Sync + Send {
-    /// Characterize the contact `c`.
-    fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error>;
+    /// Characterize the contact `c` within the wall-time budget `deadline` (None: no budget;
+    /// the EHL methods end with a time-limit error once it has passed, the dry ones ignore it).
+    fn characterize(
+        &self,
+        c: &ContactConditions,
+        deadline: Option<Deadline>,
+    ) -> Result<CharacterizedContact, crate::Error>;
     /// The method and its full settings, written into every result (typed; serializes to the
     /// `method` object of result files).
     fn method(&self) -> Method;
@@ -266,8 +284,13 @@ pub trait ContactCharacterizer: Sync + Send {
 /// characterization. It only moves the point where the first characterization is centred; the
 /// result is still the loop's fixed point with the characterized laws. Must be deterministic.
 pub trait LoadPredictor: Sync + Send {
-    /// The predictor law of contact `c` near `c.load`.
-    fn predict(&self, c: &ContactConditions) -> Result<PredictedLaw, crate::Error>;
+    /// The predictor law of contact `c` near `c.load`, within the wall-time budget `deadline`
+    /// (None: no budget).
+    fn predict(
+        &self,
+        c: &ContactConditions,
+        deadline: Option<Deadline>,
+    ) -> Result<PredictedLaw, crate::Error>;
 }
 
 /// A load predictor law: dry Hertz shifted by an effective film h,
@@ -371,12 +394,9 @@ fn fit_samples(
 ) -> Result<CharacterizedContact, crate::Error> {
     let fit = fit_power_law(delta, q, &FitOptions::default())?;
     let law = fit.law()?;
-    let approach = law.approach_at(c.load).ok_or_else(|| {
-        MethodError::Law(format!(
-            "the fitted law does not reach the load {} N",
-            c.load
-        ))
-    })?;
+    let approach = law
+        .approach_at(c.load)
+        .ok_or(MethodError::LawShortOfLoad { load_n: c.load })?;
     let moes = c.moes();
     Ok(CharacterizedContact {
         law,
@@ -422,7 +442,11 @@ impl Default for HertzCharacterizer {
 }
 
 impl ContactCharacterizer for HertzCharacterizer {
-    fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error> {
+    fn characterize(
+        &self,
+        c: &ContactConditions,
+        _deadline: Option<Deadline>,
+    ) -> Result<CharacterizedContact, crate::Error> {
         let start = Instant::now();
         c.validate()?;
         check_sampling(self.samples, self.amplitude)?;
@@ -502,7 +526,11 @@ impl SyntheticCharacterizer {
 }
 
 impl ContactCharacterizer for SyntheticCharacterizer {
-    fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error> {
+    fn characterize(
+        &self,
+        c: &ContactConditions,
+        _deadline: Option<Deadline>,
+    ) -> Result<CharacterizedContact, crate::Error> {
         let start = Instant::now();
         c.validate()?;
         check_sampling(self.samples, self.amplitude)?;
@@ -535,9 +563,17 @@ pub struct QuasiStaticCharacterizer {
 }
 
 impl ContactCharacterizer for QuasiStaticCharacterizer {
-    fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error> {
+    fn characterize(
+        &self,
+        c: &ContactConditions,
+        deadline: Option<Deadline>,
+    ) -> Result<CharacterizedContact, crate::Error> {
         c.validate()?;
-        let fit = crate::contact::characterize_quasi_static(&c.ehl_contact(), &self.settings)?;
+        let fit = crate::contact::characterize_quasi_static_within(
+            &c.ehl_contact(),
+            &self.settings,
+            deadline,
+        )?;
         let (delta, q): (Vec<f64>, Vec<f64>) =
             fit.samples.iter().map(|x| (x.approach, x.load)).unzip();
         let max_residual = max_abs_residual(&fit.law, &delta, &q);
@@ -565,8 +601,12 @@ impl LoadPredictor for QuasiStaticCharacterizer {
     /// cycles, and the predicted loads hardly change — within 0.64 % of the converged ones at
     /// 5000 rpm on the seed case, 0.62 % with the family's tolerances), turned into a
     /// [`PredictedLaw`].
-    fn predict(&self, c: &ContactConditions) -> Result<PredictedLaw, crate::Error> {
-        predict_steady(c, &self.settings.ehl)
+    fn predict(
+        &self,
+        c: &ContactConditions,
+        deadline: Option<Deadline>,
+    ) -> Result<PredictedLaw, crate::Error> {
+        predict_steady(c, &self.settings.ehl, deadline)
     }
 }
 
@@ -576,6 +616,7 @@ impl LoadPredictor for QuasiStaticCharacterizer {
 pub fn predict_steady(
     c: &ContactConditions,
     ehl: &EhlSettings,
+    deadline: Option<Deadline>,
 ) -> Result<PredictedLaw, crate::Error> {
     c.validate()?;
     let h = HertzGeometry::new(c.rx, c.ry, c.e_reduced)?;
@@ -586,7 +627,7 @@ pub fn predict_steady(
         tol_film: e.tol_film.max(PREDICTOR_TOLERANCE),
         ..*e
     };
-    let sol = solve_steady(&c.ehl_contact(), &settings)?;
+    let sol = solve_steady_within(&c.ehl_contact(), &settings, deadline)?;
     let film = h.contact(c.load).deflection - sol.approach;
     Ok(PredictedLaw::new(h.stiffness, film, sol.converged)?)
 }
@@ -607,10 +648,15 @@ pub struct HarmonicCharacterizer {
 }
 
 impl ContactCharacterizer for HarmonicCharacterizer {
-    fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error> {
+    fn characterize(
+        &self,
+        c: &ContactConditions,
+        deadline: Option<Deadline>,
+    ) -> Result<CharacterizedContact, crate::Error> {
         use crate::ContactLaw;
         // The contact and the mass are validated by characterize_harmonic (EHL input checks).
-        let fit = characterize_harmonic(&c.ehl_contact(), c.ball_mass, &self.settings)?;
+        let fit =
+            characterize_harmonic_within(&c.ehl_contact(), c.ball_mass, &self.settings, deadline)?;
         // Largest force residual of the fit over the recorded steps, damping term included (N).
         let damping = fit.c.unwrap_or(0.0);
         let max_residual = fit.history[fit.settling_steps..]
@@ -638,8 +684,12 @@ impl ContactCharacterizer for HarmonicCharacterizer {
 impl LoadPredictor for HarmonicCharacterizer {
     /// The steady predictor of the quasi-static method
     /// ([`predict_steady`]) with this method's grid and domain.
-    fn predict(&self, c: &ContactConditions) -> Result<PredictedLaw, crate::Error> {
-        predict_steady(c, &self.settings.ehl)
+    fn predict(
+        &self,
+        c: &ContactConditions,
+        deadline: Option<Deadline>,
+    ) -> Result<PredictedLaw, crate::Error> {
+        predict_steady(c, &self.settings.ehl, deadline)
     }
 }
 
@@ -967,22 +1017,6 @@ impl Method {
         }
     }
 
-    /// The method with a wall-time budget on its EHL solves ([`EhlSettings::deadline`]; no
-    /// effect on hertz and synthetic, which do not iterate).
-    pub fn with_deadline(self, deadline: Option<crate::budget::Deadline>) -> Method {
-        match self {
-            Method::QuasiStatic(mut s) => {
-                s.ehl.deadline = deadline;
-                Method::QuasiStatic(s)
-            }
-            Method::Harmonic(mut s) => {
-                s.ehl.deadline = deadline;
-                Method::Harmonic(s)
-            }
-            m => m,
-        }
-    }
-
     /// The EHL grid of an EHL method (None for hertz and synthetic).
     pub fn grid(&self) -> Option<usize> {
         match self {
@@ -994,13 +1028,19 @@ impl Method {
 }
 
 impl ContactCharacterizer for Method {
-    fn characterize(&self, c: &ContactConditions) -> Result<CharacterizedContact, crate::Error> {
+    fn characterize(
+        &self,
+        c: &ContactConditions,
+        deadline: Option<Deadline>,
+    ) -> Result<CharacterizedContact, crate::Error> {
         match self {
-            Method::Hertz(h) => h.characterize(c),
-            Method::Synthetic(s) => s.characterize(c),
-            Method::QuasiStatic(s) => QuasiStaticCharacterizer { settings: *s }.characterize(c),
-            Method::Harmonic(s) => HarmonicCharacterizer { settings: *s }.characterize(c),
-            Method::Map(s) => MapCharacterizer { settings: *s }.characterize(c),
+            Method::Hertz(h) => h.characterize(c, deadline),
+            Method::Synthetic(s) => s.characterize(c, deadline),
+            Method::QuasiStatic(s) => {
+                QuasiStaticCharacterizer { settings: *s }.characterize(c, deadline)
+            }
+            Method::Harmonic(s) => HarmonicCharacterizer { settings: *s }.characterize(c, deadline),
+            Method::Map(s) => MapCharacterizer { settings: *s }.characterize(c, deadline),
         }
     }
 
@@ -1024,12 +1064,19 @@ impl LoadPredictor for Method {
     /// The steady predictor of the EHL methods ([`predict_steady`] with the method's EHL grid
     /// and domain), the map's own for the map method ([`MapCharacterizer`]); an error for the
     /// dry methods, which have none.
-    fn predict(&self, c: &ContactConditions) -> Result<PredictedLaw, crate::Error> {
+    fn predict(
+        &self,
+        c: &ContactConditions,
+        deadline: Option<Deadline>,
+    ) -> Result<PredictedLaw, crate::Error> {
         match self {
-            Method::QuasiStatic(s) => predict_steady(c, &s.ehl),
-            Method::Harmonic(s) => predict_steady(c, &s.ehl),
-            Method::Map(s) => MapCharacterizer { settings: *s }.predict(c),
-            other => Err(MethodError::Law(format!("method {other} has no load predictor")).into()),
+            Method::QuasiStatic(s) => predict_steady(c, &s.ehl, deadline),
+            Method::Harmonic(s) => predict_steady(c, &s.ehl, deadline),
+            Method::Map(s) => MapCharacterizer { settings: *s }.predict(c, deadline),
+            other => Err(MethodError::NoPredictor {
+                method: other.name(),
+            }
+            .into()),
         }
     }
 }

@@ -41,9 +41,168 @@ use thiserror::Error;
 /// Errors of the rotor model and its solvers; each carries the numbers that explain it.
 #[derive(Debug, Error)]
 pub enum RotorError {
-    /// An input outside its valid range: names the field, its value and the range.
-    #[error("invalid rotor input: {0}")]
-    Invalid(String),
+    /// A number outside its valid range: names the field, its value (with `unit`) and the range.
+    #[error("invalid rotor input: {field} = {value}{unit}; must be {expected}")]
+    Range {
+        /// The input, e.g. `step_s`.
+        field: &'static str,
+        /// The value given.
+        value: f64,
+        /// Its unit as written after the value (e.g. " rad/s"; empty when the field names it).
+        unit: &'static str,
+        /// The valid range.
+        expected: &'static str,
+    },
+    /// The rotor has no degree of freedom.
+    #[error("invalid rotor input: rotor dofs = 0; a rotor needs at least one DOF")]
+    NoDofs,
+    /// A matrix with the wrong number of entries.
+    #[error("invalid rotor input: {name} matrix has {entries} entries; {n}×{n} = {} expected", n * n)]
+    MatrixSize {
+        /// The matrix, e.g. `mass`.
+        name: &'static str,
+        /// Entries given.
+        entries: usize,
+        /// Rotor DOFs.
+        n: usize,
+    },
+    /// A matrix entry that is not finite.
+    #[error("invalid rotor input: {name}[{row}, {col}] = {value}; entries must be finite")]
+    MatrixEntry {
+        /// The matrix.
+        name: &'static str,
+        /// Row.
+        row: usize,
+        /// Column.
+        col: usize,
+        /// The value given.
+        value: f64,
+    },
+    /// A vector with the wrong number of entries.
+    #[error("invalid rotor input: {name} has {entries} entries; {n} expected")]
+    VectorSize {
+        /// The vector, e.g. `constant_force`.
+        name: &'static str,
+        /// Entries given.
+        entries: usize,
+        /// Rotor DOFs.
+        n: usize,
+    },
+    /// A vector entry that is not finite.
+    #[error("invalid rotor input: {name}[{index}] = {value}; must be finite{unit}")]
+    VectorEntry {
+        /// The vector.
+        name: &'static str,
+        /// Entry.
+        index: usize,
+        /// The value given.
+        value: f64,
+        /// Its unit, e.g. " (N or N·m)".
+        unit: &'static str,
+    },
+    /// A bearing site's DOF index outside the rotor's.
+    #[error(
+        "invalid rotor input: bearing {bearing}: dofs[{k}] = {dof}; rotor DOF indices run 0..{n}"
+    )]
+    SiteDof {
+        /// Bearing site.
+        bearing: usize,
+        /// Bearing DOF (0 to 4).
+        k: usize,
+        /// Rotor DOF given.
+        dof: usize,
+        /// Rotor DOFs.
+        n: usize,
+    },
+    /// A bearing site's sign other than ±1.
+    #[error("invalid rotor input: bearing {bearing}: signs[{k}] = {value}; must be +1 or −1")]
+    SiteSign {
+        /// Bearing site.
+        bearing: usize,
+        /// Bearing DOF.
+        k: usize,
+        /// The sign given.
+        value: f64,
+    },
+    /// A bearing site's offset that is not finite.
+    #[error(
+        "invalid rotor input: bearing {bearing}: offset[{k}] = {value}; must be finite (m or rad)"
+    )]
+    SiteOffset {
+        /// Bearing site.
+        bearing: usize,
+        /// Bearing DOF.
+        k: usize,
+        /// The offset given.
+        value: f64,
+    },
+    /// Two DOFs of one bearing site mapped to the same rotor DOF.
+    #[error("invalid rotor input: bearing {bearing}: dofs {dofs:?} map two bearing DOFs to one rotor DOF")]
+    SiteDofsRepeated {
+        /// Bearing site.
+        bearing: usize,
+        /// Its rotor DOFs.
+        dofs: [Option<usize>; 5],
+    },
+    /// An unbalance's DOF outside the rotor's.
+    #[error("invalid rotor input: unbalance {unbalance}: dof {dof}; rotor DOF indices run 0..{n}")]
+    UnbalanceDof {
+        /// Unbalance.
+        unbalance: usize,
+        /// Rotor DOF given.
+        dof: usize,
+        /// Rotor DOFs.
+        n: usize,
+    },
+    /// An unbalance acting twice on one DOF.
+    #[error(
+        "invalid rotor input: unbalance {unbalance}: dofs {dofs:?} must be two different DOFs"
+    )]
+    UnbalanceSameDofs {
+        /// Unbalance.
+        unbalance: usize,
+        /// Its DOFs.
+        dofs: [usize; 2],
+    },
+    /// An unbalance that is not finite.
+    #[error(
+        "invalid rotor input: unbalance {unbalance}: mass_eccentricity_kg_m = \
+         {mass_eccentricity_kg_m}, phase_rad = {phase_rad}; must be finite"
+    )]
+    UnbalanceNotFinite {
+        /// Unbalance.
+        unbalance: usize,
+        /// m·e, kg·m.
+        mass_eccentricity_kg_m: f64,
+        /// Phase, rad.
+        phase_rad: f64,
+    },
+    /// A recorded DOF outside the rotor's.
+    #[error("invalid rotor input: record_dofs contains {dof}; rotor DOF indices run 0..{n}")]
+    RecordDof {
+        /// Rotor DOF given.
+        dof: usize,
+        /// Rotor DOFs.
+        n: usize,
+    },
+    /// A record too large to keep in memory.
+    #[error(
+        "invalid rotor input: duration_s / step_s / record_every = {rows:.3e} recorded samples \
+         of {per_row} DOFs ({:.1} GB); at most {:.0} GB: raise record_every or narrow \
+         record_dofs",
+        bytes * 1e-9,
+        max_bytes * 1e-9
+    )]
+    RecordTooLarge {
+        /// Recorded samples.
+        rows: f64,
+        /// DOFs per sample.
+        per_row: usize,
+        /// Bytes the record needs.
+        bytes: f64,
+        /// The limit, bytes.
+        max_bytes: f64,
+    },
     /// A matrix that must be invertible is singular (e.g. the mass matrix, or the effective
     /// matrix of a step).
     #[error("singular {what} matrix at t = {time_s} s")]

@@ -46,9 +46,7 @@ impl RotorMatrices {
     fn validate(&self) -> Result<(), RotorError> {
         let n = self.dofs;
         if n == 0 {
-            return Err(RotorError::Invalid(
-                "rotor dofs = 0; a rotor needs at least one DOF".into(),
-            ));
+            return Err(RotorError::NoDofs);
         }
         for (name, m) in [
             ("mass", &self.mass),
@@ -57,19 +55,19 @@ impl RotorMatrices {
             ("stiffness", &self.stiffness),
         ] {
             if m.len() != n * n {
-                return Err(RotorError::Invalid(format!(
-                    "{name} matrix has {} entries; {n}×{n} = {} expected",
-                    m.len(),
-                    n * n
-                )));
+                return Err(RotorError::MatrixSize {
+                    name,
+                    entries: m.len(),
+                    n,
+                });
             }
             if let Some(i) = m.iter().position(|v| !v.is_finite()) {
-                return Err(RotorError::Invalid(format!(
-                    "{name}[{}, {}] = {}; entries must be finite",
-                    i / n,
-                    i % n,
-                    m[i]
-                )));
+                return Err(RotorError::MatrixEntry {
+                    name,
+                    row: i / n,
+                    col: i % n,
+                    value: m[i],
+                });
             }
         }
         Ok(())
@@ -282,52 +280,60 @@ impl RotorModel {
             for k in 0..5 {
                 if let Some(i) = site.dofs[k] {
                     if i >= n {
-                        return Err(RotorError::Invalid(format!(
-                            "bearing {b}: dofs[{k}] = {i}; rotor DOF indices run 0..{n}"
-                        )));
+                        return Err(RotorError::SiteDof {
+                            bearing: b,
+                            k,
+                            dof: i,
+                            n,
+                        });
                     }
                 }
                 if site.signs[k].abs() != 1.0 {
-                    return Err(RotorError::Invalid(format!(
-                        "bearing {b}: signs[{k}] = {}; must be +1 or −1",
-                        site.signs[k]
-                    )));
+                    return Err(RotorError::SiteSign {
+                        bearing: b,
+                        k,
+                        value: site.signs[k],
+                    });
                 }
                 if !site.offset[k].is_finite() {
-                    return Err(RotorError::Invalid(format!(
-                        "bearing {b}: offset[{k}] = {}; must be finite (m or rad)",
-                        site.offset[k]
-                    )));
+                    return Err(RotorError::SiteOffset {
+                        bearing: b,
+                        k,
+                        value: site.offset[k],
+                    });
                 }
             }
             let mut used: Vec<usize> = site.dofs.iter().flatten().copied().collect();
             used.sort_unstable();
             if used.windows(2).any(|w| w[0] == w[1]) {
-                return Err(RotorError::Invalid(format!(
-                    "bearing {b}: dofs {:?} map two bearing DOFs to one rotor DOF",
-                    site.dofs
-                )));
+                return Err(RotorError::SiteDofsRepeated {
+                    bearing: b,
+                    dofs: site.dofs,
+                });
             }
         }
         for (u, ub) in unbalances.iter().enumerate() {
             for &i in &ub.dofs {
                 if i >= n {
-                    return Err(RotorError::Invalid(format!(
-                        "unbalance {u}: dof {i}; rotor DOF indices run 0..{n}"
-                    )));
+                    return Err(RotorError::UnbalanceDof {
+                        unbalance: u,
+                        dof: i,
+                        n,
+                    });
                 }
             }
             if ub.dofs[0] == ub.dofs[1] {
-                return Err(RotorError::Invalid(format!(
-                    "unbalance {u}: dofs {:?} must be two different DOFs",
-                    ub.dofs
-                )));
+                return Err(RotorError::UnbalanceSameDofs {
+                    unbalance: u,
+                    dofs: ub.dofs,
+                });
             }
             if !ub.mass_eccentricity_kg_m.is_finite() || !ub.phase_rad.is_finite() {
-                return Err(RotorError::Invalid(format!(
-                    "unbalance {u}: mass_eccentricity_kg_m = {}, phase_rad = {}; must be finite",
-                    ub.mass_eccentricity_kg_m, ub.phase_rad
-                )));
+                return Err(RotorError::UnbalanceNotFinite {
+                    unbalance: u,
+                    mass_eccentricity_kg_m: ub.mass_eccentricity_kg_m,
+                    phase_rad: ub.phase_rad,
+                });
             }
         }
         check_vector("constant_force", &constant_force, n, " (N or N·m)")?;
@@ -614,27 +620,38 @@ impl RotorModel {
 
 /// A vector input of the rotor: `n` entries, all finite; the error names `name`, the entry and
 /// its value (`unit`, e.g. " (N or N·m)", follows "must be finite").
-pub(crate) fn check_vector(name: &str, v: &[f64], n: usize, unit: &str) -> Result<(), RotorError> {
+pub(crate) fn check_vector(
+    name: &'static str,
+    v: &[f64],
+    n: usize,
+    unit: &'static str,
+) -> Result<(), RotorError> {
     if v.len() != n {
-        return Err(RotorError::Invalid(format!(
-            "{name} has {} entries; {n} expected",
-            v.len()
-        )));
+        return Err(RotorError::VectorSize {
+            name,
+            entries: v.len(),
+            n,
+        });
     }
     if let Some(i) = v.iter().position(|x| !x.is_finite()) {
-        return Err(RotorError::Invalid(format!(
-            "{name}[{i}] = {}; must be finite{unit}",
-            v[i]
-        )));
+        return Err(RotorError::VectorEntry {
+            name,
+            index: i,
+            value: v[i],
+            unit,
+        });
     }
     Ok(())
 }
 
 pub(crate) fn check_speed(speed_rad_s: f64) -> Result<(), RotorError> {
     if !speed_rad_s.is_finite() || speed_rad_s < 0.0 {
-        return Err(RotorError::Invalid(format!(
-            "shaft speed = {speed_rad_s} rad/s; must be finite and ≥ 0"
-        )));
+        return Err(RotorError::Range {
+            field: "shaft speed",
+            value: speed_rad_s,
+            unit: " rad/s",
+            expected: "finite and ≥ 0",
+        });
     }
     Ok(())
 }

@@ -40,9 +40,12 @@ impl SpeedProfile {
                 check_speed(start_rad_s)?;
                 check_speed(end_rad_s)?;
                 if !(duration_s.is_finite() && duration_s > 0.0) {
-                    return Err(RotorError::Invalid(format!(
-                        "ramp duration_s = {duration_s}; must be finite and > 0"
-                    )));
+                    return Err(RotorError::Range {
+                        field: "ramp duration_s",
+                        value: duration_s,
+                        unit: "",
+                        expected: "finite and > 0",
+                    });
                 }
                 Ok(())
             }
@@ -187,13 +190,16 @@ impl Default for TimeOptions {
 
 impl TimeOptions {
     fn validate(&self, n: usize) -> Result<usize, RotorError> {
-        let positive = |name: &str, v: f64| {
-            if v.is_finite() && v > 0.0 {
+        let positive = |field: &'static str, value: f64| {
+            if value.is_finite() && value > 0.0 {
                 Ok(())
             } else {
-                Err(RotorError::Invalid(format!(
-                    "{name} = {v}; must be finite and > 0"
-                )))
+                Err(RotorError::Range {
+                    field,
+                    value,
+                    unit: "",
+                    expected: "finite and > 0",
+                })
             }
         };
         positive("step_s", self.step_s)?;
@@ -203,22 +209,31 @@ impl TimeOptions {
         positive("divergence_limit_rad", self.divergence_limit_rad)?;
         let steps = (self.duration_s / self.step_s).round();
         if !(1.0..=1e9).contains(&steps) {
-            return Err(RotorError::Invalid(format!(
-                "duration_s / step_s = {steps} steps; must be 1 to 1e9"
-            )));
+            return Err(RotorError::Range {
+                field: "duration_s / step_s",
+                value: steps,
+                unit: " steps",
+                expected: "1 to 1e9",
+            });
         }
         if self.record_every == 0 {
-            return Err(RotorError::Invalid("record_every = 0; must be ≥ 1".into()));
+            return Err(RotorError::Range {
+                field: "record_every",
+                value: 0.0,
+                unit: "",
+                expected: "≥ 1",
+            });
         }
         if self.max_newton_iterations == 0 {
-            return Err(RotorError::Invalid(
-                "max_newton_iterations = 0; must be ≥ 1".into(),
-            ));
+            return Err(RotorError::Range {
+                field: "max_newton_iterations",
+                value: 0.0,
+                unit: "",
+                expected: "≥ 1",
+            });
         }
         if let Some(&i) = self.record_dofs.iter().find(|&&i| i >= n) {
-            return Err(RotorError::Invalid(format!(
-                "record_dofs contains {i}; rotor DOF indices run 0..{n}"
-            )));
+            return Err(RotorError::RecordDof { dof: i, n });
         }
         // The record is kept in memory: refuse one that cannot fit before any step (1e9 steps
         // recorded every step asked for hundreds of GB).
@@ -230,18 +245,21 @@ impl TimeOptions {
         };
         let bytes = rows * (per_row as f64 + 2.0) * 8.0;
         if bytes > MAX_RECORD_BYTES {
-            return Err(RotorError::Invalid(format!(
-                "duration_s / step_s / record_every = {rows:.3e} recorded samples of {per_row} \
-                 DOFs ({:.1} GB); at most {:.0} GB: raise record_every or narrow record_dofs",
-                bytes * 1e-9,
-                MAX_RECORD_BYTES * 1e-9
-            )));
+            return Err(RotorError::RecordTooLarge {
+                rows,
+                per_row,
+                bytes,
+                max_bytes: MAX_RECORD_BYTES,
+            });
         }
         if let CageMotion::Fixed { angle_rad } = self.cage {
             if !angle_rad.is_finite() {
-                return Err(RotorError::Invalid(format!(
-                    "cage angle_rad = {angle_rad}; must be finite"
-                )));
+                return Err(RotorError::Range {
+                    field: "cage angle_rad",
+                    value: angle_rad,
+                    unit: "",
+                    expected: "finite",
+                });
             }
         }
         if let Start::Given {

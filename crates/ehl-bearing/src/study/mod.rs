@@ -1,7 +1,7 @@
 //! Load × speed studies of a bearing's fitted contact laws, and trend curves a rotor model can
 //! evaluate without any EHL run.
 //!
-//! - [`Study`]: a study file (TOML; see [`parse_study`]) — a case, inner-ring speeds, load scales,
+//! - [`Study`]: a study file (TOML; see [`crate::io::study::parse_study`]) — a case, inner-ring speeds, load scales,
 //!   the characterization [`Method`](crate::method::Method) and the loop settings; its points
 //!   ([`StudyPoint`]) and the fixed subsets that shards run ([`Shard`]).
 //! - [`run_study`]: run all points or one shard, resuming from a [`PointStore`] (the file-system
@@ -38,9 +38,9 @@ pub use point::{
     POINTS_CSV_HEADER, POINTS_CSV_LUBRICATION_HEADER,
 };
 pub use runner::{
-    finish_study, merge_points, run_point, run_study, LubricationExtreme, LubricationSummary,
-    RunOptions, StudyError, StudyEvent, StudyOutputs, StudyRun,
+    finish_study, merge_points, run_point, run_point_within, run_study, LubricationExtreme,
+    LubricationSummary, RunOptions, StudyError, StudyEvent, StudyOutputs, StudyRun,
 };
-pub use spec::{parse_study, read_study, Shard, Study, StudyPoint};
+pub use spec::{Shard, Study, StudyPoint};
 pub use store::{MemoryStore, PointStore, StoreError};
 pub use trends::{fit_trends, trend_reaction_error};

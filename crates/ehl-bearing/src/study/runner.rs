@@ -342,15 +342,7 @@ fn compute_point(
     let deadline = options
         .point_time_limit_s
         .and_then(crate::budget::Deadline::after_seconds);
-    let bounded = deadline.map(|d| {
-        let mut b = study.clone();
-        b.method = b.method.with_deadline(Some(d));
-        b.settings.deadline = Some(d);
-        b
-    });
-    let record = run_point(bounded.as_ref().unwrap_or(study), &p, &|e| {
-        events(StudyEvent::Loop(p, e))
-    });
+    let record = run_point_within(study, &p, deadline, &|e| events(StudyEvent::Loop(p, e)));
     if record.error.is_some() && deadline.is_some_and(|d| d.expired()) {
         // Out of its time budget: not a result of the point, so no point file.
         let e = format!(
@@ -385,11 +377,23 @@ pub fn run_point(
     p: &StudyPoint,
     progress: &(dyn Fn(Progress) + Sync),
 ) -> PointRecord {
+    run_point_within(study, p, None, progress)
+}
+
+/// [`run_point`] within the wall-time budget `deadline` (None: none): a point that runs out of
+/// it is a record with the time-limit error.
+pub fn run_point_within(
+    study: &Study,
+    p: &StudyPoint,
+    deadline: Option<crate::budget::Deadline>,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> PointRecord {
     let spec = study.point_spec(p);
     match characterize_bearing_with_progress(
         &study.point_case(p),
         &study.method,
         &study.settings,
+        deadline,
         progress,
     ) {
         Ok(c) => PointRecord {

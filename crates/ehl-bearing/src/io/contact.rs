@@ -11,15 +11,76 @@
 //! material's density (both optional; not both). Unknown keys are rejected; invalid values give
 //! an error naming the key, the value and the valid range.
 
-use super::{EhlContact, EhlError};
-use crate::io::case::{self, RawLubricant, RawSolid};
+use super::case::{self, RawLubricant, RawSolid};
+use crate::case::InputError;
+use crate::ehl::EhlContact;
 use crate::material::{reduced_modulus, Lubricant, Solid};
 use serde::Deserialize;
+use thiserror::Error;
 
-macro_rules! fail {
-    ($($t:tt)*) => {
-        return Err(EhlError::File(format!($($t)*)))
-    };
+/// An invalid contact file: the key, the value and the valid range.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ContactFileError {
+    /// Not TOML of a contact file, or a material or lubricant table out of range (the tables
+    /// are those of case files, with their messages).
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// A number that must be finite and positive.
+    #[error("{field} = {value} is invalid: must be finite and > 0")]
+    NotPositive {
+        /// The key.
+        field: &'static str,
+        /// The value given.
+        value: f64,
+    },
+    /// Curvature radii in the wrong order or too far apart.
+    #[error(
+        "ry_mm/rx_mm = {ratio} is invalid: valid range 1 to 1000 (x is the rolling direction \
+         with the smaller radius)"
+    )]
+    RadiusRatio {
+        /// Ry/Rx.
+        ratio: f64,
+    },
+    /// Two keys that exclude each other.
+    #[error("give either {first} or {second}, not both")]
+    Conflict {
+        /// One key (or table).
+        first: &'static str,
+        /// The other.
+        second: &'static str,
+    },
+    /// A reduced modulus outside that of real solids.
+    #[error(
+        "reduced_modulus_gpa = {value} is invalid: valid range 0.1 to 2400 GPa (steel on steel \
+         228.6; the moduli of real solids)"
+    )]
+    ReducedModulus {
+        /// E′ given, GPa.
+        value: f64,
+    },
+    /// A roughness, which contact files do not take.
+    #[error(
+        "{table}.roughness_rq_um = {value}: expected no roughness in a contact file (the film \
+         parameter is reported for bearing cases)"
+    )]
+    Roughness {
+        /// `ball_material` or `ring_material`.
+        table: &'static str,
+        /// Rq given, µm.
+        value: f64,
+    },
+    /// A ball diameter whose mass is not finite and positive.
+    #[error(
+        "ball_diameter_mm = {diameter_mm} is invalid: the ball mass ρ·π/6·D³ = {mass_kg} kg must \
+         be finite and > 0 (give a physically sized ball, e.g. 1 to 100 mm)"
+    )]
+    BallMass {
+        /// D given, mm.
+        diameter_mm: f64,
+        /// ρ·π/6·D³, kg.
+        mass_kg: f64,
+    },
 }
 
 #[derive(Debug, Deserialize)]
@@ -47,85 +108,82 @@ pub struct ContactFile {
     pub ball_mass: Option<f64>,
 }
 
-fn positive(field: &str, v: f64) -> Result<f64, EhlError> {
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
+fn positive(field: &'static str, value: f64) -> Result<f64, ContactFileError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
     } else {
-        fail!("{field} = {v} is invalid: must be finite and > 0")
+        Err(ContactFileError::NotPositive { field, value })
     }
 }
 
 /// The material and lubricant tables are those of case files, read by the case parser (one
 /// parser, one set of ranges per table).
-fn solid(name: &str, m: &Option<RawSolid>) -> Result<Solid, EhlError> {
+fn solid(name: &'static str, m: &Option<RawSolid>) -> Result<Solid, ContactFileError> {
     if let Some(rq) = m.as_ref().and_then(|m| m.roughness_rq_um) {
-        return Err(EhlError::File(format!(
-            "{name}.roughness_rq_um = {rq}: expected no roughness in a contact file (the film \
-             parameter is reported for bearing cases)"
-        )));
+        return Err(ContactFileError::Roughness {
+            table: name,
+            value: rq,
+        });
     }
-    case::solid(m.as_ref(), name).map_err(|e| EhlError::File(e.to_string()))
+    Ok(case::solid(m.as_ref(), name)?)
 }
 
-fn lubricant(l: &Option<RawLubricant>) -> Result<Lubricant, EhlError> {
+fn lubricant(l: &Option<RawLubricant>) -> Result<Lubricant, ContactFileError> {
     match l {
         None => Ok(Lubricant::DEFAULT_MINERAL_OIL),
-        Some(l) => case::lubricant(l, "lubricant").map_err(|e| EhlError::File(e.to_string())),
+        Some(l) => Ok(case::lubricant(l, "lubricant")?),
     }
 }
 
 /// Parses and validates a contact file's text (the contact only; see [`parse_contact_file`]).
-pub fn parse_contact_toml(text: &str) -> Result<EhlContact, EhlError> {
+pub fn parse_contact_toml(text: &str) -> Result<EhlContact, ContactFileError> {
     parse_contact_file(text).map(|f| f.contact)
 }
 
 /// Parses and validates a contact file's text, with the ball's mass if the file gives it.
-pub fn parse_contact_file(text: &str) -> Result<ContactFile, EhlError> {
-    let t: ContactToml = crate::io::from_toml(text, "contact file").map_err(|e| match e {
-        crate::io::InputError::Syntax { path, message } => {
-            EhlError::File(format!("{path}: {message}"))
-        }
-        e => EhlError::File(e.to_string()),
-    })?;
+pub fn parse_contact_file(text: &str) -> Result<ContactFile, ContactFileError> {
+    let t: ContactToml = super::from_toml(text, "contact file")?;
     let load = positive("load_n", t.load_n)?;
     let rx = positive("rx_mm", t.rx_mm)? * 1e-3;
     let ry = positive("ry_mm", t.ry_mm)? * 1e-3;
     let ratio = ry / rx;
     if !(1.0..=1000.0).contains(&ratio) {
-        fail!(
-            "ry_mm/rx_mm = {ratio} is invalid: valid range 1 to 1000 (x is the rolling direction with the smaller radius)"
-        );
+        return Err(ContactFileError::RadiusRatio { ratio });
     }
     let us = positive("sum_velocity_m_s", t.sum_velocity_m_s)?;
     let e_reduced = match (t.reduced_modulus_gpa, &t.ball_material, &t.ring_material) {
         (Some(_), Some(_), _) | (Some(_), _, Some(_)) => {
-            fail!("give either reduced_modulus_gpa or [ball_material]/[ring_material], not both")
+            return Err(ContactFileError::Conflict {
+                first: "reduced_modulus_gpa",
+                second: "[ball_material]/[ring_material]",
+            })
         }
         (Some(e), None, None) => {
             // Two solids of 0.1 to 1200 GPa (case files) with 0 ≤ ν < 0.5.
             if !(e.is_finite() && (0.1..=2400.0).contains(&e)) {
-                fail!(
-                    "reduced_modulus_gpa = {e} is invalid: valid range 0.1 to 2400 GPa (steel on \
-                     steel 228.6; the moduli of real solids)"
-                );
+                return Err(ContactFileError::ReducedModulus { value: e });
             }
             e * 1e9
         }
         (None, b, r) => reduced_modulus(&solid("ball_material", b)?, &solid("ring_material", r)?),
     };
     let ball_mass = match (t.ball_mass_kg, t.ball_diameter_mm) {
-        (Some(_), Some(_)) => fail!("give either ball_mass_kg or ball_diameter_mm, not both"),
+        (Some(_), Some(_)) => {
+            return Err(ContactFileError::Conflict {
+                first: "ball_mass_kg",
+                second: "ball_diameter_mm",
+            })
+        }
         (Some(m), None) => Some(positive("ball_mass_kg", m)?),
         (None, Some(d)) => {
             let d = positive("ball_diameter_mm", d)? * 1e-3;
             let rho = solid("ball_material", &t.ball_material)?.density;
             let m = rho * std::f64::consts::PI / 6.0 * d * d * d;
             if !(m.is_finite() && m > 0.0) {
-                fail!(
-                    "ball_diameter_mm = {} is invalid: the ball mass ρ·π/6·D³ = {m} kg must be \
-                     finite and > 0 (give a physically sized ball, e.g. 1 to 100 mm)",
-                    d * 1e3
-                );
+                return Err(ContactFileError::BallMass {
+                    diameter_mm: d * 1e3,
+                    mass_kg: m,
+                });
             }
             Some(m)
         }
