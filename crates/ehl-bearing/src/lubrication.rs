@@ -557,19 +557,6 @@ pub fn assess_with_films(
     }
 }
 
-/// The lubrication figures at the final equilibrium of a characterization.
-pub fn assess_characterization(
-    case: &Case,
-    c: &crate::characterize::BearingCharacterization,
-) -> LubricationReport {
-    let states: Vec<_> = c
-        .contacts
-        .iter()
-        .map(|r| (r.ball, r.race, r.state))
-        .collect();
-    assess(case, &states)
-}
-
 /// The report as an engineering-units table (films in µm; the warnings are not included).
 pub fn table(r: &LubricationReport) -> String {
     use std::fmt::Write;
