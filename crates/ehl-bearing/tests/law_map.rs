@@ -218,6 +218,53 @@ fn changing_one_group_changes_the_law() {
 
 /// α·p_h is fixed by M, L and Ry/Rx (docs/law_map.md §2), whatever the size and modulus of the
 /// contact built from the groups: checked against the Hertz pressure of two such contacts.
+/// The harmonic law (Q = K·δ^d + ΔF + c·δ̇ at Ω = 0.005·ω_n, the default) needs one group more
+/// than the quasi-static one: Ψ = ω_n·b/u_s, the contact's natural frequency times the time the
+/// oil takes to cross the Hertz semi-width, set by the ball's mass. Scaling a contact by λ = 2
+/// (lengths ×2, load ×4, sum velocity ×2) with its mass ×2 keeps every group and gives the same
+/// d, ΔF/w0 and ĉ = c·δ_H·u_s/(w0·b) to round-off (measured on the seed's inner contact at 65²:
+/// 5.6e-11, 2.8e-10, 1.0e-13; bound 1e-7); the mass of a real ball twice the size (×8) halves Ψ
+/// and moves ĉ by +1.13 % (d by 6.6e-5, ΔF/w0 by +0.05 %): a harmonic map needs Ψ as an axis
+/// (docs/law_map.md §7; the example `harmonic_groups` prints the same for another contact).
+#[test]
+fn the_harmonic_law_needs_the_mass_group_psi() {
+    use ehl_bearing::contact::{ball_mass, characterize_harmonic, Excitation, HarmonicSettings};
+    use ehl_bearing::hertz::HertzGeometry;
+    let mut s = HarmonicSettings::default();
+    s.ehl.grid = 65;
+    let base = seed_inner();
+    let scaled = EhlContact {
+        load: base.load * 4.0,
+        rx: base.rx * 2.0,
+        ry: base.ry * 2.0,
+        sum_velocity: base.sum_velocity * 2.0,
+        ..base
+    };
+    let m = ball_mass(7e-3, 7810.0);
+    let run = |c: &EhlContact, mass: f64| {
+        let fit = characterize_harmonic(c, mass, &s).unwrap();
+        let Excitation::Harmonic(x) = fit.excitation else {
+            panic!("not a harmonic excitation")
+        };
+        let h = HertzGeometry::new(c.rx, c.ry, c.e_reduced)
+            .unwrap()
+            .contact(c.load);
+        let psi = x.natural_frequency_rad_s * h.semi_minor / c.sum_velocity;
+        let c_hat = fit.law.c().unwrap() * h.deflection * c.sum_velocity / (c.load * h.semi_minor);
+        (psi, [fit.d, fit.delta_f / c.load, c_hat])
+    };
+    let (psi1, a) = run(&base, m);
+    let (psi2, b) = run(&scaled, 2.0 * m);
+    let (psi3, r) = run(&scaled, 8.0 * m);
+    assert!((psi2 / psi1 - 1.0).abs() < 1e-9 && (psi3 / psi1 - 0.5).abs() < 1e-9);
+    assert!((a[0] - b[0]).abs() < 1e-7, "{a:?} {b:?}");
+    assert!((a[1] / b[1] - 1.0).abs() < 1e-7, "{a:?} {b:?}");
+    assert!((a[2] / b[2] - 1.0).abs() < 1e-7, "{a:?} {b:?}");
+    eprintln!("equal groups: {a:?} {b:?}; Ψ halved: {r:?}");
+    let dc = r[2] / a[2] - 1.0;
+    assert!(dc > 0.005, "ĉ moves with Ψ: {dc}");
+}
+
 #[test]
 fn alpha_ph_follows_from_m_l_and_the_radius_ratio() {
     let g = LawGroups::of(&seed_inner()).unwrap();
