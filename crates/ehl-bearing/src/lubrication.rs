@@ -265,220 +265,311 @@ pub fn assess_with_films(
     solved: &[Option<(f64, f64)>],
 ) -> LubricationReport {
     let lub = &case.lubricant;
-    let e = reduced_modulus(&case.bearing.ball_material, &case.bearing.ring_material);
     let rpm = 30.0 / std::f64::consts::PI;
     let n = (case.operating.inner_speed - case.operating.outer_speed).abs() * rpm;
     let dm_mm = case.bearing.geometry.pitch_diameter * 1e3;
     let nu = lub.viscosity / lub.density * 1e6;
     let nu1 = rated_viscosity_mm2_s(n, dm_mm);
     let kappa = nu1.map(|v| nu / v);
-    let sigma = case.roughness.map(|r| r.composite());
-    // −∂η/∂T, Pa·s/K, and k_f, W/(m·K), where the oil is described.
-    let thermal = case.oil.as_ref().map(|o| {
-        (
-            o.temperature_viscosity_1_k * o.viscosity_pa_s,
-            o.thermal_conductivity_w_m_k,
-        )
-    });
-    let ring_oils = case.ring_oils.as_ref();
-    let mut rows = Vec::new();
-    let mut low_lambda = Vec::new();
-    let mut hot = Vec::new();
-    let mut starved = Vec::new();
-    let mut from_solution = 0;
-    for (i, (ball, race, st)) in contacts.iter().enumerate() {
-        let mut flags = Vec::new();
-        // η0, α and the thermal inputs at this contact's oil temperature.
-        let ring_oil = ring_oils.map(|r| r.of(*race));
-        let (eta0, alpha) = ring_oil.map_or((lub.viscosity, lub.pressure_viscosity), |o| {
-            (o.viscosity_pa_s, o.pressure_viscosity_1_pa)
-        });
-        let thermal = ring_oil
-            .map(|o| {
+    let cx = Context::of(case);
+    let rows: Vec<ContactFilm> = contacts
+        .iter()
+        .enumerate()
+        .map(|(i, (ball, race, st))| {
+            contact_film(&cx, *ball, *race, st, solved.get(i).copied().flatten())
+        })
+        .collect();
+    let from_solution = rows
+        .iter()
+        .filter(|r| r.film_source == "ehl-solution")
+        .count();
+    let extreme = |f: &dyn Fn(&ContactFilm) -> Option<f64>, max: bool| {
+        rows.iter().filter_map(f).fold(None, |m: Option<f64>, v| {
+            Some(m.map_or(v, |m| if max { m.max(v) } else { m.min(v) }))
+        })
+    };
+    let min_lambda = extreme(&|c| c.lambda, false);
+    let max_thermal_reduction = extreme(&|c| c.thermal_reduction, true);
+    let max_starvation_reduction = case
+        .inlet_meniscus_distance_m
+        .and(extreme(&|c| c.starvation.map(|s| s.reduction), true));
+    let mut warnings = contact_warnings(case, &rows, min_lambda);
+    if let Some(k) = kappa.filter(|k| *k < 1.0) {
+        warnings.push(format!(
+            "viscosity ratio κ = ν/ν1 = {nu:.2}/{:.2} = {k:.2} < 1 (ISO 281): the oil is thinner \
+             than the rated viscosity at {n:.0} rpm",
+            nu1.unwrap_or(f64::NAN)
+        ));
+    }
+    LubricationReport {
+        oil: case.oil.clone(),
+        ring_oils: case.ring_oils.clone(),
+        viscosity_pa_s: lub.viscosity,
+        pressure_viscosity_1_pa: lub.pressure_viscosity,
+        density_kg_m3: lub.density,
+        kinematic_viscosity_mm2_s: nu,
+        relative_speed_rpm: n,
+        rated_viscosity_mm2_s: nu1,
+        kappa,
+        roughness: case.roughness,
+        composite_roughness_m: cx.sigma,
+        film_formula: if from_solution > 0 {
+            "ehl-solution where solved, hamrock-dowson-1977 elsewhere".into()
+        } else {
+            "hamrock-dowson-1977".into()
+        },
+        contacts: rows,
+        min_lambda,
+        max_thermal_reduction,
+        inlet_meniscus_distance_m: case.inlet_meniscus_distance_m,
+        max_starvation_reduction,
+        warnings,
+        notes: report_notes(case, from_solution, nu1.is_none()),
+    }
+}
+
+/// What every contact's figures share: the case, E′, σ and the described oil's thermal inputs.
+struct Context<'a> {
+    case: &'a Case,
+    /// E′, Pa.
+    e: f64,
+    /// Composite roughness σ, m.
+    sigma: Option<f64>,
+    /// −∂η/∂T, Pa·s/K, and k_f, W/(m·K), where the oil is described.
+    thermal: Option<(f64, f64)>,
+}
+
+impl<'a> Context<'a> {
+    fn of(case: &'a Case) -> Self {
+        Context {
+            case,
+            e: reduced_modulus(&case.bearing.ball_material, &case.bearing.ring_material),
+            sigma: case.roughness.map(|r| r.composite()),
+            thermal: case.oil.as_ref().map(|o| {
                 (
                     o.temperature_viscosity_1_k * o.viscosity_pa_s,
                     o.thermal_conductivity_w_m_k,
                 )
-            })
-            .or(thermal);
-        let g = alpha * e;
-        let u = 0.5 * st.sum_velocity.abs();
-        let loaded = st.load > 0.0 && st.semi_minor > 0.0 && st.rx > 0.0 && st.sum_velocity != 0.0;
-        let k = if st.semi_minor > 0.0 {
-            st.semi_major / st.semi_minor
-        } else {
-            0.0
-        };
-        let solution = solved.get(i).copied().flatten().filter(|_| loaded);
-        let (hc, hmin) = if let Some((c, m)) = solution {
-            from_solution += 1;
-            (Some(c), Some(m))
-        } else if loaded {
-            let u_sum = eta0 * st.sum_velocity.abs() / (e * st.rx);
-            let w = st.load / (e * st.rx * st.rx);
-            if !(1.0..=8.0).contains(&k) {
-                flags.push(format!(
-                    "ellipticity k = {k:.2} outside Hamrock–Dowson's 1–8: the film is extrapolated"
-                ));
-            }
-            (
-                Some(st.rx * hamrock_dowson_central(u_sum, g, w, k)),
-                Some(st.rx * hamrock_dowson_min(u_sum, g, w, k)),
-            )
-        } else {
-            flags.push("unloaded or not rolling: no film estimate".into());
-            (None, None)
-        };
-        let lambda = match (hmin, sigma) {
-            (Some(h), Some(s)) if s > 0.0 => Some(h / s),
-            _ => None,
-        };
-        let name = format!("ball {ball} {}", race_name(*race));
-        if let Some(l) = lambda {
-            if l < LAMBDA_INVALID {
-                flags.push(format!(
-                    "Λ = {l:.2} < {LAMBDA_INVALID}: asperities carry load; the smooth-surface EHL \
-                     model (film, law, ΔF) does not hold here"
-                ));
-            } else if l < LAMBDA_WARN {
-                flags.push(format!(
-                    "Λ = {l:.2} < {LAMBDA_WARN}: mixed lubrication; the smooth-surface model \
-                     overestimates the film and the law's ΔF"
-                ));
-            }
-            if l < LAMBDA_WARN {
-                low_lambda.push(format!("{name} ({l:.2})"));
-            }
+            }),
         }
-        let (tl, red) = match (thermal, loaded) {
-            (Some((deta, kf)), true) => {
-                let l = thermal_loading(deta, u, kf);
-                let phi = thermal_factor(st.max_pressure, e, l, 0.0);
-                if phi <= 0.0 {
-                    flags.push(format!(
-                        "thermal loading L = {l:.3} beyond the Gupta et al. correlation (φ_T = \
-                         {phi:.3} ≤ 0): the isothermal film does not describe this contact"
-                    ));
-                }
-                let r = (1.0 - phi).min(1.0);
-                if r > THERMAL_WARN {
-                    flags.push(format!(
-                        "inlet shear heating reduces the film by about {:.0} % (isothermal model)",
-                        100.0 * r
-                    ));
-                    hot.push(format!("{name} ({:.0} %)", 100.0 * r));
-                }
-                (Some(l), Some(r))
-            }
-            _ => (None, None),
-        };
-        let starved = match (case.inlet_meniscus_distance_m, hc, hmin) {
-            (Some(x), Some(c), Some(m)) => {
-                let sv = starvation(c, m, st.rx, st.semi_minor, x);
-                if sv.inlet_distance_ratio <= 1.0 {
-                    flags.push(format!(
-                        "oil meniscus inside the Hertzian contact (m = {:.2} ≤ 1): no film is \
-                         formed; the fully flooded EHL model (film, law, ΔF) does not hold here",
-                        sv.inlet_distance_ratio
-                    ));
-                } else if sv.reduction > STARVATION_WARN {
-                    flags.push(format!(
-                        "starvation reduces the minimum film by about {:.0} % (m = {:.2} < m* = \
-                         {:.2}; fully flooded model)",
-                        100.0 * sv.reduction,
-                        sv.inlet_distance_ratio,
-                        sv.boundary_ratio
-                    ));
-                }
-                if sv.reduction > STARVATION_WARN {
-                    starved.push(format!("{name} ({:.0} %)", 100.0 * sv.reduction));
-                }
-                Some(sv)
-            }
-            _ => None,
-        };
-        rows.push(ContactFilm {
-            ball: *ball,
-            race: race_name(*race).into(),
-            load_n: st.load,
-            max_pressure_pa: st.max_pressure,
-            entrainment_velocity_m_s: u,
-            ellipticity: k,
-            central_film_m: hc,
-            min_film_m: hmin,
-            lambda,
-            thermal_loading: tl,
-            thermal_reduction: red,
-            min_film_thermal_m: match (hmin, red) {
-                (Some(h), Some(r)) => Some(h * (1.0 - r)),
-                _ => None,
-            },
-            starvation: starved,
-            film_source: if solution.is_some() {
-                "ehl-solution".into()
-            } else if hmin.is_some() {
-                "hamrock-dowson-1977".into()
-            } else {
-                String::new()
-            },
-            oil_temperature_c: ring_oil.map(|o| o.temperature_c),
-            flags,
-        });
     }
-    let min_of = |f: &dyn Fn(&ContactFilm) -> Option<f64>| {
-        rows.iter()
-            .filter_map(f)
-            .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.min(v))))
+}
+
+/// One contact's figures: film (the solved one, else Hamrock–Dowson), Λ, thermal reduction and
+/// starvation, with its flags; at its ring's oil when ring temperatures are given.
+fn contact_film(
+    cx: &Context,
+    ball: usize,
+    race: Race,
+    st: &ContactState,
+    solved: Option<(f64, f64)>,
+) -> ContactFilm {
+    let (case, e) = (cx.case, cx.e);
+    let lub = &case.lubricant;
+    let mut flags = Vec::new();
+    // η0, α and the thermal inputs at this contact's oil temperature.
+    let ring_oil = case.ring_oils.as_ref().map(|r| r.of(race));
+    let (eta0, alpha) = ring_oil.map_or((lub.viscosity, lub.pressure_viscosity), |o| {
+        (o.viscosity_pa_s, o.pressure_viscosity_1_pa)
+    });
+    let thermal = ring_oil
+        .map(|o| {
+            (
+                o.temperature_viscosity_1_k * o.viscosity_pa_s,
+                o.thermal_conductivity_w_m_k,
+            )
+        })
+        .or(cx.thermal);
+    let u = 0.5 * st.sum_velocity.abs();
+    let loaded = st.load > 0.0 && st.semi_minor > 0.0 && st.rx > 0.0 && st.sum_velocity != 0.0;
+    let k = if st.semi_minor > 0.0 {
+        st.semi_major / st.semi_minor
+    } else {
+        0.0
     };
-    let min_lambda = min_of(&|c| c.lambda);
-    let max_thermal_reduction = rows
-        .iter()
-        .filter_map(|c| c.thermal_reduction)
-        .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.max(v))));
-    let max_starvation_reduction = case.inlet_meniscus_distance_m.and(
+    let solution = solved.filter(|_| loaded);
+    let (hc, hmin) = if let Some((c, m)) = solution {
+        (Some(c), Some(m))
+    } else if loaded {
+        let u_sum = eta0 * st.sum_velocity.abs() / (e * st.rx);
+        let w = st.load / (e * st.rx * st.rx);
+        if !(1.0..=8.0).contains(&k) {
+            flags.push(format!(
+                "ellipticity k = {k:.2} outside Hamrock–Dowson's 1–8: the film is extrapolated"
+            ));
+        }
+        (
+            Some(st.rx * hamrock_dowson_central(u_sum, alpha * e, w, k)),
+            Some(st.rx * hamrock_dowson_min(u_sum, alpha * e, w, k)),
+        )
+    } else {
+        flags.push("unloaded or not rolling: no film estimate".into());
+        (None, None)
+    };
+    let lambda = match (hmin, cx.sigma) {
+        (Some(h), Some(s)) if s > 0.0 => Some(h / s),
+        _ => None,
+    };
+    if let Some(l) = lambda {
+        if l < LAMBDA_INVALID {
+            flags.push(format!(
+                "Λ = {l:.2} < {LAMBDA_INVALID}: asperities carry load; the smooth-surface EHL \
+                 model (film, law, ΔF) does not hold here"
+            ));
+        } else if l < LAMBDA_WARN {
+            flags.push(format!(
+                "Λ = {l:.2} < {LAMBDA_WARN}: mixed lubrication; the smooth-surface model \
+                 overestimates the film and the law's ΔF"
+            ));
+        }
+    }
+    let (tl, red) = match (thermal, loaded) {
+        (Some((deta, kf)), true) => {
+            let (l, r) =
+                thermal_figures(st.max_pressure, e, thermal_loading(deta, u, kf), &mut flags);
+            (Some(l), Some(r))
+        }
+        _ => (None, None),
+    };
+    let starved = match (case.inlet_meniscus_distance_m, hc, hmin) {
+        (Some(x), Some(c), Some(m)) => Some(starvation_figures(c, m, st, x, &mut flags)),
+        _ => None,
+    };
+    ContactFilm {
+        ball,
+        race: race_name(race).into(),
+        load_n: st.load,
+        max_pressure_pa: st.max_pressure,
+        entrainment_velocity_m_s: u,
+        ellipticity: k,
+        central_film_m: hc,
+        min_film_m: hmin,
+        lambda,
+        thermal_loading: tl,
+        thermal_reduction: red,
+        min_film_thermal_m: match (hmin, red) {
+            (Some(h), Some(r)) => Some(h * (1.0 - r)),
+            _ => None,
+        },
+        starvation: starved,
+        film_source: if solution.is_some() {
+            "ehl-solution".into()
+        } else if hmin.is_some() {
+            "hamrock-dowson-1977".into()
+        } else {
+            String::new()
+        },
+        oil_temperature_c: ring_oil.map(|o| o.temperature_c),
+        flags,
+    }
+}
+
+/// The thermal loading L (given) and the film reduction 1 − φ_T of Gupta et al. at maximum Hertz
+/// pressure `p_h` and E′ `e`, flagging a reduction above [`THERMAL_WARN`] and L beyond the
+/// correlation.
+fn thermal_figures(p_h: f64, e: f64, l: f64, flags: &mut Vec<String>) -> (f64, f64) {
+    let phi = thermal_factor(p_h, e, l, 0.0);
+    if phi <= 0.0 {
+        flags.push(format!(
+            "thermal loading L = {l:.3} beyond the Gupta et al. correlation (φ_T = {phi:.3} ≤ 0): \
+             the isothermal film does not describe this contact"
+        ));
+    }
+    let r = (1.0 - phi).min(1.0);
+    if r > THERMAL_WARN {
+        flags.push(format!(
+            "inlet shear heating reduces the film by about {:.0} % (isothermal model)",
+            100.0 * r
+        ));
+    }
+    (l, r)
+}
+
+/// The starvation figures of a contact with flooded films `hc`, `hmin` (m) for the meniscus at
+/// `x` m, flagging the meniscus inside the contact and a reduction above [`STARVATION_WARN`].
+fn starvation_figures(
+    hc: f64,
+    hmin: f64,
+    st: &ContactState,
+    x: f64,
+    flags: &mut Vec<String>,
+) -> Starvation {
+    let sv = starvation(hc, hmin, st.rx, st.semi_minor, x);
+    if sv.inlet_distance_ratio <= 1.0 {
+        flags.push(format!(
+            "oil meniscus inside the Hertzian contact (m = {:.2} ≤ 1): no film is formed; the \
+             fully flooded EHL model (film, law, ΔF) does not hold here",
+            sv.inlet_distance_ratio
+        ));
+    } else if sv.reduction > STARVATION_WARN {
+        flags.push(format!(
+            "starvation reduces the minimum film by about {:.0} % (m = {:.2} < m* = {:.2}; fully \
+             flooded model)",
+            100.0 * sv.reduction,
+            sv.inlet_distance_ratio,
+            sv.boundary_ratio
+        ));
+    }
+    sv
+}
+
+/// The report's warnings about its contacts: Λ < [`LAMBDA_WARN`], thermal reduction above
+/// [`THERMAL_WARN`], starvation above [`STARVATION_WARN`], each naming its contacts.
+fn contact_warnings(case: &Case, rows: &[ContactFilm], min_lambda: Option<f64>) -> Vec<String> {
+    let list = |f: &dyn Fn(&ContactFilm) -> Option<String>| {
         rows.iter()
-            .filter_map(|c| c.starvation.map(|s| s.reduction))
-            .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.max(v)))),
-    );
+            .filter_map(|c| f(c).map(|v| format!("ball {} {} ({v})", c.ball, c.race)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let low_lambda = list(&|c| {
+        c.lambda
+            .filter(|l| *l < LAMBDA_WARN)
+            .map(|l| format!("{l:.2}"))
+    });
+    let hot = list(&|c| {
+        c.thermal_reduction
+            .filter(|r| *r > THERMAL_WARN)
+            .map(|r| format!("{:.0} %", 100.0 * r))
+    });
+    let starved = list(&|c| {
+        c.starvation
+            .map(|s| s.reduction)
+            .filter(|r| *r > STARVATION_WARN)
+            .map(|r| format!("{:.0} %", 100.0 * r))
+    });
     let mut warnings = Vec::new();
     if !low_lambda.is_empty() {
         warnings.push(format!(
             "film parameter Λ = h_min/σ < {LAMBDA_WARN} (mixed lubrication; the smooth-surface \
-             model overestimates the film and the law's ΔF{}) at {}",
+             model overestimates the film and the law's ΔF{}) at {low_lambda}",
             if min_lambda.is_some_and(|l| l < LAMBDA_INVALID) {
                 "; below 1 it does not hold"
             } else {
                 ""
             },
-            low_lambda.join(", ")
         ));
     }
     if !hot.is_empty() {
         warnings.push(format!(
             "inlet shear heating reduces the isothermal film by more than {:.0} % (Gupta et al. \
-             1992) at {}",
+             1992) at {hot}",
             100.0 * THERMAL_WARN,
-            hot.join(", ")
         ));
     }
     if !starved.is_empty() {
         warnings.push(format!(
             "starvation reduces the minimum film by more than {:.0} % (Hamrock & Dowson 1977; the \
-             oil meniscus at {:.3} mm from the contact centres) at {}",
+             oil meniscus at {:.3} mm from the contact centres) at {starved}",
             100.0 * STARVATION_WARN,
             case.inlet_meniscus_distance_m.unwrap_or(f64::NAN) * 1e3,
-            starved.join(", ")
         ));
     }
-    if let Some(k) = kappa {
-        if k < 1.0 {
-            warnings.push(format!(
-                "viscosity ratio κ = ν/ν1 = {nu:.2}/{:.2} = {k:.2} < 1 (ISO 281): the oil is \
-                 thinner than the rated viscosity at {n:.0} rpm",
-                nu1.unwrap_or(f64::NAN)
-            ));
-        }
-    }
+    warnings
+}
+
+/// The report's notes: where the films come from, what is not estimated and why.
+fn report_notes(case: &Case, from_solution: usize, at_rest: bool) -> Vec<String> {
     let mut notes = vec![
         if from_solution > 0 {
             format!(
@@ -502,7 +593,7 @@ pub fn assess_with_films(
             ),
         },
     ];
-    if let (Some(r), Some(o)) = (ring_oils, &case.oil) {
+    if let (Some(r), Some(o)) = (&case.ring_oils, &case.oil) {
         notes.push(format!(
             "ring temperatures: the inner contacts are characterized and get their film, Λ and \
              thermal reduction with the oil at {} °C (η0 = {:.5} Pa·s), the outer contacts at {} \
@@ -527,34 +618,10 @@ pub fn assess_with_films(
                 .into(),
         );
     }
-    if nu1.is_none() {
+    if at_rest {
         notes.push("κ: undefined with the rings at the same speed".into());
     }
-    LubricationReport {
-        oil: case.oil.clone(),
-        ring_oils: case.ring_oils.clone(),
-        viscosity_pa_s: lub.viscosity,
-        pressure_viscosity_1_pa: lub.pressure_viscosity,
-        density_kg_m3: lub.density,
-        kinematic_viscosity_mm2_s: nu,
-        relative_speed_rpm: n,
-        rated_viscosity_mm2_s: nu1,
-        kappa,
-        roughness: case.roughness,
-        composite_roughness_m: sigma,
-        film_formula: if from_solution > 0 {
-            "ehl-solution where solved, hamrock-dowson-1977 elsewhere".into()
-        } else {
-            "hamrock-dowson-1977".into()
-        },
-        contacts: rows,
-        min_lambda,
-        max_thermal_reduction,
-        inlet_meniscus_distance_m: case.inlet_meniscus_distance_m,
-        max_starvation_reduction,
-        warnings,
-        notes,
-    }
+    notes
 }
 
 /// The report as an engineering-units table (films in µm; the warnings are not included).
