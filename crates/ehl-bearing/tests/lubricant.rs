@@ -679,14 +679,6 @@ fn ring_temperatures_give_each_raceway_its_oil() {
     let plain = case(oil, "temperature_c = 60.0", rough).unwrap();
     assert_eq!(c.lubricant, plain.lubricant);
     assert_eq!(c.oil, plain.oil);
-    assert_eq!(plain.lubricant_of(Race::Inner), plain.lubricant);
-    let lub_at = |t: f64| {
-        case(oil, &format!("temperature_c = {t}"), rough)
-            .unwrap()
-            .lubricant
-    };
-    assert_eq!(c.lubricant_of(Race::Inner), lub_at(70.0));
-    assert_eq!(c.lubricant_of(Race::Outer), lub_at(55.0));
 
     let laws = ContactLaws::hertz(&c.bearing).unwrap();
     let eq = solve_equilibrium(&c.bearing, &laws, &c.operating, &c.settings).unwrap();
@@ -861,6 +853,15 @@ fn the_loop_characterizes_each_raceway_with_its_rings_oil() {
         "",
     )
     .unwrap();
+    // Each raceway's lubricant is the oil described at its ring's temperature.
+    let lub_at = |t: f64| {
+        case(oil, &format!("temperature_c = {t}"), "")
+            .unwrap()
+            .lubricant
+    };
+    assert_eq!(c.lubricant_of(Race::Inner), lub_at(75.0));
+    assert_eq!(c.lubricant_of(Race::Outer), lub_at(50.0));
+    assert_eq!(lub_at(60.0), c.lubricant);
     let (li, lo) = (c.lubricant_of(Race::Inner), c.lubricant_of(Race::Outer));
     assert!(li.viscosity < c.lubricant.viscosity && lo.viscosity > c.lubricant.viscosity);
     let ch = Recording {
