@@ -13,13 +13,14 @@
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws};
 use ehl_bearing::case::Case;
 use ehl_bearing::characterize::{
-    characterization_json, characterize_bearing_with_control, BearingCharacterization,
-    CharacterizationReport, CharacterizeSettings,
+    characterize_bearing_with_control, BearingCharacterization, CharacterizationReport,
+    CharacterizeSettings,
 };
 use ehl_bearing::force_element::{
     ElementInput, ElementState, ForceElement, LawElement, TrendForceElement,
 };
 use ehl_bearing::io::{parse_case, read_case};
+use ehl_bearing::report::{to_json_line, ProgressEvent, SpeedProgressEvent};
 use std::cell::RefCell;
 use std::ffi::{c_char, c_int, c_void, CStr, CString};
 use std::ops::ControlFlow;
@@ -367,9 +368,9 @@ pub unsafe extern "C" fn ehl_case_equilibrium_json(
         let laws = ContactLaws::hertz(&c.bearing).map_err(lib_err)?;
         let eq =
             solve_equilibrium(&c.bearing, &laws, &c.operating, &c.settings).map_err(lib_err)?;
-        let v = ehl_bearing::io::json::equilibrium_json(&eq);
+        let v = ehl_bearing::report::EquilibriumReport::from(&eq);
         // SAFETY: checked above.
-        unsafe { put_text(out_json, v.to_string()) }
+        unsafe { put_text(out_json, ehl_bearing::report::to_json_line(&v)) }
     })
 }
 
@@ -403,8 +404,8 @@ fn go_on(cancel: &AtomicBool) -> ControlFlow<()> {
     }
 }
 
-/// Event sink handed to the work: takes one event.
-type Report<'a> = dyn Fn(serde_json::Value) + Sync + 'a;
+/// Event sink handed to the work: takes one event as JSON text.
+type Report<'a> = dyn Fn(String) + Sync + 'a;
 
 /// Run `work` with progress events delivered to the C callback on the calling thread.
 ///
@@ -425,12 +426,12 @@ fn with_progress<T: Send>(
     let (tx, rx) = mpsc::channel::<(String, mpsc::SyncSender<bool>)>();
     let joined = std::thread::scope(|s| {
         let worker = s.spawn(move || {
-            let report = |event: serde_json::Value| {
+            let report = |event: String| {
                 if cancel_ref.load(Ordering::SeqCst) {
                     return; // cancelled: no more events
                 }
                 let (reply_tx, reply_rx) = mpsc::sync_channel(1);
-                if tx.send((event.to_string(), reply_tx)).is_ok() && reply_rx.recv() == Ok(true) {
+                if tx.send((event, reply_tx)).is_ok() && reply_rx.recv() == Ok(true) {
                     cancel_ref.store(true, Ordering::SeqCst);
                 }
             };
@@ -519,7 +520,7 @@ pub unsafe extern "C" fn ehl_characterize(
         let settings = CharacterizeSettings::default();
         let ch = with_progress(progress, user, |report, cancel| {
             characterize_bearing_with_control(case, &m, &settings, None, &|p| {
-                report(p.to_json());
+                report(to_json_line(&ProgressEvent::from(&p)));
                 go_on(cancel)
             })
             .map_err(lib_err)
@@ -572,8 +573,7 @@ pub unsafe extern "C" fn ehl_characterization_json(
         out_ptr(out_json, "out_json")?;
         // SAFETY: a characterization from this library or NULL.
         let ch = &unsafe { obj(ch, "characterization") }?.inner;
-        let v = characterization_json(ch, timing != 0);
-        let s = serde_json::to_string_pretty(&v)
+        let s = serde_json::to_string_pretty(&ch.report(timing != 0))
             .map_err(|e| fail(EHL_ERR_INTERNAL, format!("report as JSON: {e}")))?;
         // SAFETY: checked above.
         unsafe { put_text(out_json, s) }
@@ -1104,9 +1104,7 @@ pub unsafe extern "C" fn ehl_coefficients(
                         &m,
                         &CharacterizeSettings::default(),
                         &|i, p| {
-                            let mut v = p.to_json();
-                            v["speed_index"] = i.into();
-                            report(v);
+                            report(to_json_line(&SpeedProgressEvent::new(i, &p)));
                             go_on(cancel)
                         },
                     )

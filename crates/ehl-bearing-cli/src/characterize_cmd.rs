@@ -8,13 +8,13 @@ use crate::cli_support::{
 use anyhow::{bail, Context};
 use ehl_bearing::case::Case;
 use ehl_bearing::characterize::{
-    characterization_json, characterize_bearing_with_progress, BearingCharacterization,
-    CharacterizeSettings, ContactRow, LawSource,
+    characterize_bearing_with_progress, BearingCharacterization, CharacterizeSettings, ContactRow,
+    LawSource,
 };
-use ehl_bearing::contact::{HarmonicSettings, QuasiStaticSettings};
+use ehl_bearing::contact::{ExcitationFrequency, HarmonicSettings, QuasiStaticSettings};
 use ehl_bearing::io::read_case;
 use ehl_bearing::method::{HertzCharacterizer, Method, SyntheticCharacterizer};
-use serde_json::Value;
+use ehl_bearing::report::to_json_pretty;
 use std::path::PathBuf;
 
 /// Arguments of `characterize`.
@@ -99,42 +99,19 @@ pub fn option_names(message: &str) -> String {
         .replace("min_load_fraction", "--min-load-fraction")
 }
 
-/// "1 recorded period", "2 settling periods" (NaN when the report lacks the count).
-fn periods(n: Option<f64>, noun: &str) -> String {
-    match n {
-        Some(1.0) => format!("1 {noun}"),
-        Some(n) => format!("{n} {noun}s"),
-        None => format!("NaN {noun}s"),
+/// "1 recorded period", "2 settling periods".
+fn periods(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
     }
 }
 
 /// Contacts as CSV (the columns of [`ContactRow`]).
 pub fn contacts_csv(c: &BearingCharacterization) -> String {
-    let rows: Vec<Value> = c
-        .contacts
-        .iter()
-        .map(|r| serde_json::to_value(ContactRow::from_result(r)).unwrap_or(Value::Null))
-        .collect();
-    let mut out = String::new();
-    if let Some(Value::Object(first)) = rows.first() {
-        out.push_str(&first.keys().cloned().collect::<Vec<_>>().join(","));
-        out.push('\n');
-    }
-    for r in &rows {
-        if let Value::Object(m) = r {
-            let cells: Vec<String> = m
-                .values()
-                .map(|v| match v {
-                    Value::Null => String::new(),
-                    Value::String(s) => s.clone(),
-                    o => o.to_string(),
-                })
-                .collect();
-            out.push_str(&cells.join(","));
-            out.push('\n');
-        }
-    }
-    out
+    let rows: Vec<ContactRow> = c.contacts.iter().map(ContactRow::from_result).collect();
+    ehl_bearing::report::csv(&rows)
 }
 
 /// Run `characterize`.
@@ -169,7 +146,7 @@ pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
     let c = c?;
     if let Some(dir) = &args.output {
         std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-        let json = serde_json::to_string_pretty(&characterization_json(&c, false))? + "\n";
+        let json = to_json_pretty(&c.report(false)) + "\n";
         write_atomic(&dir.join("characterization.json"), json.as_bytes())?;
         write_atomic(&dir.join("contacts.csv"), contacts_csv(&c).as_bytes())?;
         if let Some(l) = &c.lubrication {
@@ -178,10 +155,7 @@ pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
         }
     }
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&characterization_json(&c, true))?
-        );
+        println!("{}", to_json_pretty(&c.report(true)));
     } else {
         print!("{}", table(&case, &c));
         if let Some(l) = &c.lubrication {
@@ -219,7 +193,7 @@ pub fn table(case: &Case, c: &BearingCharacterization) -> String {
         op.inner_speed * rpm,
         op.outer_speed * rpm,
         c.method,
-        settings_summary(&serde_json::to_value(c.method).unwrap_or_default()["settings"])
+        settings_summary(&c.method)
     );
     if !case.lubricant_given {
         let _ = writeln!(
@@ -386,47 +360,41 @@ pub fn table(case: &Case, c: &BearingCharacterization) -> String {
 }
 
 /// The method settings in words (the full set is in the JSON output).
-fn settings_summary(v: &Value) -> String {
-    let num = |p: &str| v.pointer(p).and_then(Value::as_f64);
-    let ehl = |base: &str| -> String {
-        let grid = num(&format!("{base}/grid")).map_or("?".into(), |g| format!("{g}"));
-        let inlet = num(&format!("{base}/inlet"))
+fn settings_summary(m: &Method) -> String {
+    let ehl = |e: &ehl_bearing::ehl::EhlSettings| -> String {
+        let inlet = e
+            .inlet
             .map_or("automatic domain".into(), |x| format!("inlet {x} a_x"));
         format!(
-            "{grid}² grid, {inlet}, tolerances residual {:e}, force {:e}, film {:e}",
-            num(&format!("{base}/tol_residual")).unwrap_or(f64::NAN),
-            num(&format!("{base}/tol_force")).unwrap_or(f64::NAN),
-            num(&format!("{base}/tol_film")).unwrap_or(f64::NAN)
+            "{}² grid, {inlet}, tolerances residual {:e}, force {:e}, film {:e}",
+            e.grid, e.tol_residual, e.tol_force, e.tol_film
         )
     };
-    if let (Some(a), Some(n), Some(_)) = (num("/amplitude"), num("/points"), v.get("ehl")) {
-        return format!(
-            "{n} steady EHL solutions over w0·(1 ± {a}), {}",
-            ehl("/ehl")
-        );
+    match m {
+        Method::QuasiStatic(s) => format!(
+            "{} steady EHL solutions over w0·(1 ± {}), {}",
+            s.points,
+            s.amplitude,
+            ehl(&s.ehl)
+        ),
+        Method::Harmonic(s) => {
+            let freq = match s.frequency {
+                ExcitationFrequency::FractionOfNatural(x) => format!("Ω = {x}·ω_n"),
+                ExcitationFrequency::RadPerSecond(x) => format!("Ω = {x} rad/s"),
+            };
+            format!(
+                "w0·(1 + {}·sin Ωt), {freq}, ≤ {} + {}, {} steps per period, {}",
+                s.amplitude,
+                periods(s.settling_periods, "settling period"),
+                periods(s.recorded_periods, "recorded period"),
+                s.steps_per_period,
+                ehl(&s.ehl)
+            )
+        }
+        Method::Hertz(s) => format!("{} Hertz samples over w0·(1 ± {})", s.samples, s.amplitude),
+        Method::Synthetic(s) => {
+            format!("{} Hertz samples over w0·(1 ± {})", s.samples, s.amplitude)
+        }
+        Method::Map(s) => ehl_bearing::report::to_json_line(s),
     }
-    if let (Some(a), Some(_)) = (num("/amplitude"), v.get("frequency")) {
-        let freq = match v.get("frequency") {
-            Some(Value::Object(m)) => m
-                .iter()
-                .map(|(k, x)| match k.as_str() {
-                    "fraction-of-natural" => format!("Ω = {x}·ω_n"),
-                    _ => format!("Ω = {x} rad/s"),
-                })
-                .collect::<Vec<_>>()
-                .join(""),
-            _ => "Ω ?".into(),
-        };
-        return format!(
-            "w0·(1 + {a}·sin Ωt), {freq}, ≤ {} + {}, {} steps per period, {}",
-            periods(num("/settling_periods"), "settling period"),
-            periods(num("/recorded_periods"), "recorded period"),
-            num("/steps_per_period").unwrap_or(f64::NAN),
-            ehl("/ehl")
-        );
-    }
-    if let (Some(a), Some(n)) = (num("/amplitude"), num("/samples")) {
-        return format!("{n} Hertz samples over w0·(1 ± {a})");
-    }
-    v.to_string()
 }

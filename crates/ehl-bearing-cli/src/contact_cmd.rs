@@ -81,39 +81,6 @@ pub struct ContactArgs {
     pub output: Option<PathBuf>,
 }
 
-/// The result as JSON, SI units.
-pub fn fit_json(f: &ContactFit) -> serde_json::Value {
-    serde_json::json!({
-        "method": f.method,
-        "K": f.k,
-        "d": f.d,
-        "delta_f": f.delta_f,
-        "c": f.c,
-        "std_errors": f.std_errors,
-        "r_squared": f.r_squared,
-        "rms_residual": f.rms_residual,
-        "delta_range": f.delta_range,
-        "excitation": f.excitation,
-        "converged": f.converged,
-        "seconds": f.seconds,
-        "load": f.load,
-        "approach": f.approach,
-        "M": f.moes_m,
-        "L": f.moes_l,
-        "ry_over_rx": f.ry_over_rx,
-        "samples": f.samples,
-        "film": f.film,
-    })
-}
-
-/// A count of the JSON report and its noun ("1 recorded period", "24 settling steps").
-fn count(n: &serde_json::Value, noun: &str) -> String {
-    match n.as_u64() {
-        Some(n) => crate::plot::contact::count(n as usize, noun),
-        None => format!("{n} {noun}s"),
-    }
-}
-
 fn table(f: &ContactFit) -> String {
     let mut s = String::new();
     let _ = writeln!(
@@ -135,31 +102,26 @@ fn table(f: &ContactFit) -> String {
         );
     }
     if let ehl_bearing::contact::Excitation::Harmonic(h) = &f.excitation {
-        let e = serde_json::to_value(h).unwrap_or_default();
-        let g = |k: &str| e[k].as_f64().unwrap_or(f64::NAN);
+        let count = crate::plot::contact::count;
         let _ = writeln!(
             s,
             "excitation: ε = {}, Ω = {:.5e} rad/s = {:.3}·ω_n (ω_n = {:.5e} rad/s; dry Hertz {:.5e}), \
              m = {:.4e} kg, {} (at most {}) + {} × {} steps; periodicity {:.1e} (bound {:.0e}: \
              {}); {} not converged",
-            g("amplitude"),
-            g("frequency_rad_s"),
-            g("frequency_over_natural"),
-            g("natural_frequency_rad_s"),
-            g("natural_frequency_hertz_rad_s"),
-            g("mass_kg"),
-            count(&e["settling_steps"], "settling step"),
-            count(&e["settling_periods"], "period"),
-            count(&e["recorded_periods"], "recorded period"),
-            e["steps_per_period"],
-            g("periodicity"),
-            g("periodicity_tol"),
-            if e["settled"].as_bool() == Some(true) {
-                "settled"
-            } else {
-                "NOT settled"
-            },
-            count(&e["steps_not_converged"], "step"),
+            h.amplitude,
+            h.frequency_rad_s,
+            h.frequency_over_natural,
+            h.natural_frequency_rad_s,
+            h.natural_frequency_hertz_rad_s,
+            h.mass_kg,
+            count(h.settling_steps, "settling step"),
+            count(h.settling_periods, "period"),
+            count(h.recorded_periods, "recorded period"),
+            h.steps_per_period,
+            h.periodicity,
+            h.periodicity_tol,
+            if h.settled { "settled" } else { "NOT settled" },
+            count(h.steps_not_converged, "step"),
         );
     }
     let _ = writeln!(
@@ -427,7 +389,7 @@ pub fn run(args: &ContactArgs) -> Result<()> {
         std::fs::write(dir.join("samples.csv"), csv)?;
         std::fs::write(
             dir.join("fit.json"),
-            serde_json::to_string_pretty(&fit_json(&fit))?,
+            ehl_bearing::report::to_json_pretty(&fit),
         )?;
         crate::plot::contact::force_approach(&fit, &c, dir)?;
         if !fit.history.is_empty() {
@@ -436,7 +398,7 @@ pub fn run(args: &ContactArgs) -> Result<()> {
         }
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&fit_json(&fit))?);
+        println!("{}", ehl_bearing::report::to_json_pretty(&fit));
     } else {
         print!("{}", table(&fit));
     }

@@ -126,33 +126,6 @@ pub fn large_grid_notice(s: &EhlSettings, time_limit: Option<f64>) {
     }
 }
 
-fn json(r: &EhlSolution) -> serde_json::Value {
-    serde_json::json!({
-        "converged": r.converged,
-        "M": r.moes_m,
-        "L": r.moes_l,
-        "ry_over_rx": r.ry_over_rx,
-        "h_central": r.h_central,
-        "h_min": r.h_min,
-        "p_max": r.p_max,
-        "p_hertz": r.p_hertz,
-        "approach": r.approach,
-        "approach_hertz": r.approach_hertz,
-        "h_central_moes": r.h_central_moes,
-        "h_min_moes": r.h_min_moes,
-        "force_balance_residual": r.force_balance_residual,
-        "residual": r.residual,
-        "grid": r.grid,
-        "cycles": r.cycles,
-        "continuation_steps": r.continuation_steps,
-        "attempts": r.attempts,
-        "seconds": r.seconds,
-        "residual_history": r.residual_history,
-        "discretization_estimate": r.discretization_estimate,
-        "stopped_by_discretization": r.stopped_by_discretization,
-    })
-}
-
 /// Human-readable table in engineering units.
 pub fn table(r: &EhlSolution) -> String {
     let mut s = String::new();
@@ -275,7 +248,10 @@ pub fn run(args: &EhlArgs) -> Result<()> {
     };
     spinner.finish_and_clear();
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&json(&result))?);
+        println!(
+            "{}",
+            ehl_bearing::report::to_json_pretty(&ehl_bearing::report::EhlReport::from(&result))
+        );
     } else {
         print!("{}", table(&result));
     }

@@ -3,7 +3,8 @@
 use anyhow::Context;
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws, Control, Equilibrium, Race, DOF_NAMES};
 use ehl_bearing::case::Case;
-use ehl_bearing::io::{json::equilibrium_json, read_case};
+use ehl_bearing::io::read_case;
+use ehl_bearing::report::{to_json_pretty, EquilibriumReport, FilmReport, FilmSummary};
 use std::path::PathBuf;
 
 /// Arguments of `equilibrium`.
@@ -131,19 +132,12 @@ pub fn run(args: &EquilibriumArgs) -> anyhow::Result<()> {
         ehl_bearing::lubrication::assess_with_films(&case, &states, &solved)
     });
     if args.json {
-        let mut v = equilibrium_json(&eq);
-        add_race_control_fields(&mut v, &eq);
+        let mut v = EquilibriumReport::from(&eq);
         if let Some(f) = &films {
-            for (j, b) in v["balls"].as_array_mut().into_iter().flatten().enumerate() {
-                for (k, race) in ["inner", "outer"].iter().enumerate() {
-                    b[race]["film"] = film_json(&f[2 * j + k]);
-                }
-            }
+            v = v.with_films(f.iter().map(film_report));
         }
-        if let Some(l) = &lubrication {
-            v["lubrication"] = serde_json::to_value(l)?;
-        }
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        v.lubrication = lubrication.clone();
+        println!("{}", to_json_pretty(&v));
     } else {
         print!("{}", table(&case, &eq));
         if let Some(f) = &films {
@@ -166,22 +160,6 @@ pub fn run(args: &EquilibriumArgs) -> anyhow::Result<()> {
         }
     }
     Ok(())
-}
-
-/// Per contact: the spin-to-roll ratio and the friction the gyroscopic moment needs against the
-/// friction the contact can transmit (μ_max·Q), where race control is in doubt.
-fn add_race_control_fields(v: &mut serde_json::Value, eq: &Equilibrium) {
-    for (b, bj) in eq
-        .balls
-        .iter()
-        .zip(v["balls"].as_array_mut().into_iter().flatten())
-    {
-        for (race, c) in [("inner", &b.inner), ("outer", &b.outer)] {
-            bj[race]["spin_to_roll"] = c.spin_to_roll.into();
-            bj[race]["friction_needed"] = c.friction_needed.into();
-            bj[race]["friction_limit"] = c.friction_limit.into();
-        }
-    }
 }
 
 /// Needed over available friction as a percentage, or "—" for an unloaded contact.
@@ -321,26 +299,15 @@ pub fn table(case: &Case, eq: &Equilibrium) -> String {
     s
 }
 
-fn film_json(f: &Film) -> serde_json::Value {
+fn film_report(f: &Film) -> FilmReport {
     match f {
-        Film::Unloaded => serde_json::json!({ "state": "unloaded" }),
-        Film::NoEntrainment => serde_json::json!({ "state": "no-entrainment" }),
-        Film::Solved(Ok(s)) => serde_json::json!({
-            "state": "solved",
-            "converged": s.converged,
-            "h_central": s.h_central,
-            "h_min": s.h_min,
-            "p_max": s.p_max,
-            "approach": s.approach,
-            "M": s.moes_m,
-            "L": s.moes_l,
-            "ry_over_rx": s.ry_over_rx,
-            "force_balance_residual": s.force_balance_residual,
-            "residual": s.residual,
-        }),
-        Film::Solved(Err(e)) => {
-            serde_json::json!({ "state": "failed", "converged": false, "error": e })
-        }
+        Film::Unloaded => FilmReport::Unloaded,
+        Film::NoEntrainment => FilmReport::NoEntrainment,
+        Film::Solved(Ok(s)) => FilmReport::Solved(FilmSummary::from(s)),
+        Film::Solved(Err(e)) => FilmReport::Failed {
+            converged: false,
+            error: e.clone(),
+        },
     }
 }
 

@@ -17,7 +17,8 @@
 
 use ehl_bearing::io::write_atomic;
 use ehl_bearing::study::{PointRecord, Shard, Study};
-use serde_json::{json, Value};
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{channel, RecvTimeoutError, Sender};
 use std::sync::{Arc, Mutex};
@@ -31,6 +32,94 @@ pub const HEARTBEAT_S: u64 = 20;
 /// Default age of the last heartbeat after which a running shard of another host counts as
 /// interrupted, s.
 pub const DEFAULT_STALE_AFTER_S: u64 = 90;
+
+/// `plan.json`: the study run as shards and the Slurm submissions recorded for it.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+struct Plan {
+    /// The study file.
+    study: Option<String>,
+    /// The study's method.
+    method: Option<String>,
+    /// Number of shards.
+    shards: Option<u64>,
+    /// Every point's file stem, in study order.
+    points: Option<Vec<String>>,
+    /// Slurm submissions of `study sbatch --submit`.
+    submissions: Vec<Submission>,
+}
+
+/// One Slurm submission of a study.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+struct Submission {
+    /// The array job (None: the shards ran in one job).
+    array_job_id: Option<String>,
+    /// Its task list.
+    array_tasks: String,
+    /// The merge job.
+    merge_job_id: String,
+    /// Submission time (absent in submissions read back without it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    submitted_unix_s: Option<u64>,
+}
+
+/// `shard-<i>of<N>.json`: one run of a shard.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+struct ShardMarker {
+    /// The shard, `i/N`.
+    shard: Option<String>,
+    /// `running`, `done` or `failed`.
+    state: Option<String>,
+    /// Host of the process.
+    host: Option<String>,
+    /// Process id.
+    pid: Option<i64>,
+    /// Slurm job of the process.
+    slurm_job: Option<String>,
+    /// Start time, s since the Unix epoch.
+    started_unix_s: Option<u64>,
+    /// Last heartbeat, s since the Unix epoch.
+    heartbeat_unix_s: Option<u64>,
+    /// End time (a finished run).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    finished_unix_s: Option<u64>,
+    /// Error of a failed run.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    message: Option<String>,
+}
+
+impl ShardMarker {
+    /// A marker of `shard` in `state` by this process, started and beating at `t`.
+    fn new(shard: Shard, state: &str, t: u64) -> Self {
+        ShardMarker {
+            shard: Some(shard.to_string()),
+            state: Some(state.into()),
+            host: Some(hostname()),
+            pid: Some(i64::from(std::process::id())),
+            slurm_job: slurm_job(),
+            started_unix_s: Some(t),
+            heartbeat_unix_s: Some(t),
+            finished_unix_s: None,
+            message: None,
+        }
+    }
+}
+
+/// `running/<stem>.json`: the point a shard is computing.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+struct PointMarker {
+    /// The shard computing it.
+    shard: Option<String>,
+    /// Host of the shard's process.
+    host: Option<String>,
+    /// Process id.
+    pid: Option<i64>,
+    /// Start time, s since the Unix epoch.
+    started_unix_s: Option<u64>,
+}
 
 fn now_s() -> u64 {
     SystemTime::now()
@@ -73,7 +162,7 @@ fn shard_file(out: &Path, shard: Shard) -> PathBuf {
     progress_dir(out).join(format!("shard-{}of{}.json", shard.index, shard.count))
 }
 
-fn write_json(path: &Path, v: &Value) -> anyhow::Result<()> {
+fn write_json<T: Serialize>(path: &Path, v: &T) -> anyhow::Result<()> {
     if let Some(d) = path.parent() {
         std::fs::create_dir_all(d).map_err(|e| anyhow::anyhow!("creating {}: {e}", d.display()))?;
     }
@@ -82,7 +171,7 @@ fn write_json(path: &Path, v: &Value) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn read_json(path: &Path) -> Option<Value> {
+fn read_json<T: DeserializeOwned>(path: &Path) -> Option<T> {
     let text = ehl_bearing::io::read_own_file(path).ok()??;
     serde_json::from_str(&text).ok()
 }
@@ -90,14 +179,15 @@ fn read_json(path: &Path) -> Option<Value> {
 /// A marker file that must be this program's when present: `Ok(None)` if absent, an error
 /// naming the file if it cannot be read or is not a JSON object (a garbage plan or shard marker
 /// showed as "0 points, pending").
-fn read_marker(path: &Path) -> anyhow::Result<Option<Value>> {
+fn read_marker<T: DeserializeOwned>(path: &Path) -> anyhow::Result<Option<T>> {
     let text = match ehl_bearing::io::read_own_file(path) {
         Ok(Some(t)) => t,
         Ok(None) => return Ok(None),
         Err(e) => anyhow::bail!("{}: unreadable ({e})", path.display()),
     };
-    match serde_json::from_str::<Value>(&text) {
-        Ok(v) if v.is_object() => Ok(Some(v)),
+    let object = text.trim_start().starts_with('{');
+    match serde_json::from_str::<T>(&text) {
+        Ok(v) if object => Ok(Some(v)),
         _ => anyhow::bail!(
             "{}: not a marker written by this program (not a JSON object); remove the folder {} \
              and run the study (or `study sbatch`) again to rewrite it",
@@ -137,15 +227,14 @@ pub fn write_plan(
     shards: usize,
 ) -> anyhow::Result<()> {
     let stems: Vec<String> = study.points().iter().map(|p| p.file_stem()).collect();
-    let mut plan = read_json(&progress_dir(out).join("plan.json")).unwrap_or(json!({}));
-    let submissions = plan.get("submissions").cloned().unwrap_or(json!([]));
-    plan = json!({
-        "study": study_path.display().to_string(),
-        "method": study.method.name(),
-        "shards": shards,
-        "points": stems,
-        "submissions": submissions,
-    });
+    let old: Plan = read_json(&progress_dir(out).join("plan.json")).unwrap_or_default();
+    let plan = Plan {
+        study: Some(study_path.display().to_string()),
+        method: Some(study.method.name().to_string()),
+        shards: Some(shards as u64),
+        points: Some(stems),
+        submissions: old.submissions,
+    };
     write_json(&progress_dir(out).join("plan.json"), &plan)
 }
 
@@ -157,13 +246,9 @@ pub fn ensure_plan(
     study: &Study,
     shards: usize,
 ) -> anyhow::Result<()> {
-    let stems: Vec<Value> = study
-        .points()
-        .iter()
-        .map(|p| Value::from(p.file_stem()))
-        .collect();
-    if let Some(plan) = read_json(&progress_dir(out).join("plan.json")) {
-        if plan["shards"] == json!(shards) && plan["points"].as_array() == Some(&stems) {
+    let stems: Vec<String> = study.points().iter().map(|p| p.file_stem()).collect();
+    if let Some(plan) = read_json::<Plan>(&progress_dir(out).join("plan.json")) {
+        if plan.shards == Some(shards as u64) && plan.points.as_ref() == Some(&stems) {
             return Ok(());
         }
     }
@@ -196,17 +281,13 @@ pub fn record_submission(
     merge_job: &str,
 ) -> anyhow::Result<()> {
     let path = progress_dir(out).join("plan.json");
-    let mut plan = read_json(&path).unwrap_or(json!({}));
-    let entry = json!({
-        "array_job_id": array_job,
-        "array_tasks": tasks,
-        "merge_job_id": merge_job,
-        "submitted_unix_s": now_s(),
+    let mut plan: Plan = read_json(&path).unwrap_or_default();
+    plan.submissions.push(Submission {
+        array_job_id: array_job.map(str::to_string),
+        array_tasks: tasks.to_string(),
+        merge_job_id: merge_job.to_string(),
+        submitted_unix_s: Some(now_s()),
     });
-    match plan.get_mut("submissions").and_then(Value::as_array_mut) {
-        Some(a) => a.push(entry),
-        None => plan["submissions"] = json!([entry]),
-    }
     write_json(&path, &plan)
 }
 
@@ -235,7 +316,7 @@ fn slurm_job() -> Option<String> {
 /// the point in flight.
 pub struct ShardMarkers {
     out: PathBuf,
-    marker: Arc<Mutex<Value>>,
+    marker: Arc<Mutex<ShardMarker>>,
     path: PathBuf,
     stop: Option<Sender<()>>,
     heartbeat: Option<JoinHandle<()>>,
@@ -245,15 +326,7 @@ impl ShardMarkers {
     /// Mark `shard` of the study in `out` as running by this process and start its heartbeat.
     pub fn start(out: &Path, shard: Shard) -> anyhow::Result<Self> {
         let t = now_s();
-        let marker = json!({
-            "shard": shard.to_string(),
-            "state": "running",
-            "host": hostname(),
-            "pid": std::process::id(),
-            "slurm_job": slurm_job(),
-            "started_unix_s": t,
-            "heartbeat_unix_s": t,
-        });
+        let marker = ShardMarker::new(shard, "running", t);
         let path = shard_file(out, shard);
         write_json(&path, &marker)?;
         let marker = Arc::new(Mutex::new(marker));
@@ -265,7 +338,7 @@ impl ShardMarkers {
             {
                 let v = {
                     let mut v = m.lock().unwrap_or_else(|e| e.into_inner());
-                    v["heartbeat_unix_s"] = json!(now_s());
+                    v.heartbeat_unix_s = Some(now_s());
                     v.clone()
                 };
                 // A failed heartbeat only makes the status pessimistic; the run goes on.
@@ -289,17 +362,13 @@ impl ShardMarkers {
 
     /// The point `stem` starts.
     pub fn point_started(&self, stem: &str) {
-        let shard = self
-            .marker
-            .lock()
-            .map(|m| m["shard"].clone())
-            .unwrap_or(Value::Null);
-        let v = json!({
-            "shard": shard,
-            "host": hostname(),
-            "pid": std::process::id(),
-            "started_unix_s": now_s(),
-        });
+        let shard = self.marker.lock().ok().and_then(|m| m.shard.clone());
+        let v = PointMarker {
+            shard,
+            host: Some(hostname()),
+            pid: Some(i64::from(std::process::id())),
+            started_unix_s: Some(now_s()),
+        };
         write_json(&self.point_file(stem), &v).ok();
     }
 
@@ -314,13 +383,13 @@ impl ShardMarkers {
         let v = {
             let mut v = self.marker.lock().unwrap_or_else(|e| e.into_inner());
             let t = now_s();
-            v["heartbeat_unix_s"] = json!(t);
-            v["finished_unix_s"] = json!(t);
+            v.heartbeat_unix_s = Some(t);
+            v.finished_unix_s = Some(t);
             match result {
-                Ok(()) => v["state"] = json!("done"),
+                Ok(()) => v.state = Some("done".into()),
                 Err(e) => {
-                    v["state"] = json!("failed");
-                    v["message"] = json!(format!("{e:#}"));
+                    v.state = Some("failed".into());
+                    v.message = Some(format!("{e:#}"));
                 }
             }
             v.clone()
@@ -350,17 +419,11 @@ pub fn record_early_failure(out: &Path, shard: Shard, error: &anyhow::Error) {
         return;
     }
     let t = now_s();
-    let marker = json!({
-        "shard": shard.to_string(),
-        "state": "failed",
-        "host": hostname(),
-        "pid": std::process::id(),
-        "slurm_job": slurm_job(),
-        "started_unix_s": t,
-        "heartbeat_unix_s": t,
-        "finished_unix_s": t,
-        "message": format!("{error:#}"),
-    });
+    let marker = ShardMarker {
+        finished_unix_s: Some(t),
+        message: Some(format!("{error:#}")),
+        ..ShardMarker::new(shard, "failed", t)
+    };
     write_json(&shard_file(out, shard), &marker).ok();
 }
 
@@ -381,7 +444,7 @@ pub enum PointState {
 }
 
 /// Counts of points by state.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
 pub struct Counts {
     /// Points of the set.
     pub points: usize,
@@ -412,17 +475,6 @@ impl Counts {
     /// Every point has a point file (done or failed).
     pub fn finished(&self) -> bool {
         self.done + self.failed == self.points
-    }
-
-    fn json(&self) -> Value {
-        json!({
-            "points": self.points,
-            "done": self.done,
-            "failed": self.failed,
-            "in_flight": self.in_flight,
-            "interrupted": self.interrupted,
-            "pending": self.pending,
-        })
     }
 }
 
@@ -475,12 +527,11 @@ fn point_file_state(out: &Path, stem: &str) -> Option<PointState> {
 }
 
 /// Whether the process of a `running` shard marker still runs.
-fn marker_alive(m: &Value, me: &str, now: u64, stale_after_s: u64) -> bool {
-    let host = m["host"].as_str().unwrap_or("");
-    if host == me {
-        return m["pid"].as_i64().is_some_and(pid_alive);
+fn marker_alive(m: &ShardMarker, me: &str, now: u64, stale_after_s: u64) -> bool {
+    if m.host.as_deref().unwrap_or("") == me {
+        return m.pid.is_some_and(pid_alive);
     }
-    let beat = m["heartbeat_unix_s"].as_u64().unwrap_or(0);
+    let beat = m.heartbeat_unix_s.unwrap_or(0);
     now.saturating_sub(beat) <= stale_after_s
 }
 
@@ -495,7 +546,7 @@ pub fn read_status(out: &Path, stale_after_s: u64) -> anyhow::Result<StudyStatus
         );
     }
     let pdir = progress_dir(out);
-    let plan = read_marker(&pdir.join("plan.json"))?;
+    let plan: Option<Plan> = read_marker(&pdir.join("plan.json"))?;
     // Merged: no markers left and every output present (each is written atomically, so a present
     // file is whole; a disk that filled while plotting leaves a figure missing, not truncated).
     let merged = plan.is_none() && missing_outputs(out).is_empty();
@@ -532,19 +583,16 @@ pub fn read_status(out: &Path, stale_after_s: u64) -> anyhow::Result<StudyStatus
             pdir.display()
         )
     };
-    let stems: Vec<String> = plan["points"]
-        .as_array()
-        .ok_or_else(|| plan_error("no list of points"))?
-        .iter()
-        .map(|s| s.as_str().map(str::to_string))
-        .collect::<Option<_>>()
-        .ok_or_else(|| plan_error("a point name that is not text"))?;
-    let n = plan["shards"]
-        .as_u64()
+    let stems: Vec<String> = plan
+        .points
+        .clone()
+        .ok_or_else(|| plan_error("no list of points"))?;
+    let n = plan
+        .shards
         .and_then(|n| usize::try_from(n).ok())
         .filter(|&n| (1..=stems.len().max(1)).contains(&n))
         .ok_or_else(|| plan_error("no shard count between 1 and the number of points"))?;
-    let markers: Vec<Option<Value>> = (1..=n)
+    let markers: Vec<Option<ShardMarker>> = (1..=n)
         .map(|i| read_marker(&shard_file(out, Shard { index: i, count: n })))
         .collect::<anyhow::Result<_>>()?;
     let mut shards: Vec<ShardStatus> = (1..=n)
@@ -554,7 +602,7 @@ pub fn read_status(out: &Path, stale_after_s: u64) -> anyhow::Result<StudyStatus
             let (state, slurm_job, host, message) = match &m {
                 None => ("pending".to_string(), None, None, None),
                 Some(m) => {
-                    let s = m["state"].as_str().unwrap_or("unknown");
+                    let s = m.state.as_deref().unwrap_or("unknown");
                     let state = if s == "running" && !marker_alive(m, &me, now, stale_after_s) {
                         "interrupted"
                     } else {
@@ -562,9 +610,9 @@ pub fn read_status(out: &Path, stale_after_s: u64) -> anyhow::Result<StudyStatus
                     };
                     (
                         state.to_string(),
-                        m["slurm_job"].as_str().map(str::to_string),
-                        m["host"].as_str().map(str::to_string),
-                        m["message"].as_str().map(str::to_string),
+                        m.slurm_job.clone(),
+                        m.host.clone(),
+                        m.message.clone(),
                     )
                 }
             };
@@ -582,27 +630,30 @@ pub fn read_status(out: &Path, stale_after_s: u64) -> anyhow::Result<StudyStatus
     for (k, stem) in stems.iter().enumerate() {
         let state = match point_file_state(out, stem) {
             Some(s) => s,
-            None => match read_json(&pdir.join("running").join(format!("{stem}.json"))) {
-                None => PointState::Pending,
-                Some(p) => {
-                    // The point's marker is live while its shard's process is.
-                    let owner = p["shard"]
-                        .as_str()
-                        .and_then(|s| s.parse::<Shard>().ok())
-                        .and_then(|s| read_json(&shard_file(out, s)));
-                    let live = owner.is_some_and(|m| {
-                        m["state"] == "running"
-                            && m["pid"] == p["pid"]
-                            && m["host"] == p["host"]
-                            && marker_alive(&m, &me, now, stale_after_s)
-                    });
-                    if live {
-                        PointState::InFlight
-                    } else {
-                        PointState::Interrupted
+            None => {
+                match read_json::<PointMarker>(&pdir.join("running").join(format!("{stem}.json"))) {
+                    None => PointState::Pending,
+                    Some(p) => {
+                        // The point's marker is live while its shard's process is.
+                        let owner = p
+                            .shard
+                            .as_deref()
+                            .and_then(|s| s.parse::<Shard>().ok())
+                            .and_then(|s| read_json::<ShardMarker>(&shard_file(out, s)));
+                        let live = owner.is_some_and(|m| {
+                            m.state.as_deref() == Some("running")
+                                && m.pid == p.pid
+                                && m.host == p.host
+                                && marker_alive(&m, &me, now, stale_after_s)
+                        });
+                        if live {
+                            PointState::InFlight
+                        } else {
+                            PointState::Interrupted
+                        }
                     }
                 }
-            },
+            }
         };
         counts.add(state);
         shards[k % n].counts.add(state);
@@ -612,24 +663,21 @@ pub fn read_status(out: &Path, stale_after_s: u64) -> anyhow::Result<StudyStatus
             s.state = "finished".into();
         }
     }
-    let submissions = plan["submissions"]
-        .as_array()
-        .map(|a| {
-            a.iter()
-                .map(|s| {
-                    (
-                        s["array_job_id"].as_str().map(str::to_string),
-                        s["array_tasks"].as_str().unwrap_or("").to_string(),
-                        s["merge_job_id"].as_str().unwrap_or("").to_string(),
-                    )
-                })
-                .collect()
+    let submissions = plan
+        .submissions
+        .iter()
+        .map(|s| {
+            (
+                s.array_job_id.clone(),
+                s.array_tasks.clone(),
+                s.merge_job_id.clone(),
+            )
         })
-        .unwrap_or_default();
+        .collect();
     Ok(StudyStatus {
         dir: out.to_path_buf(),
-        study: plan["study"].as_str().map(str::to_string),
-        method: plan["method"].as_str().map(str::to_string),
+        study: plan.study.clone(),
+        method: plan.method.clone(),
         counts,
         shards,
         merged,
@@ -647,48 +695,39 @@ impl StudyStatus {
             .collect()
     }
 
-    /// The status as JSON (`study status --json`).
-    pub fn to_json(&self) -> Value {
-        let mut v = self.counts.json();
-        let top = json!({
-            "dir": self.dir.display().to_string(),
-            "study": self.study,
-            "method": self.method,
-            "complete": self.counts.points > 0 && self.counts.finished(),
-            "merged": self.merged,
-            "missing_outputs": missing_outputs(&self.dir),
-        });
-        if let (Some(t), Some(o)) = (top.as_object(), v.as_object_mut()) {
-            let mut all = t.clone();
-            all.append(o);
-            v = Value::Object(all);
-        }
-        v["shards"] = Value::Array(
-            self.shards
+    /// The status as a record (`study status --json`).
+    pub fn report(&self) -> StatusReport<'_> {
+        StatusReport {
+            dir: self.dir.display().to_string(),
+            study: self.study.as_deref(),
+            method: self.method.as_deref(),
+            complete: self.counts.points > 0 && self.counts.finished(),
+            merged: self.merged,
+            missing_outputs: missing_outputs(&self.dir),
+            counts: self.counts,
+            shards: self
+                .shards
                 .iter()
-                .map(|s| {
-                    let mut c = s.counts.json();
-                    let mut head = json!({
-                        "shard": s.shard.to_string(),
-                        "state": s.state,
-                        "slurm_job": s.slurm_job,
-                        "host": s.host,
-                        "message": s.message,
-                    });
-                    if let (Some(h), Some(c)) = (head.as_object_mut(), c.as_object_mut()) {
-                        h.append(c);
-                    }
-                    head
+                .map(|s| ShardReport {
+                    shard: s.shard.to_string(),
+                    state: &s.state,
+                    slurm_job: s.slurm_job.as_deref(),
+                    host: s.host.as_deref(),
+                    message: s.message.as_deref(),
+                    counts: s.counts,
                 })
                 .collect(),
-        );
-        v["submissions"] = Value::Array(
-            self.submissions
+            submissions: self
+                .submissions
                 .iter()
-                .map(|(a, t, m)| json!({"array_job_id": a, "array_tasks": t, "merge_job_id": m}))
+                .map(|(a, t, m)| Submission {
+                    array_job_id: a.clone(),
+                    array_tasks: t.clone(),
+                    merge_job_id: m.clone(),
+                    submitted_unix_s: None,
+                })
                 .collect(),
-        );
-        v
+        }
     }
 
     /// The status as a table for people.
@@ -772,4 +811,32 @@ impl StudyStatus {
         }
         out
     }
+}
+
+/// `study status --json`: the folder, the plan's study and method, the points by state, per
+/// shard, and the Slurm submissions.
+#[derive(Debug, Clone, Serialize)]
+pub struct StatusReport<'a> {
+    dir: String,
+    study: Option<&'a str>,
+    method: Option<&'a str>,
+    complete: bool,
+    merged: bool,
+    missing_outputs: Vec<&'static str>,
+    #[serde(flatten)]
+    counts: Counts,
+    shards: Vec<ShardReport<'a>>,
+    submissions: Vec<Submission>,
+}
+
+/// One shard in [`StatusReport`].
+#[derive(Debug, Clone, Serialize)]
+struct ShardReport<'a> {
+    shard: String,
+    state: &'a str,
+    slurm_job: Option<&'a str>,
+    host: Option<&'a str>,
+    message: Option<&'a str>,
+    #[serde(flatten)]
+    counts: Counts,
 }

@@ -386,7 +386,7 @@ fn status(args: &StatusArgs) -> anyhow::Result<()> {
     }
     let st = progress::read_status(&args.dir, args.stale_after_s)?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&st.to_json())?);
+        println!("{}", ehl_bearing::report::to_json_pretty(&st.report()));
     } else {
         println!("{}", st.to_text());
     }

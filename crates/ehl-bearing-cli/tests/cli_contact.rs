@@ -57,7 +57,7 @@ fn harmonic_json_history_and_plots() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     for k in [
         "method",
-        "K",
+        "k",
         "d",
         "delta_f",
         "c",

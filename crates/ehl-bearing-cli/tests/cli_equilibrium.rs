@@ -128,7 +128,7 @@ fn film_option_reports_ehl_films_of_every_contact() {
                 f["h_min"].as_f64().unwrap(),
             );
             assert!(hm > 0.0 && hm < hc && hc > 1e-7 && hc < 2e-6, "{hc} {hm}");
-            assert!(f["M"].as_f64().unwrap() > 10.0);
+            assert!(f["moes_m"].as_f64().unwrap() > 10.0);
         }
     }
 }

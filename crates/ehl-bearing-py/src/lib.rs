@@ -1,6 +1,7 @@
 //! Python bindings of `ehl-bearing` (module `ehl_bearing._native`; the Python package
 //! `ehl_bearing` re-exports and documents it). Results with many fields come back as Python
-//! dicts (the library's JSON, SI units), matrices and vectors as numpy arrays. Long computations
+//! dicts built directly from the library's typed reports (`ehl_bearing::report`: the keys of the
+//! command line's JSON, SI units; docs/results.md), matrices and vectors as numpy arrays. Long computations
 //! release the GIL; progress callbacks re-acquire it.
 
 // pyo3 0.22's macros expand `?` on PyResult into a PyErr → PyErr conversion that clippy flags in
@@ -9,17 +10,18 @@
 
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws};
 use ehl_bearing::characterize::{
-    characterization_json, characterize_bearing_with_control, BearingCharacterization,
-    CharacterizeSettings,
+    characterize_bearing_with_control, BearingCharacterization, CharacterizeSettings,
 };
 use ehl_bearing::force_element::{
     ElementInput, ElementOutput, ElementState, ForceElement, LawElement, TrendForceElement,
 };
 use ehl_bearing::case::Case;
-use ehl_bearing::io::{json::equilibrium_json, parse_case, read_case, read_study, FsStore};
-use ehl_bearing::study::{
-    finish_study, points_csv, results_csv, run_study, RunOptions, StudyEvent,
+use ehl_bearing::io::{parse_case, read_case, read_study, FsStore};
+use ehl_bearing::report::{
+    CharacterizationReport, CoefficientsReport, EhlReport, EquilibriumReport, ProgressEvent,
+    SpeedProgressEvent, StudyEventReport,
 };
+use ehl_bearing::study::{finish_study, run_study, RunOptions, StudyEvent};
 use numpy::{
     AllowTypeChange, PyArray1, PyArray2, PyArrayLike1, PyReadonlyArray1, PyReadonlyArray2,
     PyUntypedArrayMethods,
@@ -46,21 +48,54 @@ pub(crate) fn err<E: std::fmt::Display>(e: E) -> PyErr {
     EhlBearingError::new_err(e.to_string())
 }
 
-/// A JSON value as a Python object (dicts, lists, floats, strings) via the `json` module.
-pub(crate) fn to_py(py: Python<'_>, v: &serde_json::Value) -> PyResult<PyObject> {
-    let text = serde_json::to_string(v).map_err(err)?;
-    Ok(py
-        .import_bound("json")?
-        .call_method1("loads", (text,))?
-        .unbind())
+/// A typed report as Python objects, built directly from it (no text in between): records as
+/// dicts with the report's keys, sequences (fixed-size arrays too) as lists, numbers as floats
+/// and ints, absent values as None: what the command line's JSON of the same report reads as.
+pub(crate) fn to_py<T: serde::Serialize + ?Sized>(py: Python<'_>, v: &T) -> PyResult<PyObject> {
+    let obj = pythonize::pythonize(py, v).map_err(err)?;
+    Ok(tuples_as_lists(&obj)?.unbind())
 }
 
-/// A Python object (dicts with text keys, lists and tuples, bools, ints, floats, strings, numpy
-/// scalars and 0-d arrays) as a JSON value, walked directly: an unsupported value or a number
-/// that is not finite is an error naming its key path (`bearing.ball_diameter_mm = NaN`); None is
-/// JSON null where `none_ok` (result dicts read back), an error otherwise (case dicts: TOML has
-/// no null).
-fn from_py(obj: &Bound<'_, PyAny>, path: &str, none_ok: bool) -> PyResult<serde_json::Value> {
+/// `obj` with every tuple (pythonize's form of a fixed-size array such as a 5×5 stiffness) made
+/// a list, in place where it is in a dict or a list.
+fn tuples_as_lists<'py>(obj: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    use pyo3::types::{PyList, PyTuple};
+    if let Ok(t) = obj.downcast::<PyTuple>() {
+        let items = t
+            .iter()
+            .map(|x| tuples_as_lists(&x))
+            .collect::<PyResult<Vec<_>>>()?;
+        return Ok(PyList::new_bound(obj.py(), items).into_any());
+    }
+    if let Ok(l) = obj.downcast::<PyList>() {
+        for i in 0..l.len() {
+            let x = l.get_item(i)?;
+            let y = tuples_as_lists(&x)?;
+            if !y.is(&x) {
+                l.set_item(i, y)?;
+            }
+        }
+    } else if let Ok(d) = obj.downcast::<PyDict>() {
+        let items: Vec<_> = d.iter().collect();
+        for (k, x) in items {
+            let y = tuples_as_lists(&x)?;
+            if !y.is(&x) {
+                d.set_item(k, y)?;
+            }
+        }
+    }
+    Ok(obj.clone())
+}
+
+/// A dict read back into a typed report (`what` names it in the error).
+fn from_report<T: serde::de::DeserializeOwned>(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<T> {
+    pythonize::depythonize(obj).map_err(|e| err(format!("{what}: {e}")))
+}
+
+/// A case dict (text keys; lists and tuples, bools, ints, floats, text, numpy scalars and 0-d
+/// arrays) as a TOML value, walked directly: an unsupported value, None (TOML has no null) or a
+/// number that is not finite is an error naming its key path (`bearing.ball_diameter_mm = NaN`).
+fn from_py(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<toml::Value> {
     use pyo3::types::{PyBool, PyFloat, PyInt, PyList, PyString, PyTuple};
     let at = |p: &str| {
         if p.is_empty() {
@@ -70,7 +105,7 @@ fn from_py(obj: &Bound<'_, PyAny>, path: &str, none_ok: bool) -> PyResult<serde_
         }
     };
     if let Ok(d) = obj.downcast::<PyDict>() {
-        let mut map = serde_json::Map::new();
+        let mut map = toml::Table::new();
         for (k, v) in d.iter() {
             let key: String = k.extract().map_err(|_| {
                 err(format!(
@@ -84,49 +119,47 @@ fn from_py(obj: &Bound<'_, PyAny>, path: &str, none_ok: bool) -> PyResult<serde_
             } else {
                 format!("{path}.{key}")
             };
-            map.insert(key, from_py(&v, &sub, none_ok)?);
+            map.insert(key, from_py(&v, &sub)?);
         }
-        return Ok(serde_json::Value::Object(map));
+        return Ok(toml::Value::Table(map));
     }
     if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
         let mut out = Vec::new();
         for (i, v) in obj.iter()?.enumerate() {
-            out.push(from_py(&v?, &format!("{path}[{i}]"), none_ok)?);
+            out.push(from_py(&v?, &format!("{path}[{i}]"))?);
         }
-        return Ok(serde_json::Value::Array(out));
+        return Ok(toml::Value::Array(out));
     }
     if obj.is_none() {
-        if none_ok {
-            return Ok(serde_json::Value::Null);
-        }
         return Err(err(format!(
             "{} = None: give a value, or leave the key out for its default",
             at(path)
         )));
     }
     if obj.is_instance_of::<PyBool>() {
-        return Ok(serde_json::Value::Bool(obj.extract()?));
+        return Ok(toml::Value::Boolean(obj.extract()?));
     }
     if obj.is_instance_of::<PyString>() {
-        return Ok(serde_json::Value::String(obj.extract()?));
+        return Ok(toml::Value::String(obj.extract()?));
     }
     if obj.is_instance_of::<PyInt>() {
         let i: i64 = obj
             .extract()
             .map_err(|_| err(format!("{} = {obj}: an integer beyond 64 bits", at(path))))?;
-        return Ok(serde_json::Value::from(i));
+        return Ok(toml::Value::Integer(i));
     }
     if obj.is_instance_of::<PyFloat>() {
         let x: f64 = obj.extract()?;
-        return serde_json::Number::from_f64(x)
-            .map(serde_json::Value::Number)
-            .ok_or_else(|| err(format!("{} = {x}: expected a finite number", at(path))));
+        if !x.is_finite() {
+            return Err(err(format!("{} = {x}: expected a finite number", at(path))));
+        }
+        return Ok(toml::Value::Float(x));
     }
     // numpy scalars (int64, float32, bool_, …) and 0-d arrays: their Python value.
     if obj.hasattr("item")? && obj.hasattr("dtype")? {
         let item = obj.call_method0("item")?;
         if !item.hasattr("dtype")? {
-            return from_py(&item, path, none_ok);
+            return from_py(&item, path);
         }
     }
     Err(err(format!(
@@ -141,10 +174,10 @@ fn from_py(obj: &Bound<'_, PyAny>, path: &str, none_ok: bool) -> PyResult<serde_
 
 /// Call a Python progress callback with a dict, from any thread; errors are printed, not raised
 /// (a progress display must not abort a computation).
-fn report(callback: &Option<PyObject>, event: serde_json::Value) {
+fn report<T: serde::Serialize>(callback: &Option<PyObject>, event: &T) {
     if let Some(cb) = callback {
         Python::with_gil(|py| {
-            let r = to_py(py, &event).and_then(|d| cb.call1(py, (d,)));
+            let r = to_py(py, event).and_then(|d| cb.call1(py, (d,)));
             if let Err(e) = r {
                 e.print(py);
             }
@@ -189,7 +222,7 @@ impl PyCase {
     #[staticmethod]
     fn from_dict(py: Python<'_>, values: &Bound<'_, PyAny>) -> PyResult<Self> {
         let _ = py;
-        let v = from_py(values, "", false)?;
+        let v = from_py(values, "")?;
         let text = toml::to_string(&v).map_err(|e| err(format!("case dict as TOML: {e}")))?;
         Self::from_toml(&text, "<dict>")
     }
@@ -281,7 +314,7 @@ fn equilibrium(py: Python<'_>, case: &PyCase) -> PyResult<PyObject> {
             solve_equilibrium(&c.bearing, &laws, &c.operating, &c.settings)
         })
         .map_err(err)?;
-    to_py(py, &equilibrium_json(&eq))
+    to_py(py, &EquilibriumReport::from(&eq))
 }
 
 /// Steady EHL solution of one point contact given as contact-file TOML text (the `ehl`
@@ -306,13 +339,7 @@ fn ehl(
     let sol = py
         .allow_threads(|| solve_steady(&file.contact, &s))
         .map_err(err)?;
-    let mut v = serde_json::to_value(&sol).map_err(err)?;
-    if !fields {
-        if let Some(o) = v.as_object_mut() {
-            o.remove("fields");
-        }
-    }
-    to_py(py, &v)
+    to_py(py, &EhlReport::new(&sol, fields))
 }
 
 /// Characterize one EHL point contact (contact-file TOML text) with `method`
@@ -320,19 +347,30 @@ fn ehl(
 /// the fitted law Q = K·δ^d + ΔF (+ c·δ̇) and its samples, as a dict (SI). The quasi-static
 /// method also gives the Richardson estimate of the central film and the approach at w0
 /// (`film`, as the `contact` command; `film_extrapolation=False` skips its extra solution).
+/// `grid`: points per side of the EHL solutions (2^k + 1; default 129), as `contact --grid`.
+/// The dict has the keys of `contact --json` (docs/results.md).
 #[pyfunction]
-#[pyo3(signature = (contact_toml, method = "quasi-static", film_extrapolation = true))]
+#[pyo3(signature = (contact_toml, method = "quasi-static", film_extrapolation = true, grid = None))]
 fn contact(
     py: Python<'_>,
     contact_toml: &str,
     method: &str,
     film_extrapolation: bool,
+    grid: Option<usize>,
 ) -> PyResult<PyObject> {
     use ehl_bearing::contact::{characterize_harmonic, characterize_quasi_static};
     use ehl_bearing::io::contact::parse_contact_file;
     use ehl_bearing::method::Method;
     let file = parse_contact_file(contact_toml).map_err(err)?;
-    let m = Method::parse(method, None).map_err(err)?;
+    let mut options = toml::Table::new();
+    if let Some(g) = grid {
+        options.insert(
+            "grid".into(),
+            toml::Value::Integer(g.min(i64::MAX as usize) as i64),
+        );
+    }
+    let m = Method::parse(method, Some(&options))
+        .map_err(|e| err(e.to_string().replace("method_options.grid", "grid")))?;
     let fit = py
         .allow_threads(|| match m {
             Method::Harmonic(s) => match file.ball_mass.or(s.mass) {
@@ -352,7 +390,7 @@ fn contact(
                 "method {other} does not characterize a single contact"
             ))),
         })?;
-    to_py(py, &serde_json::to_value(&fit).map_err(err)?)
+    to_py(py, &fit)
 }
 
 /// The coupled characterization of a case (fitted laws, their equilibrium, the iterations).
@@ -369,7 +407,7 @@ impl Characterization {
     /// The characterization as a dict (the `characterize` command's JSON, SI).
     #[pyo3(signature = (timing = false))]
     fn report(&self, py: Python<'_>, timing: bool) -> PyResult<PyObject> {
-        to_py(py, &characterization_json(&self.inner, timing))
+        to_py(py, &self.inner.report(timing))
     }
 
     /// Whether the coupled loop converged.
@@ -448,7 +486,7 @@ fn characterize(
     let control = Control::new(progress);
     let r = py.allow_threads(|| {
         characterize_bearing_with_control(&c, &m, &settings, deadline, &|p| {
-            control.event(p.to_json())
+            control.event(&ProgressEvent::from(&p))
         })
     });
     control.finish()?;
@@ -474,11 +512,11 @@ impl Control {
     }
 
     /// Check Ctrl-C and call the callback with `event` (from any thread).
-    fn event(&self, event: serde_json::Value) -> std::ops::ControlFlow<()> {
+    fn event<T: serde::Serialize>(&self, event: &T) -> std::ops::ControlFlow<()> {
         let r = Python::with_gil(|py| {
             py.check_signals()?;
             if let Some(cb) = &self.progress {
-                cb.call1(py, (to_py(py, &event)?,))?;
+                cb.call1(py, (to_py(py, event)?,))?;
             }
             Ok::<(), PyErr>(())
         });
@@ -517,6 +555,30 @@ fn callable(py: Python<'_>, value: Option<PyObject>, what: &str) -> PyResult<Opt
     }
 }
 
+/// What `study()` returns (a dict with these keys).
+#[derive(serde::Serialize)]
+struct StudySummary {
+    points: usize,
+    computed: usize,
+    loaded: usize,
+    failed: Vec<FailedPoint>,
+    not_converged: usize,
+    results_csv: String,
+    points_csv: String,
+    trends_json: Option<String>,
+    trend_error: Option<String>,
+    worst_trend_error: f64,
+    lubrication: Option<ehl_bearing::study::LubricationSummary>,
+}
+
+/// A study point that failed, in `study()`'s summary.
+#[derive(serde::Serialize)]
+struct FailedPoint {
+    inner_speed_rpm: f64,
+    load_scale: f64,
+    error: String,
+}
+
 /// Run a load × speed study file into `output_dir` (resumable point files, `results.csv`,
 /// `points.csv`, `trends.json` when the trends fit): all points, with `method` overriding the
 /// file's. When the case describes its oil or gives roughness, both tables carry the lubrication
@@ -542,48 +604,33 @@ fn study(
         s.set_method(m).map_err(err)?;
     }
     let store = FsStore::create(&output_dir).map_err(err)?;
-    let summary = py.allow_threads(|| -> PyResult<serde_json::Value> {
-        let events = |e: StudyEvent| {
-            let v = match e {
-                StudyEvent::Planned {
-                    points,
-                    to_compute,
-                    redone,
-                } => serde_json::json!({"event": "planned", "points": points, "to_compute": to_compute, "redone": redone}),
-                StudyEvent::PointStarted(p) => serde_json::json!({"event": "point_started", "index": p.index, "inner_speed_rpm": p.inner_speed_rpm, "load_scale": p.load_scale}),
-                StudyEvent::Loop(p, l) => serde_json::json!({"event": "loop", "index": p.index, "progress": l.to_json()}),
-                StudyEvent::PointDone { point, converged, error, seconds } => serde_json::json!({"event": "point_done", "index": point.index, "converged": converged, "error": error, "seconds": seconds}),
-            };
-            report(&progress, v)
-        };
+    let summary = py.allow_threads(|| -> PyResult<StudySummary> {
+        let events = |e: StudyEvent| report(&progress, &StudyEventReport::from(&e));
         let run = run_study(&s, &store, &RunOptions::default(), &events).map_err(err)?;
+        // finish_study writes results.csv, points.csv and trends.json (if the trends fit).
         let out = finish_study(&s, &store).map_err(err)?;
-        let dir = store.dir();
-        let write = |name: &str, text: &str| {
-            ehl_bearing::io::write_atomic(&dir.join(name), text.as_bytes()).map_err(err)
-        };
-        write("results.csv", &results_csv(&out.rows))?;
-        write("points.csv", &points_csv(&out.records, &out.trend_errors))?;
-        let (trends, trend_error) = match &out.trends {
-            Ok(m) => {
-                write("trends.json", &m.to_json())?;
-                (Some(dir.join("trends.json").display().to_string()), None)
-            }
-            Err(e) => (None, Some(e.clone())),
-        };
-        Ok(serde_json::json!({
-            "points": run.points,
-            "computed": run.computed,
-            "loaded": run.loaded,
-            "failed": out.failed.iter().map(|(p, e)| serde_json::json!({"inner_speed_rpm": p.inner_speed_rpm, "load_scale": p.load_scale, "error": e})).collect::<Vec<_>>(),
-            "not_converged": out.not_converged(),
-            "results_csv": dir.join("results.csv").display().to_string(),
-            "points_csv": dir.join("points.csv").display().to_string(),
-            "trends_json": trends,
-            "trend_error": trend_error,
-            "worst_trend_error": out.worst_trend_error(),
-            "lubrication": out.lubrication_summary(),
-        }))
+        let path = |name: &str| store.dir().join(name).display().to_string();
+        Ok(StudySummary {
+            points: run.points,
+            computed: run.computed,
+            loaded: run.loaded,
+            failed: out
+                .failed
+                .iter()
+                .map(|(p, e)| FailedPoint {
+                    inner_speed_rpm: p.inner_speed_rpm,
+                    load_scale: p.load_scale,
+                    error: e.clone(),
+                })
+                .collect(),
+            not_converged: out.not_converged(),
+            results_csv: path("results.csv"),
+            points_csv: path("points.csv"),
+            trends_json: out.trends.is_ok().then(|| path("trends.json")),
+            trend_error: out.trends.as_ref().err().cloned(),
+            worst_trend_error: out.worst_trend_error(),
+            lubrication: out.lubrication_summary(),
+        })
     })?;
     to_py(py, &summary)
 }
@@ -889,9 +936,7 @@ impl PyLawElement {
     #[staticmethod]
     #[pyo3(signature = (case, report, by_load = false))]
     fn from_report(case: &PyCase, report: &Bound<'_, PyAny>, by_load: bool) -> PyResult<Self> {
-        let v = from_py(report, "", true)?;
-        let r: ehl_bearing::characterize::CharacterizationReport =
-            serde_json::from_value(v).map_err(|e| err(format!("characterization report: {e}")))?;
+        let r: CharacterizationReport = from_report(report, "characterization report")?;
         let (bearing, rc) = (&case.case.bearing, case.case.operating.race_control);
         let e = if by_load {
             LawElement::by_load_from_report(bearing, rc, &r)
@@ -999,18 +1044,14 @@ fn coefficients(
                     &speeds_rpm,
                     &m,
                     &CharacterizeSettings::default(),
-                    &|i, p| {
-                        let mut v = p.to_json();
-                        v["speed_index"] = i.into();
-                        control.event(v)
-                    },
+                    &|i, p| control.event(&SpeedProgressEvent::new(i, &p)),
                 )
             });
             control.finish()?;
             r.map_err(err)?
         }
     };
-    to_py(py, &serde_json::to_value(&out).map_err(err)?)
+    to_py(py, &out)
 }
 
 /// ROSS's speed-dependent bearing table (CSV text: frequency in rad/s, kxx, kxy, kyx, kyy, cxx,
@@ -1018,9 +1059,7 @@ fn coefficients(
 /// x ← our y, y ← our z, z ← our x).
 #[pyfunction]
 fn ross_table_csv(coefficients: &Bound<'_, PyAny>) -> PyResult<String> {
-    let v = from_py(coefficients, "", true)?;
-    let c: Vec<ehl_bearing::coefficients::SpeedCoefficients> =
-        serde_json::from_value(v).map_err(|e| err(format!("coefficients: {e}")))?;
+    let c: Vec<CoefficientsReport> = from_report(coefficients, "coefficients")?;
     Ok(ehl_bearing::coefficients::ross_table_csv(&c))
 }
 

@@ -34,7 +34,6 @@ use crate::fit::{FittedLaw, RangeStatus};
 use crate::method::Method;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use serde_json::Value;
 
 // The method data and adapters live in `crate::method`; re-exported here for the callers that
 // knew them from this module.
@@ -595,7 +594,8 @@ pub fn characterize_bearing(
     characterize_bearing_with_progress(case, ch, settings, None, &|_| {})
 }
 
-/// Progress of [`characterize_bearing_with_progress`] (for progress bars; no effect on results).
+/// Progress of [`characterize_bearing_with_progress`] (for progress bars; no effect on results);
+/// as a record: [`crate::report::ProgressEvent`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Progress {
     /// An iteration starts and will characterize `contacts` contacts (the others are reused).
@@ -613,37 +613,6 @@ pub enum Progress {
     },
     /// An iteration finished.
     IterationDone(IterationRecord),
-}
-
-impl Progress {
-    /// The event as JSON, the form the Python package's progress dicts and the C interface's
-    /// progress texts take: `{"event": "iteration_started", "iteration", "contacts"}`,
-    /// `{"event": "contact_done", "iteration"}`, `{"event": "iteration_done", "record"}` (the
-    /// record with its `seconds`, as [`IterationSummary`]).
-    pub fn to_json(&self) -> Value {
-        match self {
-            Progress::IterationStarted {
-                iteration,
-                contacts,
-            } => serde_json::json!({
-                "event": "iteration_started",
-                "iteration": iteration,
-                "contacts": contacts,
-            }),
-            Progress::ContactDone { iteration } => {
-                serde_json::json!({"event": "contact_done", "iteration": iteration})
-            }
-            // With its wall-clock time, which the record alone does not serialize.
-            Progress::IterationDone(r) => serde_json::json!({
-                "event": "iteration_done",
-                "record": serde_json::to_value(IterationSummary {
-                    record: *r,
-                    seconds: Some(r.seconds),
-                })
-                .unwrap_or(Value::Null),
-            }),
-        }
-    }
 }
 
 /// As [`characterize_bearing`], within the wall-time budget `deadline` (None: none; see
@@ -1507,9 +1476,4 @@ impl BearingCharacterization {
             seconds: t(self.seconds),
         }
     }
-}
-
-/// The characterization as JSON ([`BearingCharacterization::report`]).
-pub fn characterization_json(c: &BearingCharacterization, timing: bool) -> Value {
-    serde_json::to_value(c.report(timing)).unwrap_or(Value::Null)
 }

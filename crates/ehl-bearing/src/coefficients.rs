@@ -271,7 +271,7 @@ pub fn element_equilibrium(
 }
 
 fn cell(x: f64) -> String {
-    serde_json::Value::from(x).to_string()
+    serde_json::to_string(&x).unwrap_or_default()
 }
 
 /// Long-format CSV: one row per speed, matrix (`K`, `C`, `K_dry`) and entry, with the DOF names

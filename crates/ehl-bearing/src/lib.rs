@@ -7,7 +7,8 @@
 //! studies ([`study`]) and their trend curves ([`trends`]), the contact law made dimensionless and
 //! its map over the groups ([`law_map`]), the bearing as a force element for rotor simulations
 //! ([`force_element`])
-//! and its linearized coefficients over speed ([`coefficients`]), and case files ([`io`]).
+//! and its linearized coefficients over speed ([`coefficients`]), case files ([`io`]), and every
+//! result as a typed record for JSON, CSV, Python and C ([`report`]; the schema is docs/results.md).
 //! [`prelude`] has what a typical program needs.
 //!
 //! Units: SI everywhere inside the library (m, N, Pa, Pa·s, s, rad, rad/s). Conversions to
@@ -21,6 +22,7 @@ pub mod characterize;
 pub mod coefficients;
 pub mod contact;
 pub mod contact_law;
+pub mod csv;
 pub mod ehl;
 pub mod error;
 pub mod fit;
@@ -33,6 +35,7 @@ pub mod material;
 pub mod method;
 pub mod oil;
 pub mod plausibility;
+pub mod report;
 pub mod rotor;
 pub mod study;
 pub mod trends;

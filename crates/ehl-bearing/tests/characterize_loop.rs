@@ -6,13 +6,14 @@
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws, Race};
 use ehl_bearing::case::Case;
 use ehl_bearing::characterize::{
-    characterization_json, characterize_bearing, BearingCharacterization, CharacterizeError,
-    CharacterizeSettings, CharacterizedContact, ContactCharacterizer, ContactConditions,
-    HertzCharacterizer, LawSource, LoadPredictor, PredictedLaw, SyntheticCharacterizer,
+    characterize_bearing, BearingCharacterization, CharacterizeError, CharacterizeSettings,
+    CharacterizedContact, ContactCharacterizer, ContactConditions, HertzCharacterizer, LawSource,
+    LoadPredictor, PredictedLaw, SyntheticCharacterizer,
 };
 use ehl_bearing::contact_law::{ContactLaw, HertzLaw};
 use ehl_bearing::hertz::HertzGeometry;
 use ehl_bearing::io::read_case;
+use ehl_bearing::report::{to_json_line, ProgressEvent};
 use std::sync::Arc;
 
 fn seed() -> Case {
@@ -55,7 +56,7 @@ fn assert_thread_independent(ch: &dyn ContactCharacterizer, s: &CharacterizeSett
             .num_threads(n)
             .build()
             .unwrap();
-        pool.install(|| characterization_json(&run(ch, s), false).to_string())
+        pool.install(|| to_json_line(&run(ch, s).report(false)))
     };
     let one = with(1);
     assert_eq!(one, with(2));
@@ -771,11 +772,11 @@ fn a_progress_callback_can_stop_the_loop() {
             .to_string();
     assert!(msg.contains("cancelled by its caller"), "{msg}");
     // Continue all the way gives the plain result.
-    let plain = characterization_json(&run(&hertz, &s), false).to_string();
+    let plain = to_json_line(&run(&hertz, &s).report(false));
     let controlled =
         characterize_bearing_with_control(&case, &hertz, &s, None, &|_| ControlFlow::Continue(()))
             .unwrap();
-    assert_eq!(plain, characterization_json(&controlled, false).to_string());
+    assert_eq!(plain, to_json_line(&controlled.report(false)));
 }
 
 /// A progress event's JSON (what Python's progress dicts and C's progress texts carry) holds the
@@ -794,7 +795,7 @@ fn iteration_done_event_carries_its_time() {
         equilibrium_iterations: 5,
         seconds: 1.25,
     };
-    let v = Progress::IterationDone(record).to_json();
+    let v = serde_json::to_value(ProgressEvent::from(&Progress::IterationDone(record))).unwrap();
     assert_eq!(v["event"], "iteration_done");
     assert_eq!(v["record"]["seconds"], 1.25);
     assert_eq!(v["record"]["characterized"], 3);

@@ -146,7 +146,10 @@ class RotorModel:
 def equilibrium(case: Case) -> dict[str, Any]: ...
 def ehl(contact_toml: str, grid: Optional[int] = None, fields: bool = False) -> dict[str, Any]: ...
 def contact(
-    contact_toml: str, method: str = "quasi-static", film_extrapolation: bool = True
+    contact_toml: str,
+    method: str = "quasi-static",
+    film_extrapolation: bool = True,
+    grid: Optional[int] = None,
 ) -> dict[str, Any]: ...
 def characterize(
     case: Case,

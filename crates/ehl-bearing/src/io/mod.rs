@@ -1,11 +1,11 @@
-//! Case files (TOML, engineering units in every key name) and machine-readable results (JSON, SI).
+//! Case files (TOML, engineering units in every key name); the results they produce are written
+//! by [`crate::report`] (JSON and CSV, SI).
 //!
 //! Every invalid case gets an [`InputError`] naming the key (with its table), the value and the
 //! valid range; unknown keys are rejected. Nothing here panics on user input.
 
 pub mod case;
 pub mod contact;
-pub mod json;
 pub mod store;
 pub mod study;
 

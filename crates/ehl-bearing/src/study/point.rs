@@ -9,7 +9,6 @@ use crate::material::Lubricant;
 use crate::method::Method;
 use crate::oil::OilProperties;
 use serde::{Deserialize, Serialize};
-use serde_json::Value;
 use std::f64::consts::PI;
 
 /// Everything a point's result depends on (SI). Written into the point file and compared on
@@ -202,32 +201,10 @@ pub struct ResultRow {
     pub starvation: Option<ContactStarvation>,
 }
 
-fn csv_cell(v: &Value) -> String {
-    match v {
-        Value::Null => String::new(),
-        Value::String(s) => s.clone(),
-        other => other.to_string(),
-    }
-}
-
 /// Long-format CSV of `rows` (one line per point and contact; SI units in the column names;
 /// empty cell for an undefined value).
 pub fn results_csv(rows: &[ResultRow]) -> String {
-    let mut out = String::new();
-    let mut header = false;
-    for r in rows {
-        let Ok(Value::Object(m)) = serde_json::to_value(r) else {
-            continue;
-        };
-        if !header {
-            out.push_str(&m.keys().cloned().collect::<Vec<_>>().join(","));
-            out.push('\n');
-            header = true;
-        }
-        out.push_str(&m.values().map(csv_cell).collect::<Vec<_>>().join(","));
-        out.push('\n');
-    }
-    out
+    crate::csv::csv(rows)
 }
 
 /// Columns of `points.csv` (SI units in the names).
@@ -250,7 +227,7 @@ fn lubrication_cells(report: Option<&LubricationReport>) -> Vec<String> {
     let Some(l) = report else {
         return vec![String::new(); n];
     };
-    let num = |x: Option<f64>| x.map(|x| Value::from(x).to_string()).unwrap_or_default();
+    let num = |x: Option<f64>| x.map(number).unwrap_or_default();
     let min_film = l
         .contacts
         .iter()
@@ -298,7 +275,7 @@ pub fn points_csv(records: &[PointRecord], trend_errors: &[Option<f64>]) -> Stri
         out.push_str(POINTS_CSV_STARVATION_HEADER);
     }
     out.push('\n');
-    let num = |x: f64| Value::from(x).to_string();
+    let num = number;
     for (i, p) in records.iter().enumerate() {
         let mut cells = vec![num(p.spec.inner_speed_rpm), num(p.spec.load_scale)];
         match &p.result {
@@ -342,7 +319,7 @@ pub fn points_csv(records: &[PointRecord], trend_errors: &[Option<f64>]) -> Stri
             cells.push(
                 report
                     .and_then(|l| l.max_starvation_reduction)
-                    .map(|x| Value::from(x).to_string())
+                    .map(number)
                     .unwrap_or_default(),
             );
         }
@@ -350,4 +327,9 @@ pub fn points_csv(records: &[PointRecord], trend_errors: &[Option<f64>]) -> Stri
         out.push('\n');
     }
     out
+}
+
+/// A number as JSON writes it (shortest round-trip form; `null` if not finite).
+fn number(x: f64) -> String {
+    serde_json::to_string(&x).unwrap_or_default()
 }

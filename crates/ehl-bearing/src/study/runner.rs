@@ -168,29 +168,38 @@ fn stored(study: &Study, store: &dyn PointStore, p: &StudyPoint) -> Result<Store
     Ok(Stored::Foreign(spec_difference(&record, &spec)))
 }
 
-/// The first top-level part of the spec that differs, in words.
+/// The first top-level part of the spec that differs, in words (its JSON, shortened to 80
+/// characters; `absent` for a part one spec does not have).
 fn spec_difference(record: &PointRecord, spec: &super::point::PointSpec) -> String {
-    let a = serde_json::to_value(&record.spec).unwrap_or_default();
-    let b = serde_json::to_value(spec).unwrap_or_default();
-    if let (Some(a), Some(b)) = (a.as_object(), b.as_object()) {
-        let short = |v: Option<&serde_json::Value>| {
-            let s = v.map(|v| v.to_string()).unwrap_or_else(|| "absent".into());
-            if s.len() > 80 {
-                format!("{}…", &s[..s.floor_char_boundary_compat(80)])
-            } else {
-                s
-            }
-        };
-        for (k, va) in a {
-            if b.get(k) != Some(va) {
-                return format!("{k} is {} there, {} here", short(Some(va)), short(b.get(k)));
-            }
-        }
-        // A part only this study's spec has (e.g. roughness added to the case).
-        if let Some((k, vb)) = b.iter().find(|(k, _)| !a.contains_key(*k)) {
-            return format!("{k} is absent there, {} here", short(Some(vb)));
+    fn short(s: String) -> String {
+        if s.len() > 80 {
+            format!("{}…", &s[..s.floor_char_boundary_compat(80)])
+        } else {
+            s
         }
     }
+    fn text<T: serde::Serialize>(v: &T) -> String {
+        short(serde_json::to_string(v).unwrap_or_default())
+    }
+    fn optional<T: serde::Serialize>(v: &Option<T>) -> String {
+        v.as_ref().map_or_else(|| "absent".into(), text)
+    }
+    let (a, b) = (&record.spec, spec);
+    macro_rules! first_difference {
+        ($show:ident: $($part:ident),*) => {
+            $(if a.$part != b.$part {
+                return format!(
+                    "{} is {} there, {} here",
+                    stringify!($part),
+                    $show(&a.$part),
+                    $show(&b.$part)
+                );
+            })*
+        };
+    }
+    first_difference!(text: inner_speed_rpm, load_scale, method, settings, bearing, lubricant,
+        operating, equilibrium);
+    first_difference!(optional: oil, roughness, ring_oils);
     "the spec differs".into()
 }
 
