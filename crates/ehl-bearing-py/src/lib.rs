@@ -9,13 +9,13 @@
 #![allow(clippy::useless_conversion)]
 
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws};
+use ehl_bearing::case::Case;
 use ehl_bearing::characterize::{
     characterize_bearing_with_control, BearingCharacterization, CharacterizeSettings,
 };
 use ehl_bearing::force_element::{
     ElementInput, ElementOutput, ElementState, ForceElement, LawElement, TrendForceElement,
 };
-use ehl_bearing::case::Case;
 use ehl_bearing::io::{parse_case, read_case, read_study, FsStore};
 use ehl_bearing::report::{
     CharacterizationReport, CoefficientsReport, EhlReport, EquilibriumReport, ProgressEvent,
@@ -477,11 +477,13 @@ fn characterize(
     let settings = CharacterizeSettings::default();
     let mut deadline = None;
     if let Some(t) = time_limit_s {
-        deadline = Some(ehl_bearing::budget::Deadline::after_seconds(t).ok_or_else(|| {
-            err(format!(
-                "time_limit_s = {t}: expected a finite number of seconds > 0 (at most a year)"
-            ))
-        })?);
+        deadline = Some(
+            ehl_bearing::budget::Deadline::after_seconds(t).ok_or_else(|| {
+                err(format!(
+                    "time_limit_s = {t}: expected a finite number of seconds > 0 (at most a year)"
+                ))
+            })?,
+        );
     }
     let control = Control::new(progress);
     let r = py.allow_threads(|| {
