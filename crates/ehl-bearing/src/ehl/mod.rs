@@ -321,7 +321,7 @@ impl MoesCase {
 
 /// Pressure and film fields on the finest grid, SI units. Arrays are row-major with x fastest:
 /// value at (x\[i\], y\[j\]) is at index i + nx·j.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct EhlFields {
     /// Rolling-direction coordinates of the grid nodes, m (contact centre at 0).
     pub x: Vec<f64>,
@@ -406,7 +406,9 @@ pub struct EhlSolution {
     /// for an unconverged result, none converged). Empty in results written before it existed.
     #[serde(default)]
     pub attempt_log: Vec<EhlAttempt>,
-    /// Fields on the finest grid.
+    /// Fields on the finest grid (not serialized with the solution: reports add them where asked
+    /// for, `report::EhlReport`).
+    #[serde(skip)]
     pub fields: EhlFields,
 }
 

@@ -14,7 +14,7 @@
 //! whose unit the schema names, keys with one (`load_n`, `frequency_rad_s`) carry it.
 
 use crate::bearing::{BallState, ContactState, Equilibrium};
-use crate::ehl::{EhlAttempt, EhlFields, EhlSolution};
+use crate::ehl::{EhlFields, EhlSolution};
 use crate::lubrication::LubricationReport;
 use serde::Serialize;
 mod events;
@@ -37,56 +37,14 @@ pub fn to_json_line<T: Serialize + ?Sized>(report: &T) -> String {
 }
 
 /// The steady EHL solution of one point contact (`ehl --json`, Python `ehl()`): every figure of
-/// [`EhlSolution`]; the pressure and film fields on the grid only where asked for (Python's
-/// `fields=True`; the command line writes them as CSV files instead).
+/// [`EhlSolution`] (its own serialization, one owner of the keys); the pressure and film fields on
+/// the grid only where asked for (Python's `fields=True`; the command line writes them as CSV files
+/// instead).
 #[derive(Debug, Clone, Serialize)]
 pub struct EhlReport<'a> {
-    /// Whether the solution met its tolerances.
-    pub converged: bool,
-    /// Moes M.
-    pub moes_m: f64,
-    /// Moes L.
-    pub moes_l: f64,
-    /// Ry/Rx.
-    pub ry_over_rx: f64,
-    /// Central film thickness h_c, m.
-    pub h_central: f64,
-    /// Minimum film thickness h_min, m.
-    pub h_min: f64,
-    /// Largest pressure, Pa.
-    pub p_max: f64,
-    /// Hertz maximum pressure, Pa.
-    pub p_hertz: f64,
-    /// Approach of distant points δ = −h0, m.
-    pub approach: f64,
-    /// Hertz deflection of the same load, m.
-    pub approach_hertz: f64,
-    /// Central film in Moes scaling, (h_c/Rx)·U^(−1/2).
-    pub h_central_moes: f64,
-    /// Minimum film in Moes scaling, (h_min/Rx)·U^(−1/2).
-    pub h_min_moes: f64,
-    /// Relative force-balance error |∬p dA − w|/w.
-    pub force_balance_residual: f64,
-    /// Final relative residual of the Reynolds equation.
-    pub residual: f64,
-    /// Grid [nx, ny] of the finest level.
-    pub grid: [usize; 2],
-    /// Multigrid cycles on the finest grid.
-    pub cycles: usize,
-    /// Wall time, s.
-    pub seconds: f64,
-    /// Relative residual after each finest-grid cycle.
-    pub residual_history: &'a [f64],
-    /// Estimated relative discretization error of [H_c, H0] on this grid, where computed.
-    pub discretization_estimate: Option<[f64; 2]>,
-    /// Whether the cycles stopped at the discretization error.
-    pub stopped_by_discretization: bool,
-    /// Continuation steps used (0 when a direct start converged).
-    pub continuation_steps: usize,
-    /// The start that produced this result (docs/ehl.md).
-    pub attempts: usize,
-    /// Every start and its outcome.
-    pub attempt_log: &'a [EhlAttempt],
+    /// The solution's figures.
+    #[serde(flatten)]
+    pub solution: &'a EhlSolution,
     /// Pressure and film on the grid (only where asked for).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fields: Option<&'a EhlFields>,
@@ -96,29 +54,7 @@ impl<'a> EhlReport<'a> {
     /// The report of `s`, with the fields on the grid where `fields`.
     pub fn new(s: &'a EhlSolution, fields: bool) -> Self {
         EhlReport {
-            converged: s.converged,
-            moes_m: s.moes_m,
-            moes_l: s.moes_l,
-            ry_over_rx: s.ry_over_rx,
-            h_central: s.h_central,
-            h_min: s.h_min,
-            p_max: s.p_max,
-            p_hertz: s.p_hertz,
-            approach: s.approach,
-            approach_hertz: s.approach_hertz,
-            h_central_moes: s.h_central_moes,
-            h_min_moes: s.h_min_moes,
-            force_balance_residual: s.force_balance_residual,
-            residual: s.residual,
-            grid: s.grid,
-            cycles: s.cycles,
-            seconds: s.seconds,
-            residual_history: &s.residual_history,
-            discretization_estimate: s.discretization_estimate,
-            stopped_by_discretization: s.stopped_by_discretization,
-            continuation_steps: s.continuation_steps,
-            attempts: s.attempts,
-            attempt_log: &s.attempt_log,
+            solution: s,
             fields: fields.then_some(&s.fields),
         }
     }
