@@ -182,8 +182,17 @@ pub fn run(args: &CharacterizeArgs) -> anyhow::Result<()> {
 
 /// Human-readable report in engineering units.
 pub fn table(case: &Case, c: &BearingCharacterization) -> String {
-    use std::fmt::Write;
     let mut s = String::new();
+    summary_lines(&mut s, case, c);
+    history_table(&mut s, c);
+    contacts_table(&mut s, c);
+    displacement_and_stiffness_tables(&mut s, c);
+    s
+}
+
+/// The bearing, the method and the loop's outcome (convergence, law use, load prediction).
+fn summary_lines(s: &mut String, case: &Case, c: &BearingCharacterization) {
+    use std::fmt::Write;
     let rpm = 30.0 / std::f64::consts::PI;
     let op = &case.operating;
     let _ = writeln!(
@@ -233,6 +242,11 @@ pub fn table(case: &Case, c: &BearingCharacterization) -> String {
             p.seconds
         );
     }
+}
+
+/// One line per iteration of the loop.
+fn history_table(s: &mut String, c: &BearingCharacterization) {
+    use std::fmt::Write;
     let _ = writeln!(
         s,
         "\n{:>4} {:>12} {:>12} {:>10} {:>11} {:>11} {:>11} {:>8}",
@@ -259,6 +273,11 @@ pub fn table(case: &Case, c: &BearingCharacterization) -> String {
             h.seconds
         );
     }
+}
+
+/// One line per contact: load, approach, angle, law, Moes groups, where its law comes from.
+fn contacts_table(s: &mut String, c: &BearingCharacterization) {
+    use std::fmt::Write;
     let _ = writeln!(
         s,
         "\n{:>4} {:>5} {:>9} {:>8} {:>7} {:>11} {:>8} {:>9} {:>9} {:>6} {:>7} {:>8} {:>13}",
@@ -315,6 +334,11 @@ pub fn table(case: &Case, c: &BearingCharacterization) -> String {
         100.0 * c.settings.load_reuse_tolerance,
         per_iteration.join(", ")
     );
+}
+
+/// The EHL and dry displacements and stiffness diagonals.
+fn displacement_and_stiffness_tables(s: &mut String, c: &BearingCharacterization) {
+    use std::fmt::Write;
     let names = ["x µm", "y µm", "z µm", "θy mdeg", "θz mdeg"];
     let _ = writeln!(s, "\n{:<9} {:>14} {:>14}", "DOF", "EHL", "dry");
     for (k, name) in names.iter().enumerate() {
@@ -356,7 +380,6 @@ pub fn table(case: &Case, c: &BearingCharacterization) -> String {
             e / d
         );
     }
-    s
 }
 
 /// The method settings in words (the full set is in the JSON output).
