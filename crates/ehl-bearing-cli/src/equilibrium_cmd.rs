@@ -175,8 +175,17 @@ fn friction_use(c: &ehl_bearing::bearing::ContactState) -> String {
 
 /// Human-readable report in engineering units.
 pub fn table(case: &Case, eq: &Equilibrium) -> String {
-    use std::fmt::Write;
     let mut s = String::new();
+    bearing_and_dofs(&mut s, case, eq);
+    balls_table(&mut s, eq);
+    race_control_table(&mut s, eq);
+    stiffness_matrix(&mut s, eq);
+    s
+}
+
+/// The bearing, its speeds and the solve, and each DOF's control, displacement and load.
+fn bearing_and_dofs(s: &mut String, case: &Case, eq: &Equilibrium) {
+    use std::fmt::Write;
     let g = &case.bearing.geometry;
     let op = &case.operating;
     let rpm = 30.0 / std::f64::consts::PI;
@@ -230,6 +239,12 @@ pub fn table(case: &Case, eq: &Equilibrium) -> String {
             lunit
         );
     }
+}
+
+/// One line per ball: both contacts' loads, angles, approaches, pressures and sum velocities.
+fn balls_table(s: &mut String, eq: &Equilibrium) {
+    use std::fmt::Write;
+    let rpm = 30.0 / std::f64::consts::PI;
     let _ = writeln!(
         s,
         "\n{:>4} {:>7} | {:>8} {:>7} {:>7} {:>6} {:>6} | {:>8} {:>7} {:>7} {:>6} {:>6} | {:>8} {:>7}",
@@ -255,6 +270,13 @@ pub fn table(case: &Case, eq: &Equilibrium) -> String {
             b.centrifugal_force
         );
     }
+}
+
+/// One line per ball: pitch, roll speed, gyroscopic moment, spin-to-roll and friction use; then
+/// the equilibrium's warnings.
+fn race_control_table(s: &mut String, eq: &Equilibrium) {
+    use std::fmt::Write;
+    let rpm = 30.0 / std::f64::consts::PI;
     let _ = writeln!(
         s,
         "\nrace control (spin/roll: spin-to-roll ratio; friction: what the gyroscopic moment needs, in % of μ_max·Q, μ_max = {})",
@@ -282,6 +304,11 @@ pub fn table(case: &Case, eq: &Equilibrium) -> String {
     for w in &eq.warnings {
         let _ = writeln!(s, "warning: {w}");
     }
+}
+
+/// The 5 × 5 stiffness matrix.
+fn stiffness_matrix(s: &mut String, eq: &Equilibrium) {
+    use std::fmt::Write;
     let _ = writeln!(
         s,
         "\nstiffness matrix (rows: reaction F_x, F_y, F_z [N], M_y, M_z [N·m]; columns: x, y, z [m], θy, θz [rad])"
@@ -296,7 +323,6 @@ pub fn table(case: &Case, eq: &Equilibrium) -> String {
                 .join(" ")
         );
     }
-    s
 }
 
 fn film_report(f: &Film) -> FilmReport {
