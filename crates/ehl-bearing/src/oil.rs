@@ -477,8 +477,32 @@ pub fn derive(oil: &OilDescription, t_c: f64) -> Result<OilProperties, OilError>
     }
     let h = 0.05;
     let beta = -(eta(t_c + h) - eta(t_c - h)) / (2.0 * h) / eta0;
-    let p0 = crate::material::ROELANDS_P0;
-    let mut sources = vec![
+    let mut sources = viscosity_sources(oil);
+    let (z, alpha) = pressure_viscosity(oil, ln_c, &mut sources)?;
+    sources.push(conductivity_source(oil));
+    Ok(OilProperties {
+        temperature_c: t_c,
+        iso_vg: oil.iso_vg,
+        base_oil: oil.base_oil,
+        viscosity_40c_mm2_s: nu40,
+        viscosity_100c_mm2_s: nu100,
+        viscosity_index: vi,
+        walther,
+        kinematic_viscosity_mm2_s: nu,
+        density_15c_kg_m3: rho15,
+        density_kg_m3: rho,
+        viscosity_pa_s: eta0,
+        temperature_viscosity_1_k: beta,
+        roelands_z: z,
+        pressure_viscosity_1_pa: alpha,
+        thermal_conductivity_w_m_k: oil.thermal_conductivity_w_m_k,
+        sources,
+    })
+}
+
+/// The sources of the viscosity, density and temperature coefficient of a described oil.
+fn viscosity_sources(oil: &OilDescription) -> Vec<Source> {
+    vec![
         Source {
             quantity: "viscosity_40c_mm2_s".into(),
             source: match oil.iso_vg {
@@ -512,8 +536,19 @@ pub fn derive(oil: &OilDescription, t_c: f64) -> Result<OilProperties, OilError>
             quantity: "temperature_viscosity_1_k".into(),
             source: "−(1/η0)·dη0/dT of ρ(T)·ν(T) above (central difference, ±0.05 K)".into(),
         },
-    ];
-    let (z, alpha) = match (oil.pressure_viscosity_1_pa, oil.pressure_viscosity_index_z) {
+    ]
+}
+
+/// Roelands' Z and α at the operating temperature (`ln_c` = ln η0 + 9.67, η0 in Pa·s): the
+/// given α or Z, else the mineral-oil Z; their sources appended to `sources`. Other base oils
+/// need Z or α given.
+fn pressure_viscosity(
+    oil: &OilDescription,
+    ln_c: f64,
+    sources: &mut Vec<Source>,
+) -> Result<(f64, f64), OilError> {
+    let p0 = crate::material::ROELANDS_P0;
+    let za = match (oil.pressure_viscosity_1_pa, oil.pressure_viscosity_index_z) {
         (Some(a), _) => {
             sources.push(Source {
                 quantity: "pressure_viscosity_1_pa".into(),
@@ -567,7 +602,12 @@ pub fn derive(oil: &OilDescription, t_c: f64) -> Result<OilProperties, OilError>
             }
         },
     };
-    sources.push(Source {
+    Ok(za)
+}
+
+/// The source of the thermal conductivity (the default, or given).
+fn conductivity_source(oil: &OilDescription) -> Source {
+    Source {
         quantity: "thermal_conductivity_w_m_k".into(),
         source: if oil.thermal_conductivity_w_m_k == DEFAULT_THERMAL_CONDUCTIVITY {
             "default 0.1 W/(m·K), typical of mineral oils (Panther Lubes technical library, \
@@ -576,23 +616,5 @@ pub fn derive(oil: &OilDescription, t_c: f64) -> Result<OilProperties, OilError>
         } else {
             "given".into()
         },
-    });
-    Ok(OilProperties {
-        temperature_c: t_c,
-        iso_vg: oil.iso_vg,
-        base_oil: oil.base_oil,
-        viscosity_40c_mm2_s: nu40,
-        viscosity_100c_mm2_s: nu100,
-        viscosity_index: vi,
-        walther,
-        kinematic_viscosity_mm2_s: nu,
-        density_15c_kg_m3: rho15,
-        density_kg_m3: rho,
-        viscosity_pa_s: eta0,
-        temperature_viscosity_1_k: beta,
-        roelands_z: z,
-        pressure_viscosity_1_pa: alpha,
-        thermal_conductivity_w_m_k: oil.thermal_conductivity_w_m_k,
-        sources,
-    })
+    }
 }
