@@ -419,57 +419,66 @@ mod embedded {
     use ehl_bearing::law_map::{LawMap, LawMapSpec};
     use ehl_bearing::study::{characterize_groups, held_out_check};
 
+    /// Embedded map `index` has the spec of `spec_toml`, `laws` nodes (where given), and its
+    /// nodes `nodes` recomputed now reproduce its stored laws to round-off ([`SAME`]).
+    fn assert_reproduces(
+        index: usize,
+        spec_toml: &str,
+        laws: Option<usize>,
+        nodes: &[usize],
+        name: &str,
+    ) {
+        let map = &LawMap::embedded_maps()[index];
+        let spec = LawMapSpec::from_toml(spec_toml).unwrap();
+        assert_eq!(map.spec, spec, "{name}");
+        if let Some(n) = laws {
+            assert_eq!(map.laws.len(), n, "{name}");
+        }
+        for &k in nodes {
+            let (l, _) = characterize_groups(&spec.node_groups(k), &spec).unwrap();
+            let diff = difference(&l, &map.laws[k]);
+            assert!(diff < SAME, "{name} node {k}: {diff:e}");
+        }
+    }
+
     /// The embedded map is what `law-map generate` and `assemble` give for
     /// examples/law_map_seed_oil.toml: its spec is the file's, and nodes recomputed now (a
     /// corner, the centre, the far corner) reproduce its stored laws to round-off (1e-9, as for
-    /// equal groups above).
+    /// equal groups above); so are the other seed-oil maps'.
     #[test]
     fn embedded_map_is_the_example_spec_and_reproduces_its_nodes() {
-        let map = LawMap::embedded();
-        let spec =
-            LawMapSpec::from_toml(include_str!("../../../examples/law_map_seed_oil.toml")).unwrap();
-        assert_eq!(map.spec, spec);
-        assert_eq!(map.laws.len(), 17 * 5 * 9);
-        for k in [0, 382, 764] {
-            let (l, _) = characterize_groups(&spec.node_groups(k), &spec).unwrap();
-            let diff = difference(&l, &map.laws[k]);
-            assert!(diff < SAME, "node {k}: {diff:e}");
-        }
-        let high = &LawMap::embedded_maps()[1];
-        let spec = LawMapSpec::from_toml(include_str!(
-            "../../../examples/law_map_seed_oil_high_l.toml"
-        ))
-        .unwrap();
-        assert_eq!(high.spec, spec);
-        for k in [4, 764] {
-            let (l, _) = characterize_groups(&spec.node_groups(k), &spec).unwrap();
-            let diff = difference(&l, &high.laws[k]);
-            assert!(diff < SAME, "high-L node {k}: {diff:e}");
-        }
-        let low = &LawMap::embedded_maps()[2];
-        let spec = LawMapSpec::from_toml(include_str!(
-            "../../../examples/law_map_seed_oil_low_m.toml"
-        ))
-        .unwrap();
-        assert_eq!(low.spec, spec);
-        assert_eq!(low.laws.len(), 9 * 5 * 5);
-        for k in [0, 224] {
-            let (l, _) = characterize_groups(&spec.node_groups(k), &spec).unwrap();
-            let diff = difference(&l, &low.laws[k]);
-            assert!(diff < SAME, "low-M node {k}: {diff:e}");
-        }
-        let heavy = &LawMap::embedded_maps()[3];
-        let spec = LawMapSpec::from_toml(include_str!(
-            "../../../examples/law_map_seed_oil_high_m.toml"
-        ))
-        .unwrap();
-        assert_eq!(heavy.spec, spec);
-        assert_eq!(heavy.laws.len(), 7 * 5 * 9);
-        for k in [0, 314] {
-            let (l, _) = characterize_groups(&spec.node_groups(k), &spec).unwrap();
-            let diff = difference(&l, &heavy.laws[k]);
-            assert!(diff < SAME, "high-M node {k}: {diff:e}");
-        }
+        assert!(std::ptr::eq(
+            LawMap::embedded(),
+            &LawMap::embedded_maps()[0]
+        ));
+        assert_reproduces(
+            0,
+            include_str!("../../../examples/law_map_seed_oil.toml"),
+            Some(17 * 5 * 9),
+            &[0, 382, 764],
+            "seed",
+        );
+        assert_reproduces(
+            1,
+            include_str!("../../../examples/law_map_seed_oil_high_l.toml"),
+            None,
+            &[4, 764],
+            "high-L",
+        );
+        assert_reproduces(
+            2,
+            include_str!("../../../examples/law_map_seed_oil_low_m.toml"),
+            Some(9 * 5 * 5),
+            &[0, 224],
+            "low-M",
+        );
+        assert_reproduces(
+            3,
+            include_str!("../../../examples/law_map_seed_oil_high_m.toml"),
+            Some(7 * 5 * 9),
+            &[0, 314],
+            "high-M",
+        );
     }
 
     /// The fourth embedded map, with the rheology groups as axes (other oils), is what
@@ -478,17 +487,13 @@ mod embedded {
     /// stored laws to round-off.
     #[test]
     fn oils_map_is_the_example_spec_and_reproduces_its_nodes() {
-        let map = &LawMap::embedded_maps()[4];
-        let spec =
-            LawMapSpec::from_toml(include_str!("../../../examples/law_map_mineral_oils.toml"))
-                .unwrap();
-        assert_eq!(map.spec, spec);
-        assert_eq!(map.laws.len(), 7 * 7 * 5 * 3 * 3);
-        for k in [0, 1102, 2204] {
-            let (l, _) = characterize_groups(&spec.node_groups(k), &spec).unwrap();
-            let diff = difference(&l, &map.laws[k]);
-            assert!(diff < SAME, "oils node {k}: {diff:e}");
-        }
+        assert_reproduces(
+            4,
+            include_str!("../../../examples/law_map_mineral_oils.toml"),
+            Some(7 * 7 * 5 * 3 * 3),
+            &[0, 1102, 2204],
+            "oils",
+        );
     }
 
     /// The oils map against direct characterizations at held-out points (a fresh seed, not the
