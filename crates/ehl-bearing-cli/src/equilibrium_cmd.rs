@@ -1,7 +1,7 @@
 //! `ehl-bearing equilibrium CASE.toml [--json]`.
 
 use anyhow::Context;
-use ehl_bearing::bearing::{solve_equilibrium, ContactLaws, Control, Equilibrium, Race, DOF_NAMES};
+use ehl_bearing::bearing::{solve_equilibrium, ContactLaws, Control, Equilibrium, DOF_NAMES};
 use ehl_bearing::case::Case;
 use ehl_bearing::io::read_case;
 use ehl_bearing::report::{to_json_pretty, EquilibriumReport, FilmReport, FilmSummary};
@@ -51,15 +51,15 @@ pub fn films(case: &Case, eq: &Equilibrium, grid: Option<usize>) -> Vec<Film> {
         settings.grid = g;
     }
     let e_reduced = case.bearing.reduced_modulus();
-    let contacts: Vec<_> = eq.balls.iter().flat_map(|b| [b.inner, b.outer]).collect();
-    let qmax = contacts.iter().map(|c| c.load).fold(0.0, f64::max);
-    let umax = contacts.iter().map(|c| c.sum_velocity).fold(0.0, f64::max);
+    let contacts = eq.contact_states();
+    let qmax = contacts.iter().map(|(_, _, c)| c.load).fold(0.0, f64::max);
+    let umax = contacts
+        .iter()
+        .map(|(_, _, c)| c.sum_velocity)
+        .fold(0.0, f64::max);
     contacts
         .par_iter()
-        .enumerate()
-        .map(|(j, c)| {
-            // Index 2j inner, 2j+1 outer: each raceway's contacts with its ring's oil.
-            let race = if j % 2 == 0 { Race::Inner } else { Race::Outer };
+        .map(|(_, race, c)| {
             if c.load <= UNLOADED_FRACTION * qmax {
                 return Film::Unloaded;
             }
@@ -72,7 +72,7 @@ pub fn films(case: &Case, eq: &Equilibrium, grid: Option<usize>) -> Vec<Film> {
                 ry: c.ry,
                 sum_velocity: c.sum_velocity,
                 e_reduced,
-                lubricant: case.lubricant_of(race),
+                lubricant: case.lubricant_of(*race),
             };
             Film::Solved(solve_steady(&ec, &settings).map_err(|e| e.to_string()))
         })

@@ -238,6 +238,15 @@ pub struct LubricationReport {
     pub notes: Vec<String>,
 }
 
+impl LubricationReport {
+    /// The figures of contact (`ball`, `race`: `inner` or `outer`), if assessed.
+    pub fn contact(&self, ball: usize, race: &str) -> Option<&ContactFilm> {
+        self.contacts
+            .iter()
+            .find(|c| c.ball == ball && c.race == race)
+    }
+}
+
 fn race_name(r: Race) -> &'static str {
     match r {
         Race::Inner => "inner",
@@ -290,9 +299,7 @@ pub fn assess_with_films(
     };
     let min_lambda = extreme(&|c| c.lambda, false);
     let max_thermal_reduction = extreme(&|c| c.thermal_reduction, true);
-    let max_starvation_reduction = case
-        .inlet_meniscus_distance_m
-        .and(extreme(&|c| c.starvation.map(|s| s.reduction), true));
+    let max_starvation_reduction = extreme(&|c| c.starvation.map(|s| s.reduction), true);
     let mut warnings = contact_warnings(case, &rows, min_lambda);
     if let Some(k) = kappa.filter(|k| *k < 1.0) {
         warnings.push(format!(
@@ -365,13 +372,11 @@ fn contact_film(
     solved: Option<(f64, f64)>,
 ) -> ContactFilm {
     let (case, e) = (cx.case, cx.e);
-    let lub = &case.lubricant;
     let mut flags = Vec::new();
     // η0, α and the thermal inputs at this contact's oil temperature.
     let ring_oil = case.ring_oils.as_ref().map(|r| r.of(race));
-    let (eta0, alpha) = ring_oil.map_or((lub.viscosity, lub.pressure_viscosity), |o| {
-        (o.viscosity_pa_s, o.pressure_viscosity_1_pa)
-    });
+    let lub = case.lubricant_of(race);
+    let (eta0, alpha) = (lub.viscosity, lub.pressure_viscosity);
     let thermal = ring_oil
         .map(|o| {
             (

@@ -51,10 +51,11 @@ fn starvation_correlation_by_hand() {
     assert!(f.windows(2).all(|w| w[0] < w[1]), "{f:?}");
 }
 
-/// Film ratio (central, minimum) starved/flooded of the steady solver with the inlet boundary at
-/// m·a_x, on a domain of fixed length `total`·a_x (the outlet takes the rest) so that every
-/// solution has the same grid spacing.
-fn solver_ratios(c: &EhlContact, total: f64, ms: &[f64]) -> Vec<(f64, f64)> {
+/// The flooded films (central, minimum; m) of the steady solver and, per inlet distance m of
+/// `ms`, the film ratios (central, minimum) starved/flooded with the inlet boundary at m·a_x, on a
+/// domain of fixed length `total`·a_x (the outlet takes the rest) so that every solution has the
+/// same grid spacing.
+fn solver_ratios(c: &EhlContact, total: f64, ms: &[f64]) -> ((f64, f64), Vec<(f64, f64)>) {
     let s = EhlSettings {
         grid: 257,
         inlet: Some(total - 1.5),
@@ -63,7 +64,8 @@ fn solver_ratios(c: &EhlContact, total: f64, ms: &[f64]) -> Vec<(f64, f64)> {
     };
     let flooded = solve_steady(c, &s).unwrap();
     assert!(flooded.converged);
-    ms.iter()
+    let ratios = ms
+        .iter()
         .map(|&m| {
             let r = solve_steady(
                 c,
@@ -77,8 +79,8 @@ fn solver_ratios(c: &EhlContact, total: f64, ms: &[f64]) -> Vec<(f64, f64)> {
             assert!(r.converged, "m = {m}");
             (r.h_central / flooded.h_central, r.h_min / flooded.h_min)
         })
-        .chain(std::iter::once((flooded.h_central, flooded.h_min)))
-        .collect()
+        .collect();
+    ((flooded.h_central, flooded.h_min), ratios)
 }
 
 /// The correlation against this crate's steady solver with the zero-pressure inlet boundary at
@@ -107,8 +109,7 @@ fn starvation_correlation_against_the_solver_with_the_inlet_at_the_meniscus() {
             .contact(load)
             .semi_minor;
         let ms = [1.25, 1.5, 2.0, 2.5];
-        let r = solver_ratios(&c, total, &ms);
-        let (hc, hmin) = r[ms.len()];
+        let ((hc, hmin), r) = solver_ratios(&c, total, &ms);
         let mut last = (0.0, 0.0);
         for (i, &m) in ms.iter().enumerate() {
             let hd = starvation(hc, hmin, rx, b, m * b);

@@ -138,7 +138,7 @@ impl ContactLubrication {
     /// The figures of contact (`ball`, `race`) in `report` (all None if absent).
     pub fn of(report: Option<&LubricationReport>, ball: usize, race: &str) -> Self {
         report
-            .and_then(|l| l.contacts.iter().find(|c| c.ball == ball && c.race == race))
+            .and_then(|l| l.contact(ball, race))
             .map(|c| ContactLubrication {
                 central_film_m: c.central_film_m,
                 min_film_m: c.min_film_m,
@@ -166,7 +166,7 @@ impl ContactStarvation {
     /// The figures of contact (`ball`, `race`) in `report` (all None if absent).
     pub fn of(report: Option<&LubricationReport>, ball: usize, race: &str) -> Self {
         report
-            .and_then(|l| l.contacts.iter().find(|c| c.ball == ball && c.race == race))
+            .and_then(|l| l.contact(ball, race))
             .and_then(|c| c.starvation)
             .map(|s| ContactStarvation {
                 inlet_distance_ratio: Some(s.inlet_distance_ratio),
