@@ -191,6 +191,15 @@ const ASME_MINERAL: [(&str, [f64; 3], [f64; 3]); 13] = [
 /// (+12 %); docs/lubricant.md §2.1 lists them.
 #[test]
 fn walther_predicts_a_named_oil_at_a_third_temperature_within_one_percent() {
+    // Every oil of the table, printed for docs/lubricant.md §2.1 (`-- --nocapture`).
+    for (name, eta, _) in ASME_MINERAL {
+        let nu = |k: usize, t: f64| eta[k] / density_at(880.0, t) * 1e3;
+        let line = Walther::through(30.0, nu(0, 30.0), 100.0, nu(2, 100.0)).unwrap();
+        eprintln!(
+            "{name}: {:+.1} %",
+            100.0 * (line.nu_at(60.0) / nu(1, 60.0) - 1.0)
+        );
+    }
     let (name, eta) = (ASME_MINERAL[6].0, ASME_MINERAL[6].1);
     assert_eq!(name, "medicinal white oil");
     let nu = |k: usize, t: f64| eta[k] / density_at(880.0, t) * 1e3;
