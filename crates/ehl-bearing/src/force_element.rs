@@ -120,7 +120,6 @@ pub struct ElementState {
     model: Option<BearingModel>,
     warm: Vec<Option<[f64; 2]>>,
     loads: Vec<[f64; 2]>,
-    trend: Option<SpeedLaws>,
 }
 
 /// A bearing as a force element.
@@ -564,6 +563,21 @@ pub struct TrendForceElement {
     races: [Arc<RaceTrends>; 2],
     /// Evaluation settings.
     pub options: TrendEvalOptions,
+    last_speed_laws: SpeedLawMemo,
+}
+
+/// The raceway laws at the last speed a [`TrendForceElement`] was asked for. A clone starts
+/// empty (a memo, not a result).
+#[derive(Debug, Default)]
+struct SpeedLawMemo(std::sync::Mutex<Option<(SpeedLawKey, Arc<SpeedLaws>)>>);
+
+/// What the laws at a speed are made from: speed (rad/s), inversion tolerance, iteration limit.
+type SpeedLawKey = (f64, f64, usize);
+
+impl Clone for SpeedLawMemo {
+    fn clone(&self) -> Self {
+        SpeedLawMemo::default()
+    }
 }
 
 impl TrendForceElement {
@@ -579,6 +593,7 @@ impl TrendForceElement {
             bearing,
             races,
             options: TrendEvalOptions::default(),
+            last_speed_laws: SpeedLawMemo::default(),
         })
     }
 
@@ -601,6 +616,26 @@ impl TrendForceElement {
         n: f64,
     ) -> Result<(FittedLaw, bool), CharacterizeError> {
         Ok(self.model.law_at(race, load, n)?)
+    }
+
+    /// The raceway laws at relative speed `n` (rad/s): those of the last speed asked for when
+    /// `n` is that speed, else made anew and remembered. They are a function of the element
+    /// and `n` alone (about 40 µs to make, as much as the rest of a warm call), so the element
+    /// remembers them rather than each caller's [`ElementState`]; a call that finds the memo
+    /// busy (another thread) makes its own.
+    fn speed_laws_memo(&self, n: f64) -> Result<Arc<SpeedLaws>, CharacterizeError> {
+        // The options are public: a memo made with other inversion settings is not reused.
+        let key = (n, self.options.tolerance, self.options.max_iterations);
+        if let Ok(memo) = self.last_speed_laws.0.try_lock() {
+            if let Some((_, laws)) = memo.as_ref().filter(|(k, _)| *k == key) {
+                return Ok(laws.clone());
+            }
+        }
+        let laws = Arc::new(self.speed_laws(n)?);
+        if let Ok(mut memo) = self.last_speed_laws.0.try_lock() {
+            *memo = Some((key, laws.clone()));
+        }
+        Ok(laws)
     }
 
     /// The raceway laws at relative speed `n` (rad/s, clamped into the speed range).
@@ -673,15 +708,8 @@ impl TrendForceElement {
             )
             .into());
         }
-        let races = match &state.trend {
-            Some(laws) if laws.speed() == n => laws.races().clone(),
-            _ => {
-                let laws = self.speed_laws(n)?;
-                let races = laws.races().clone();
-                state.trend = Some(laws);
-                races
-            }
-        };
+        let laws_at_speed = self.speed_laws_memo(n)?;
+        let races = laws_at_speed.races();
         let z = self.bearing.geometry.ball_count;
         let mut inner: Vec<Arc<dyn ContactLaw>> = Vec::with_capacity(z);
         let mut outer: Vec<Arc<dyn ContactLaw>> = Vec::with_capacity(z);
