@@ -16,7 +16,7 @@ use ehl_bearing::characterize::{
 use ehl_bearing::force_element::{
     ElementInput, ElementOutput, ElementState, ForceElement, LawElement, TrendForceElement,
 };
-use ehl_bearing::io::{parse_case, read_case, read_study, FsStore};
+use ehl_bearing::io::{case_from_table, parse_case, read_case, read_study, FsStore};
 use ehl_bearing::report::{
     CharacterizationReport, CoefficientsReport, EhlReport, EquilibriumReport, ProgressEvent,
     SpeedProgressEvent, StudyEventReport,
@@ -220,11 +220,19 @@ impl PyCase {
     /// as in the file: `{"bearing": {"ball_count": 11, "ball_diameter_mm": 7.0, ...},
     /// "operating": {"inner_speed_rpm": 5000.0, ...}}`); validated by the same parser.
     #[staticmethod]
-    fn from_dict(py: Python<'_>, values: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let _ = py;
-        let v = from_py(values, "")?;
-        let text = toml::to_string(&v).map_err(|e| err(format!("case dict as TOML: {e}")))?;
-        Self::from_toml(&text, "<dict>")
+    fn from_dict(values: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let table = match from_py(values, "")? {
+            toml::Value::Table(t) => t,
+            other => {
+                return Err(err(format!(
+                    "<dict>: a case is a dict of the case file's tables, got a {}",
+                    other.type_str()
+                )))
+            }
+        };
+        Ok(PyCase {
+            case: case_from_table(table, "<dict>").map_err(err)?,
+        })
     }
 
     /// The bearing's name, if the case gives one.

@@ -198,3 +198,44 @@ proptest! {
         }
     }
 }
+
+/// A case given as tables (as from a Python dict) is the file's case, and is refused with the
+/// file's messages: the one validation, no text written in between.
+#[test]
+fn a_case_given_as_tables_is_the_files_case_with_its_messages() {
+    use ehl_bearing::io::case_from_table;
+    for file in [
+        "7006.toml",
+        "7006_vg46.toml",
+        "7205_vg68.toml",
+        "218_high_speed.toml",
+    ] {
+        let path = format!("{}/../../examples/{file}", env!("CARGO_MANIFEST_DIR"));
+        let text = std::fs::read_to_string(&path).unwrap();
+        let table: toml::Table = text.parse().unwrap();
+        let from_table = case_from_table(table, file).unwrap();
+        let from_text = parse_case(&text, file).unwrap();
+        assert_eq!(
+            format!("{from_table:?}"),
+            format!("{from_text:?}"),
+            "{file}"
+        );
+    }
+    let bad = |text: &str| {
+        case_from_table(text.parse().unwrap(), "t")
+            .unwrap_err()
+            .to_string()
+    };
+    let unknown = bad(&with("ball_count", "ball_count = 11\nball_size_mm = 7.0"));
+    assert!(unknown.contains("ball_size_mm"), "{unknown}");
+    let range = bad(&with("ball_count", "ball_count = 2"));
+    assert!(
+        range.contains("bearing.ball_count") && range.contains('2') && range.contains("3 to 1000"),
+        "{range}"
+    );
+    let kind = bad(&with("ball_count", "ball_count = \"eleven\""));
+    assert!(
+        kind.contains("ball_count") && kind.contains("eleven"),
+        "{kind}"
+    );
+}

@@ -219,17 +219,27 @@ pub fn read_case(path: &Path) -> Result<Case, InputError> {
 
 /// Parse and validate case-file text; `origin` names the source in messages.
 pub fn parse_case(text: &str, origin: &str) -> Result<Case, InputError> {
-    let raw: RawCase = super::from_toml(text, origin)?;
-    let method = case_method(&raw)?;
+    case_from_raw(&super::from_toml(text, origin)?)
+}
+
+/// Validate a case given as the file's tables already parsed (keys and units as in the file,
+/// e.g. built from a Python dict); `origin` names the source in messages. The same checks and
+/// messages as [`parse_case`].
+pub fn case_from_table(table: toml::Table, origin: &str) -> Result<Case, InputError> {
+    case_from_raw(&super::from_toml_value(toml::Value::Table(table), origin)?)
+}
+
+fn case_from_raw(raw: &RawCase) -> Result<Case, InputError> {
+    let method = case_method(raw)?;
     let b = &raw.bearing;
     let geometry = geometry(b)?;
     let ball_material = solid(raw.ball_material.as_ref(), "ball_material")?;
     let ring_material = solid(raw.ring_material.as_ref(), "ring_material")?;
-    let (lubricant, lubricant_given, oil, ring_oils) = case_lubricant(&raw)?;
+    let (lubricant, lubricant_given, oil, ring_oils) = case_lubricant(raw)?;
     let roughness = roughness(raw.ball_material.as_ref(), raw.ring_material.as_ref())?;
     let inlet_meniscus_distance_m = inlet_meniscus_distance(raw.operating.as_ref())?;
     let operating = operating(raw.operating.as_ref())?;
-    let settings = equilibrium_settings(&raw)?;
+    let settings = equilibrium_settings(raw)?;
     Ok(Case {
         name: b.name.clone(),
         bearing: Bearing {

@@ -9,7 +9,7 @@ pub mod contact;
 pub mod store;
 pub mod study;
 
-pub use case::{parse_case, read_case};
+pub use case::{case_from_table, parse_case, read_case};
 pub use store::{read_own_file, write_atomic, FsStore, OwnFileError};
 pub use study::{parse_study, read_study};
 
@@ -46,7 +46,25 @@ pub(crate) fn from_toml<T: serde::de::DeserializeOwned>(
     text: &str,
     origin: &str,
 ) -> Result<T, InputError> {
-    let de = toml::Deserializer::new(text);
+    deserialize(toml::Deserializer::new(text), origin)
+}
+
+/// [`from_toml`] for values already parsed (a table built by a program, e.g. from a Python
+/// dict): the same checks and messages, without writing text.
+pub(crate) fn from_toml_value<T: serde::de::DeserializeOwned>(
+    value: toml::Value,
+    origin: &str,
+) -> Result<T, InputError> {
+    deserialize(value, origin)
+}
+
+fn deserialize<'de, T: serde::de::DeserializeOwned, D: serde::Deserializer<'de>>(
+    de: D,
+    origin: &str,
+) -> Result<T, InputError>
+where
+    D::Error: std::fmt::Display,
+{
     serde_path_to_error::deserialize(de).map_err(|e| {
         let path = e.path().to_string();
         let message = e.into_inner().to_string().trim_end().to_string();
