@@ -40,11 +40,9 @@ pub struct Case {
     pub operating: OperatingPoint,
     /// Equilibrium solver settings.
     pub settings: EquilibriumSettings,
-    /// Characterization method given in the file (`method`, `[method_options]`), if any.
+    /// Characterization method given in the file (`method` with its `[method_options]`
+    /// applied), if any.
     pub method: Option<crate::method::Method>,
-    /// The file's `[method_options]` table as given (so that a command-line override of the
-    /// method name can apply the same options).
-    pub method_options: Option<toml::Table>,
 }
 
 impl Case {

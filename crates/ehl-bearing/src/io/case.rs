@@ -256,7 +256,6 @@ fn case_from_raw(raw: &RawCase) -> Result<Case, InputError> {
         operating,
         settings,
         method,
-        method_options: raw.method_options.clone(),
     })
 }
 
