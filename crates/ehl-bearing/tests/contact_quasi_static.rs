@@ -105,10 +105,11 @@ fn invalid_settings_are_errors() {
 /// (the seed contact at 600 N has the same domain at every load of the family, inlet 6 a_x and
 /// half-width 2 a_y; the cache key is the exact cell size, and a_y/a_x differs in its last bits
 /// between some loads: measured 4 built, 10 reused for 7 members × 2 levels). A second,
-/// identical call builds nothing and gives identical results.
+/// identical call builds nothing and gives identical results, and so does a call with the cache
+/// off.
 #[test]
 fn family_reuses_kernels_and_plans() {
-    use ehl_bearing::ehl::deformation::kernel_cache_stats;
+    use ehl_bearing::ehl::deformation::{kernel_cache_stats, set_kernel_cache};
     std::thread::spawn(|| {
         let a = run(600.0, 10.85);
         let (hits, misses) = kernel_cache_stats();
@@ -127,6 +128,16 @@ fn family_reuses_kernels_and_plans() {
         assert_eq!(a.k, b.k);
         assert_eq!(a.delta_f, b.delta_f);
         assert_eq!(a.samples, b.samples);
+        // The cache is a memo, not a state: without it every kernel is built afresh and the
+        // results are the same to the bit.
+        set_kernel_cache(false);
+        let c = run(600.0, 10.85);
+        let (hits3, misses3) = kernel_cache_stats();
+        assert_eq!((hits3, misses3), (0, 14), "cache off: every kernel built");
+        set_kernel_cache(true);
+        assert_eq!(a.k, c.k);
+        assert_eq!(a.delta_f, c.delta_f);
+        assert_eq!(a.samples, c.samples);
     })
     .join()
     .expect("thread");
