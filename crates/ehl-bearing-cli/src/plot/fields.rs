@@ -38,16 +38,19 @@ pub fn plot_fields(r: &EhlSolution, dir: &Path) -> Result<()> {
 struct FieldView<'a> {
     /// The solution.
     r: &'a EhlSolution,
-    /// Nodes along x (rolling) and along y (transverse).
+    /// Nodes along x (rolling direction).
     nx: usize,
+    /// Nodes along y (transverse).
     ny: usize,
-    /// Node coordinates X = x/a_x and Y = y/a_y.
+    /// Node coordinates X = x/a_x.
     xs: Vec<f64>,
+    /// Node coordinates Y = y/a_y.
     ys: Vec<f64>,
     /// Load, Hertz pressure, semi-axes and Moes groups, for every title.
     tag: String,
-    /// Axis labels of X and Y (with a_x and a_y in µm).
+    /// Axis label of X (with a_x in µm).
     x_label: String,
+    /// Axis label of Y (with a_y in µm).
     y_label: String,
 }
 

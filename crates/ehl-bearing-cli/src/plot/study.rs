@@ -168,7 +168,7 @@ impl<'a> StudyPlot<'a> {
 
     /// The trend curves of the figure `stem` for the raceway `race` (trends `t`), sampled at 81
     /// loads spread logarithmically over the load range they were fitted on, appended to
-    /// `series`; values outside `y_range` are left out.
+    /// `series`; values outside `y_range` become NaN (a break in the curve).
     fn trend_curves(
         &self,
         series: &mut Vec<Series>,
