@@ -1057,6 +1057,7 @@ pub unsafe extern "C" fn ehl_state_contacts(
 /// lists) into `*out_json` (free with ehl_string_free). `progress` as for ehl_characterize
 /// (events carry "speed_index").
 #[no_mangle]
+// The arguments are the C interface (ehl_coefficients in include/ehl_bearing.h): not grouped.
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn ehl_coefficients(
     c: *const EhlCase,

@@ -7,8 +7,10 @@
 use anyhow::Context;
 use ehl_bearing::io::FsStore;
 use ehl_bearing::law_map::{LawMap, LawMapSpec};
-use ehl_bearing::study::{assemble_map, generate_map, held_out_check, NodeRecord, Shard};
-use std::path::PathBuf;
+use ehl_bearing::study::{
+    assemble_map, generate_map, held_out_check, HeldOutPoint, NodeRecord, Shard,
+};
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
@@ -79,7 +81,7 @@ fn pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
     Ok(b.build()?)
 }
 
-fn read_spec(p: &PathBuf) -> anyhow::Result<LawMapSpec> {
+fn read_spec(p: &Path) -> anyhow::Result<LawMapSpec> {
     let text = std::fs::read_to_string(p).with_context(|| format!("reading {}", p.display()))?;
     LawMapSpec::from_toml(&text).with_context(|| format!("in {}", p.display()))
 }
@@ -101,143 +103,185 @@ pub fn run(a: &LawMapArgs) -> anyhow::Result<()> {
             shard,
             overwrite,
             threads,
-        } => {
-            let s = read_spec(spec)?;
-            let store = FsStore::create(output)?;
-            let shard = shard.unwrap_or(Shard::ALL);
-            let total = s.node_count().div_ceil(shard.count);
-            let done = AtomicUsize::new(0);
-            let t0 = Instant::now();
-            let quiet = !std::io::IsTerminal::is_terminal(&std::io::stderr());
-            let on_node = |r: &NodeRecord| {
-                let k = done.fetch_add(1, Ordering::Relaxed) + 1;
-                if !quiet || r.law.is_none() {
-                    eprintln!(
-                        "node {} ({k} of ≤ {total}) M = {:.4} L = {:.4} Ry/Rx = {:.4}: {} ({:.2} s)",
-                        r.index,
-                        r.groups.m,
-                        r.groups.l,
-                        r.groups.ry_over_rx,
-                        r.error.as_deref().unwrap_or("ok"),
-                        r.seconds
-                    );
-                }
-            };
-            let g = pool(*threads)?
-                .install(|| generate_map(&s, &store, shard, *overwrite, &on_node))?;
-            println!(
-                "shard {shard}: {} nodes, {} computed ({} failed), {} already done; {:.1} CPU s, {:.1} s wall",
-                g.nodes,
-                g.computed,
-                g.failed,
-                g.loaded,
-                g.cpu_seconds,
-                t0.elapsed().as_secs_f64()
-            );
-            if g.failed > 0 {
-                anyhow::bail!(
-                    "{} node(s) failed (their files hold the error; a rerun retries them)",
-                    g.failed
-                );
-            }
-            Ok(())
-        }
-        LawMapCommand::Assemble { spec, output, map } => {
-            let s = read_spec(spec)?;
-            let store = FsStore::open(output)?;
-            let m = assemble_map(&s, &store)?;
-            let text = m.to_json();
-            ehl_bearing::io::write_atomic(map, text.as_bytes())?;
-            let worst = m.quality.iter().map(|q| q.rms_hat).fold(0.0, f64::max);
-            println!(
-                "{}: {} nodes, {} bytes, {:.1} CPU hours ({:.0} s), worst node fit RMS/w0 {:.2e}, {} not converged",
-                map.display(),
-                m.laws.len(),
-                text.len(),
-                m.cpu_seconds / 3600.0,
-                m.cpu_seconds,
-                worst,
-                m.quality.iter().filter(|q| !q.converged).count()
-            );
-            Ok(())
-        }
+        } => generate(
+            spec,
+            output,
+            shard.unwrap_or(Shard::ALL),
+            *overwrite,
+            *threads,
+        ),
+        LawMapCommand::Assemble { spec, output, map } => assemble(spec, output, map),
         LawMapCommand::Check {
             map,
             points,
             seed,
             csv,
             threads,
-        } => {
-            let text = std::fs::read_to_string(map)
-                .with_context(|| format!("reading {}", map.display()))?;
-            let m = LawMap::from_json(&text)?;
-            let t0 = Instant::now();
-            let r = pool(*threads)?.install(|| held_out_check(&m, *points, *seed));
-            anyhow::ensure!(!r.is_empty(), "no held-out point could be characterized");
-            if let Some(p) = csv {
-                let mut out = String::from(
-                    "m,l,ry_over_rx,force_error,d_error,delta_f_error,delta_f_error_over_load,\
-                     estimate_force,estimate_d,estimate_delta_f_over_load,k_hat,d,delta_f_hat\n",
-                );
-                for h in &r {
-                    out.push_str(&format!(
-                        "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{}\n",
-                        h.groups.m,
-                        h.groups.l,
-                        h.groups.ry_over_rx,
-                        h.force_error,
-                        h.d_error,
-                        h.delta_f_error,
-                        h.delta_f_error_hat,
-                        h.map.force_error,
-                        h.map.error.d,
-                        h.map.error.delta_f_hat,
-                        h.direct.k_hat,
-                        h.direct.d,
-                        h.direct.delta_f_hat
-                    ));
-                }
-                ehl_bearing::io::write_atomic(p, out.as_bytes())?;
-            }
-            println!(
-                "{} of {points} held-out points characterized ({:.1} s wall)",
-                r.len(),
-                t0.elapsed().as_secs_f64()
-            );
-            println!("quantity: median / 95 % / max");
-            let rows: [(&str, Vec<f64>); 7] = [
-                (
-                    "force at δ0, relative",
-                    r.iter().map(|h| h.force_error).collect(),
-                ),
-                ("d, absolute", r.iter().map(|h| h.d_error).collect()),
-                ("ΔF, relative", r.iter().map(|h| h.delta_f_error).collect()),
-                (
-                    "ΔF over w0",
-                    r.iter().map(|h| h.delta_f_error_hat).collect(),
-                ),
-                (
-                    "estimate: force over w0",
-                    r.iter().map(|h| h.map.force_error).collect(),
-                ),
-                ("estimate: d", r.iter().map(|h| h.map.error.d).collect()),
-                (
-                    "estimate / actual, force",
-                    r.iter()
-                        .map(|h| h.map.force_error / h.force_error.max(1e-300))
-                        .collect(),
-                ),
-            ];
-            for (name, v) in rows {
-                let (a, b, c) = quantiles(&v);
-                println!("  {name}: {a:.2e} / {b:.2e} / {c:.2e}");
-            }
-            let under = r
-                .iter()
-                .filter(|h| h.map.force_error < h.force_error)
-                .count();
-            println!("  points where the estimate is below the actual force error: {under}");
-            Ok(())
-        }
+        } => check(map, *points, *seed, csv.as_deref(), *threads),
     }
+}
+
+/// `law-map generate`: characterize the nodes of `shard` of the map `spec` into `output`,
+/// logging each node (every node on a terminal, the failed ones otherwise); an error if a node
+/// failed.
+fn generate(
+    spec: &Path,
+    output: &Path,
+    shard: Shard,
+    overwrite: bool,
+    threads: Option<usize>,
+) -> anyhow::Result<()> {
+    let s = read_spec(spec)?;
+    let store = FsStore::create(output)?;
+    let total = s.node_count().div_ceil(shard.count);
+    let done = AtomicUsize::new(0);
+    let t0 = Instant::now();
+    let quiet = !std::io::IsTerminal::is_terminal(&std::io::stderr());
+    let on_node = |r: &NodeRecord| {
+        let k = done.fetch_add(1, Ordering::Relaxed) + 1;
+        if !quiet || r.law.is_none() {
+            eprintln!(
+                "node {} ({k} of ≤ {total}) M = {:.4} L = {:.4} Ry/Rx = {:.4}: {} ({:.2} s)",
+                r.index,
+                r.groups.m,
+                r.groups.l,
+                r.groups.ry_over_rx,
+                r.error.as_deref().unwrap_or("ok"),
+                r.seconds
+            );
+        }
+    };
+    let g = pool(threads)?.install(|| generate_map(&s, &store, shard, overwrite, &on_node))?;
+    println!(
+        "shard {shard}: {} nodes, {} computed ({} failed), {} already done; {:.1} CPU s, {:.1} s wall",
+        g.nodes,
+        g.computed,
+        g.failed,
+        g.loaded,
+        g.cpu_seconds,
+        t0.elapsed().as_secs_f64()
+    );
+    if g.failed > 0 {
+        anyhow::bail!(
+            "{} node(s) failed (their files hold the error; a rerun retries them)",
+            g.failed
+        );
+    }
+    Ok(())
+}
+
+/// `law-map assemble`: build the map file `map` from the node files in `output`.
+fn assemble(spec: &Path, output: &Path, map: &Path) -> anyhow::Result<()> {
+    let s = read_spec(spec)?;
+    let store = FsStore::open(output)?;
+    let m = assemble_map(&s, &store)?;
+    let text = m.to_json();
+    ehl_bearing::io::write_atomic(map, text.as_bytes())?;
+    let worst = m.quality.iter().map(|q| q.rms_hat).fold(0.0, f64::max);
+    println!(
+        "{}: {} nodes, {} bytes, {:.1} CPU hours ({:.0} s), worst node fit RMS/w0 {:.2e}, {} not converged",
+        map.display(),
+        m.laws.len(),
+        text.len(),
+        m.cpu_seconds / 3600.0,
+        m.cpu_seconds,
+        worst,
+        m.quality.iter().filter(|q| !q.converged).count()
+    );
+    Ok(())
+}
+
+/// `law-map check`: compare the map file `map` with direct characterizations at `points`
+/// random points (seed `seed`), write one CSV row per point to `csv` if given, and print the
+/// error quantiles.
+fn check(
+    map: &Path,
+    points: usize,
+    seed: u64,
+    csv: Option<&Path>,
+    threads: Option<usize>,
+) -> anyhow::Result<()> {
+    let text =
+        std::fs::read_to_string(map).with_context(|| format!("reading {}", map.display()))?;
+    let m = LawMap::from_json(&text)?;
+    let t0 = Instant::now();
+    let r = pool(threads)?.install(|| held_out_check(&m, points, seed));
+    anyhow::ensure!(!r.is_empty(), "no held-out point could be characterized");
+    if let Some(p) = csv {
+        write_check_csv(p, &r)?;
+    }
+    println!(
+        "{} of {points} held-out points characterized ({:.1} s wall)",
+        r.len(),
+        t0.elapsed().as_secs_f64()
+    );
+    print_check_summary(&r);
+    Ok(())
+}
+
+/// One CSV row per held-out point: its groups, the map's errors against the direct law and the
+/// map's own error estimates, and the direct law (dimensionless).
+fn write_check_csv(p: &Path, r: &[HeldOutPoint]) -> anyhow::Result<()> {
+    let mut out = String::from(
+        "m,l,ry_over_rx,force_error,d_error,delta_f_error,delta_f_error_over_load,\
+         estimate_force,estimate_d,estimate_delta_f_over_load,k_hat,d,delta_f_hat\n",
+    );
+    for h in r {
+        out.push_str(&format!(
+            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{}\n",
+            h.groups.m,
+            h.groups.l,
+            h.groups.ry_over_rx,
+            h.force_error,
+            h.d_error,
+            h.delta_f_error,
+            h.delta_f_error_hat,
+            h.map.force_error,
+            h.map.error.d,
+            h.map.error.delta_f_hat,
+            h.direct.k_hat,
+            h.direct.d,
+            h.direct.delta_f_hat
+        ));
+    }
+    ehl_bearing::io::write_atomic(p, out.as_bytes())?;
+    Ok(())
+}
+
+/// Median, 95 % quantile and maximum of each error of the held-out points, and how many points
+/// the map's force-error estimate falls below the actual error at.
+fn print_check_summary(r: &[HeldOutPoint]) {
+    println!("quantity: median / 95 % / max");
+    let rows: [(&str, Vec<f64>); 7] = [
+        (
+            "force at δ0, relative",
+            r.iter().map(|h| h.force_error).collect(),
+        ),
+        ("d, absolute", r.iter().map(|h| h.d_error).collect()),
+        ("ΔF, relative", r.iter().map(|h| h.delta_f_error).collect()),
+        (
+            "ΔF over w0",
+            r.iter().map(|h| h.delta_f_error_hat).collect(),
+        ),
+        (
+            "estimate: force over w0",
+            r.iter().map(|h| h.map.force_error).collect(),
+        ),
+        ("estimate: d", r.iter().map(|h| h.map.error.d).collect()),
+        (
+            "estimate / actual, force",
+            r.iter()
+                .map(|h| h.map.force_error / h.force_error.max(1e-300))
+                .collect(),
+        ),
+    ];
+    for (name, v) in rows {
+        let (a, b, c) = quantiles(&v);
+        println!("  {name}: {a:.2e} / {b:.2e} / {c:.2e}");
+    }
+    let under = r
+        .iter()
+        .filter(|h| h.map.force_error < h.force_error)
+        .count();
+    println!("  points where the estimate is below the actual force error: {under}");
 }

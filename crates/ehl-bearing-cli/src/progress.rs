@@ -526,13 +526,36 @@ fn point_file_state(out: &Path, stem: &str) -> Option<PointState> {
     })
 }
 
-/// Whether the process of a `running` shard marker still runs.
-fn marker_alive(m: &ShardMarker, me: &str, now: u64, stale_after_s: u64) -> bool {
-    if m.host.as_deref().unwrap_or("") == me {
-        return m.pid.is_some_and(pid_alive);
+/// What decides whether the process of a `running` marker still runs: this host, the time now,
+/// and how old the last heartbeat of another host's process may be.
+struct Liveness {
+    /// This machine's host name.
+    me: String,
+    /// Now, s since the Unix epoch.
+    now: u64,
+    /// Largest age of a live heartbeat, s.
+    stale_after_s: u64,
+}
+
+impl Liveness {
+    /// Liveness as of now, on this host.
+    fn now(stale_after_s: u64) -> Self {
+        Self {
+            me: hostname(),
+            now: now_s(),
+            stale_after_s,
+        }
     }
-    let beat = m.heartbeat_unix_s.unwrap_or(0);
-    now.saturating_sub(beat) <= stale_after_s
+
+    /// Whether the process of a `running` shard marker still runs: on this host its process
+    /// exists; on another its heartbeat is at most `stale_after_s` old.
+    fn alive(&self, m: &ShardMarker) -> bool {
+        if m.host.as_deref().unwrap_or("") == self.me {
+            return m.pid.is_some_and(pid_alive);
+        }
+        let beat = m.heartbeat_unix_s.unwrap_or(0);
+        self.now.saturating_sub(beat) <= self.stale_after_s
+    }
 }
 
 /// Read the status of output folder `out`: every point of the plan by state, per shard of the
@@ -550,111 +573,16 @@ pub fn read_status(out: &Path, stale_after_s: u64) -> anyhow::Result<StudyStatus
     // Merged: no markers left and every output present (each is written atomically, so a present
     // file is whole; a disk that filled while plotting leaves a figure missing, not truncated).
     let merged = plan.is_none() && missing_outputs(out).is_empty();
-    let me = hostname();
-    let now = now_s();
+    let live = Liveness::now(stale_after_s);
     let Some(plan) = plan else {
         // No plan: a finished (merged) folder, or a folder of an older version; count files.
-        let mut counts = Counts::default();
-        let mut stems: Vec<String> = std::fs::read_dir(out.join("points"))?
-            .filter_map(|e| e.ok())
-            .map(|e| e.file_name().to_string_lossy().to_string())
-            .filter(|n| !n.starts_with('.'))
-            .filter_map(|n| n.strip_suffix(".json").map(str::to_string))
-            .collect();
-        stems.sort();
-        for s in &stems {
-            counts.add(point_file_state(out, s).unwrap_or(PointState::Pending));
-        }
-        return Ok(StudyStatus {
-            dir: out.to_path_buf(),
-            study: None,
-            method: None,
-            counts,
-            shards: Vec::new(),
-            merged,
-            submissions: Vec::new(),
-        });
+        return status_without_plan(out, merged);
     };
-    let plan_error = |what: &str| {
-        anyhow::anyhow!(
-            "{}: {what}; remove the folder {} and run the study (or `study sbatch`) again to \
-             rewrite it",
-            pdir.join("plan.json").display(),
-            pdir.display()
-        )
-    };
-    let stems: Vec<String> = plan
-        .points
-        .clone()
-        .ok_or_else(|| plan_error("no list of points"))?;
-    let n = plan
-        .shards
-        .and_then(|n| usize::try_from(n).ok())
-        .filter(|&n| (1..=stems.len().max(1)).contains(&n))
-        .ok_or_else(|| plan_error("no shard count between 1 and the number of points"))?;
-    let markers: Vec<Option<ShardMarker>> = (1..=n)
-        .map(|i| read_marker(&shard_file(out, Shard { index: i, count: n })))
-        .collect::<anyhow::Result<_>>()?;
-    let mut shards: Vec<ShardStatus> = (1..=n)
-        .zip(markers)
-        .map(|(i, m)| {
-            let shard = Shard { index: i, count: n };
-            let (state, slurm_job, host, message) = match &m {
-                None => ("pending".to_string(), None, None, None),
-                Some(m) => {
-                    let s = m.state.as_deref().unwrap_or("unknown");
-                    let state = if s == "running" && !marker_alive(m, &me, now, stale_after_s) {
-                        "interrupted"
-                    } else {
-                        s
-                    };
-                    (
-                        state.to_string(),
-                        m.slurm_job.clone(),
-                        m.host.clone(),
-                        m.message.clone(),
-                    )
-                }
-            };
-            ShardStatus {
-                shard,
-                state,
-                counts: Counts::default(),
-                slurm_job,
-                host,
-                message,
-            }
-        })
-        .collect();
+    let (stems, n) = plan_points(&plan, &pdir)?;
+    let mut shards = shard_statuses(out, n, &live)?;
     let mut counts = Counts::default();
     for (k, stem) in stems.iter().enumerate() {
-        let state = match point_file_state(out, stem) {
-            Some(s) => s,
-            None => {
-                match read_json::<PointMarker>(&pdir.join("running").join(format!("{stem}.json"))) {
-                    None => PointState::Pending,
-                    Some(p) => {
-                        // The point's marker is live while its shard's process is.
-                        let owner = p
-                            .shard
-                            .as_deref()
-                            .and_then(|s| s.parse::<Shard>().ok())
-                            .and_then(|s| read_json::<ShardMarker>(&shard_file(out, s)));
-                        let live = owner.is_some_and(|m| {
-                            m.state.as_deref() == Some("running")
-                                && m.pid == p.pid
-                                && m.host == p.host
-                                && marker_alive(&m, &me, now, stale_after_s)
-                        });
-                        if live {
-                            PointState::InFlight
-                        } else {
-                            PointState::Interrupted
-                        }
-                    }
-                }
-            }
-        };
+        let state = point_state(out, stem, &live);
         counts.add(state);
         shards[k % n].counts.add(state);
     }
@@ -683,6 +611,127 @@ pub fn read_status(out: &Path, stale_after_s: u64) -> anyhow::Result<StudyStatus
         merged,
         submissions,
     })
+}
+
+/// The status of a folder without a plan (a merged folder, or one of an older version): its
+/// point files counted by state, no shards.
+fn status_without_plan(out: &Path, merged: bool) -> anyhow::Result<StudyStatus> {
+    let mut counts = Counts::default();
+    let mut stems: Vec<String> = std::fs::read_dir(out.join("points"))?
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().to_string())
+        .filter(|n| !n.starts_with('.'))
+        .filter_map(|n| n.strip_suffix(".json").map(str::to_string))
+        .collect();
+    stems.sort();
+    for s in &stems {
+        counts.add(point_file_state(out, s).unwrap_or(PointState::Pending));
+    }
+    Ok(StudyStatus {
+        dir: out.to_path_buf(),
+        study: None,
+        method: None,
+        counts,
+        shards: Vec::new(),
+        merged,
+        submissions: Vec::new(),
+    })
+}
+
+/// The plan's points (file stems, in study order) and its number of shards (from 1 to the
+/// number of points); an error naming `plan.json` in `pdir` if either is missing or invalid.
+fn plan_points(plan: &Plan, pdir: &Path) -> anyhow::Result<(Vec<String>, usize)> {
+    let plan_error = |what: &str| {
+        anyhow::anyhow!(
+            "{}: {what}; remove the folder {} and run the study (or `study sbatch`) again to \
+             rewrite it",
+            pdir.join("plan.json").display(),
+            pdir.display()
+        )
+    };
+    let stems: Vec<String> = plan
+        .points
+        .clone()
+        .ok_or_else(|| plan_error("no list of points"))?;
+    let n = plan
+        .shards
+        .and_then(|n| usize::try_from(n).ok())
+        .filter(|&n| (1..=stems.len().max(1)).contains(&n))
+        .ok_or_else(|| plan_error("no shard count between 1 and the number of points"))?;
+    Ok((stems, n))
+}
+
+/// The state of each of the `n` shards from its marker (`pending` without one; a `running`
+/// marker whose process is gone is `interrupted`), with no point counted yet.
+fn shard_statuses(out: &Path, n: usize, live: &Liveness) -> anyhow::Result<Vec<ShardStatus>> {
+    let markers: Vec<Option<ShardMarker>> = (1..=n)
+        .map(|i| read_marker(&shard_file(out, Shard { index: i, count: n })))
+        .collect::<anyhow::Result<_>>()?;
+    Ok((1..=n)
+        .zip(markers)
+        .map(|(i, m)| {
+            let shard = Shard { index: i, count: n };
+            let (state, slurm_job, host, message) = match &m {
+                None => ("pending".to_string(), None, None, None),
+                Some(m) => {
+                    let s = m.state.as_deref().unwrap_or("unknown");
+                    let state = if s == "running" && !live.alive(m) {
+                        "interrupted"
+                    } else {
+                        s
+                    };
+                    (
+                        state.to_string(),
+                        m.slurm_job.clone(),
+                        m.host.clone(),
+                        m.message.clone(),
+                    )
+                }
+            };
+            ShardStatus {
+                shard,
+                state,
+                counts: Counts::default(),
+                slurm_job,
+                host,
+                message,
+            }
+        })
+        .collect())
+}
+
+/// The state of the point `stem`: from its point file if it has one, else in flight if it has
+/// a marker of a live run of its shard (same process), interrupted if it has a marker of a run
+/// that is gone, pending without a marker.
+fn point_state(out: &Path, stem: &str, live: &Liveness) -> PointState {
+    if let Some(s) = point_file_state(out, stem) {
+        return s;
+    }
+    let marker = progress_dir(out)
+        .join("running")
+        .join(format!("{stem}.json"));
+    match read_json::<PointMarker>(&marker) {
+        None => PointState::Pending,
+        Some(p) => {
+            // The point's marker is live while its shard's process is.
+            let owner = p
+                .shard
+                .as_deref()
+                .and_then(|s| s.parse::<Shard>().ok())
+                .and_then(|s| read_json::<ShardMarker>(&shard_file(out, s)));
+            let live = owner.is_some_and(|m| {
+                m.state.as_deref() == Some("running")
+                    && m.pid == p.pid
+                    && m.host == p.host
+                    && live.alive(&m)
+            });
+            if live {
+                PointState::InFlight
+            } else {
+                PointState::Interrupted
+            }
+        }
+    }
 }
 
 impl StudyStatus {

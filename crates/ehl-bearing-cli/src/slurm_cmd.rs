@@ -287,15 +287,15 @@ fn squeue_command(sbatch_cmd: &str) -> PathBuf {
     }
 }
 
+/// Array tasks Slurm still holds: task number → (array job, state).
+type Queued = std::collections::BTreeMap<usize, (String, String)>;
+
 /// Array tasks of the jobs `array_ids` that Slurm still holds (any state before completion:
 /// pending, held, running, …), task number → (job, state), from
 /// `squeue --noheader --array --jobs IDS --format "%i %T"` (one line per task, e.g.
 /// `41_2 PENDING`). Jobs Slurm no longer knows are simply absent.
-fn queued_tasks(
-    sbatch_cmd: &str,
-    array_ids: &[String],
-) -> anyhow::Result<std::collections::BTreeMap<usize, (String, String)>> {
-    let mut out = std::collections::BTreeMap::new();
+fn queued_tasks(sbatch_cmd: &str, array_ids: &[String]) -> anyhow::Result<Queued> {
+    let mut out = Queued::new();
     if array_ids.is_empty() {
         return Ok(out);
     }
@@ -414,39 +414,8 @@ pub fn run(args: &SbatchArgs) -> anyhow::Result<()> {
         }
         None => std::env::current_exe()?,
     };
-    std::fs::create_dir_all(args.output.join("points"))
-        .map_err(|e| anyhow::anyhow!("creating {}: {e}", args.output.display()))?;
-    let output = absolute(&args.output)?;
-    let job_dir = args
-        .job_dir
-        .clone()
-        .unwrap_or_else(|| default_job_dir(&output));
-    std::fs::create_dir_all(job_dir.join("logs"))
-        .map_err(|e| anyhow::anyhow!("creating {}: {e}", job_dir.join("logs").display()))?;
-    let job_dir = absolute(&job_dir)?;
-    if job_dir.starts_with(&output) {
-        anyhow::bail!(
-            "--job-dir {}: expected a folder outside the output folder {} (which holds results only)",
-            job_dir.display(),
-            output.display()
-        );
-    }
+    let (output, job_dir) = job_folders(args)?;
     let study_path = absolute(&args.study)?;
-    let stem = study_path
-        .file_stem()
-        .map(|s| s.to_string_lossy().to_string())
-        .unwrap_or_else(|| "study".into());
-    let default_name: String = format!("ehl-{stem}")
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || "._-".contains(c) {
-                c
-            } else {
-                '_'
-            }
-        })
-        .take(64)
-        .collect();
     let p = ScriptParams {
         study: study_path.clone(),
         output: output.clone(),
@@ -458,7 +427,10 @@ pub fn run(args: &SbatchArgs) -> anyhow::Result<()> {
         cpus_per_task: args.cpus_per_task,
         time_limit_min: args.time_limit_min,
         partition: args.partition.clone(),
-        job_name: args.job_name.clone().unwrap_or(default_name),
+        job_name: args
+            .job_name
+            .clone()
+            .unwrap_or_else(|| default_job_name(&study_path)),
     };
     let array = job_dir.join("study.sbatch");
     let merge = job_dir.join("merge.sbatch");
@@ -486,7 +458,68 @@ pub fn run(args: &SbatchArgs) -> anyhow::Result<()> {
         );
         return Ok(());
     }
-    let status = progress::read_status(&output, args.stale_after_s)?;
+    submit(args, &output, &array, &merge)
+}
+
+/// The output folder (with its `points` folder) and the job folder (with its `logs` folder),
+/// created if needed, as absolute paths; the job folder must lie outside the output folder.
+fn job_folders(args: &SbatchArgs) -> anyhow::Result<(PathBuf, PathBuf)> {
+    std::fs::create_dir_all(args.output.join("points"))
+        .map_err(|e| anyhow::anyhow!("creating {}: {e}", args.output.display()))?;
+    let output = absolute(&args.output)?;
+    let job_dir = args
+        .job_dir
+        .clone()
+        .unwrap_or_else(|| default_job_dir(&output));
+    std::fs::create_dir_all(job_dir.join("logs"))
+        .map_err(|e| anyhow::anyhow!("creating {}: {e}", job_dir.join("logs").display()))?;
+    let job_dir = absolute(&job_dir)?;
+    if job_dir.starts_with(&output) {
+        anyhow::bail!(
+            "--job-dir {}: expected a folder outside the output folder {} (which holds results only)",
+            job_dir.display(),
+            output.display()
+        );
+    }
+    Ok((output, job_dir))
+}
+
+/// `ehl-<study file stem>`, with every character Slurm does not take in a job name replaced by
+/// `_`, at most 64 characters.
+fn default_job_name(study_path: &Path) -> String {
+    let stem = study_path
+        .file_stem()
+        .map(|s| s.to_string_lossy().to_string())
+        .unwrap_or_else(|| "study".into());
+    format!("ehl-{stem}")
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || "._-".contains(c) {
+                c
+            } else {
+                '_'
+            }
+        })
+        .take(64)
+        .collect()
+}
+
+/// What one submission submitted.
+struct Submitted {
+    /// The array job, if one was submitted.
+    array_id: Option<String>,
+    /// Its tasks in Slurm's array syntax (empty without an array job).
+    tasks: String,
+    /// The merge job.
+    merge_id: String,
+}
+
+/// `--submit`: submit the shards with points left and neither a live task (markers) nor a task
+/// Slurm still holds, and the merge job after them; only the merge job when every point has its
+/// file; an error when the shards with points left are all still running. The submission is
+/// recorded in the plan.
+fn submit(args: &SbatchArgs, output: &Path, array: &Path, merge: &Path) -> anyhow::Result<()> {
+    let status = progress::read_status(output, args.stale_after_s)?;
     let live: Vec<String> = status
         .shards
         .iter()
@@ -499,21 +532,56 @@ pub fn run(args: &SbatchArgs) -> anyhow::Result<()> {
             live.join(", ")
         );
     }
-    // Tasks of earlier submissions that Slurm still holds (pending, held or running) are not
-    // submitted again: the scheduler is asked, not only the markers (a pending task has none).
+    let queued = still_queued(&args.sbatch, &status);
+    let tasks: Vec<usize> = status
+        .shards_to_run()
+        .into_iter()
+        .filter(|t| !queued.contains_key(t))
+        .collect();
+    let live: Vec<String> = live
+        .into_iter()
+        .chain(queued.keys().map(|t| format!("{t}/{}", args.shards)))
+        .collect();
+    if tasks.is_empty() && !live.is_empty() {
+        anyhow::bail!(
+            "nothing to submit: the shards with points left are still running ({}); watch them with `ehl-bearing study status {}`",
+            live.join(", "),
+            output.display()
+        );
+    }
+    let s = submit_jobs(&args.sbatch, array, merge, &tasks, &queued)?;
+    progress::record_submission(output, s.array_id.as_deref(), &s.tasks, &s.merge_id)?;
+    match &s.array_id {
+        Some(a) => println!(
+            "submitted array job {a} (tasks {}) and merge job {} (runs after every task of {a} succeeded)",
+            s.tasks, s.merge_id
+        ),
+        None => println!("submitted merge job {}", s.merge_id),
+    }
+    println!(
+        "watch: ehl-bearing study status {}",
+        shell_quote(&output.display().to_string())
+    );
+    Ok(())
+}
+
+/// Tasks of earlier submissions (recorded in `status`) that Slurm still holds (pending, held or
+/// running): they are not submitted again, since a pending task has no marker. If Slurm cannot
+/// be asked, a warning, and none.
+fn still_queued(sbatch_cmd: &str, status: &progress::StudyStatus) -> Queued {
     let array_ids: Vec<String> = status
         .submissions
         .iter()
         .filter_map(|(a, _, _)| a.clone())
         .collect();
-    let queued = match queued_tasks(&args.sbatch, &array_ids) {
+    let queued = match queued_tasks(sbatch_cmd, &array_ids) {
         Ok(q) => q,
         Err(e) => {
             eprintln!(
                 "warning: could not ask Slurm which tasks are still queued ({e}); \
                  resubmitting from the progress markers alone"
             );
-            std::collections::BTreeMap::new()
+            Queued::new()
         }
     };
     if !queued.is_empty() {
@@ -526,62 +594,54 @@ pub fn run(args: &SbatchArgs) -> anyhow::Result<()> {
             list.join(", ")
         );
     }
-    let tasks: Vec<usize> = status
-        .shards_to_run()
-        .into_iter()
-        .filter(|t| !queued.contains_key(t))
-        .collect();
-    let live: Vec<String> = live
-        .into_iter()
-        .chain(queued.keys().map(|t| format!("{t}/{}", args.shards)))
-        .collect();
+    queued
+}
+
+/// Submit the `array` script's `tasks` and the `merge` script after them (and after the
+/// earlier arrays' tasks still `queued`); the merge script alone when there is no task.
+fn submit_jobs(
+    sbatch_cmd: &str,
+    array: &Path,
+    merge: &Path,
+    tasks: &[usize],
+    queued: &Queued,
+) -> anyhow::Result<Submitted> {
     let merge_s = merge.display().to_string();
-    let (array_id, tasks_s, merge_id) = if tasks.is_empty() && live.is_empty() {
+    if tasks.is_empty() {
         println!("  every point has its file: submitting the merge job only");
-        let m = sbatch(&args.sbatch, &["--parsable".into(), merge_s])?;
-        (None, String::new(), m)
-    } else if tasks.is_empty() {
-        anyhow::bail!(
-            "nothing to submit: the shards with points left are still running ({}); watch them with `ehl-bearing study status {}`",
-            live.join(", "),
-            output.display()
-        );
-    } else {
-        let list = array_ranges(&tasks);
-        let a = sbatch(
-            &args.sbatch,
-            &[
-                "--parsable".into(),
-                format!("--array={list}"),
-                array.display().to_string(),
-            ],
-        )?;
-        // The merge also waits for the earlier arrays' tasks still queued (whatever their end:
-        // a missing point then fails the merge visibly).
-        let earlier: std::collections::BTreeSet<&String> =
-            queued.values().map(|(job, _)| job).collect();
-        let earlier: String = earlier.iter().map(|j| format!(",afterany:{j}")).collect();
-        let m = sbatch(
-            &args.sbatch,
-            &[
-                "--parsable".into(),
-                format!("--dependency=afterok:{a}{earlier}"),
-                "--kill-on-invalid-dep=yes".into(),
-                merge_s,
-            ],
-        )?;
-        (Some(a), list, m)
-    };
-    progress::record_submission(&output, array_id.as_deref(), &tasks_s, &merge_id)?;
-    match &array_id {
-        Some(a) => println!(
-            "submitted array job {a} (tasks {tasks_s}) and merge job {merge_id} (runs after every task of {a} succeeded)"
-        ),
-        None => println!("submitted merge job {merge_id}"),
+        let m = sbatch(sbatch_cmd, &["--parsable".into(), merge_s])?;
+        return Ok(Submitted {
+            array_id: None,
+            tasks: String::new(),
+            merge_id: m,
+        });
     }
-    println!(
-        "watch: ehl-bearing study status {}",
-        shell_quote(&output.display().to_string())
-    );
-    Ok(())
+    let list = array_ranges(tasks);
+    let a = sbatch(
+        sbatch_cmd,
+        &[
+            "--parsable".into(),
+            format!("--array={list}"),
+            array.display().to_string(),
+        ],
+    )?;
+    // The merge also waits for the earlier arrays' tasks still queued (whatever their end:
+    // a missing point then fails the merge visibly).
+    let earlier: std::collections::BTreeSet<&String> =
+        queued.values().map(|(job, _)| job).collect();
+    let earlier: String = earlier.iter().map(|j| format!(",afterany:{j}")).collect();
+    let m = sbatch(
+        sbatch_cmd,
+        &[
+            "--parsable".into(),
+            format!("--dependency=afterok:{a}{earlier}"),
+            "--kill-on-invalid-dep=yes".into(),
+            merge_s,
+        ],
+    )?;
+    Ok(Submitted {
+        array_id: Some(a),
+        tasks: list,
+        merge_id: m,
+    })
 }

@@ -21,7 +21,7 @@ use anyhow::Context;
 use ehl_bearing::io::{read_study, FsStore};
 use ehl_bearing::study::{
     finish_study, merge_points, run_study, PointStore, ResultRow, RunOptions, Shard, Study,
-    StudyEvent, StudyOutputs, TrendModel,
+    StudyEvent, StudyOutputs, StudyPoint, TrendModel,
 };
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
@@ -201,6 +201,42 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
         anyhow::bail!("give a study file and -o DIR (or `study merge`)");
     };
     let study = load_study(study_path, args.method.as_deref())?;
+    check_run(args, &study, study_path)?;
+    // The output folder is checked (and created) before any work.
+    let store = FsStore::create(output)?;
+    let shard = args.shard.unwrap_or(Shard::ALL);
+    // Held until the run ends (the kernel releases it if the process dies).
+    let _lock = lock_shard(output, shard)?;
+    let options = RunOptions {
+        shard,
+        overwrite: args.overwrite,
+        point_time_limit_s: args.time_limit,
+        points_in_flight: args.points_in_flight,
+    };
+    let t0 = Instant::now();
+    let progress = RunProgress::new(output, study_path, &study, &options, args.delay_ms);
+    let run = run_with_progress(args.threads, &study, &store, &options, &progress);
+    let outcome = report_run(run, &study, study_path, &store, &options, t0);
+    match (progress.markers.into_inner(), &outcome) {
+        (Some(Some(m)), _) => m.finish(&outcome),
+        (None, Err(e)) => progress::record_early_failure(output, options.shard, e),
+        _ => {}
+    }
+    outcome?;
+    if options.shard.count > 1 {
+        println!(
+            "when every shard is done: ehl-bearing study merge {} -o {}",
+            study_path.display(),
+            output.display()
+        );
+        return Ok(());
+    }
+    finish(&study, &store)
+}
+
+/// The options of a run and every point's case (its shard's points) are checked before any
+/// work: threads, points in flight, the time limit, and each case's physical plausibility.
+fn check_run(args: &StudyArgs, study: &Study, study_path: &Path) -> anyhow::Result<()> {
     crate::cli_support::check_threads(args.threads)?;
     if args.points_in_flight == 0 {
         anyhow::bail!("--points-in-flight 0: expected at least 1 point");
@@ -219,34 +255,19 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
             },
         )?;
     }
-    // The output folder is checked (and created) before any work.
-    let store = FsStore::create(output)?;
-    let shard = args.shard.unwrap_or(Shard::ALL);
-    // Held until the run ends (the kernel releases it if the process dies).
-    let _lock = lock_shard(output, shard)?;
-    let options = RunOptions {
-        shard,
-        overwrite: args.overwrite,
-        point_time_limit_s: args.time_limit,
-        points_in_flight: args.points_in_flight,
-    };
-    // Progress markers (DIR/.progress) are started once the run has checked the folder (a
-    // refused run leaves it untouched).
-    let markers: OnceLock<Option<progress::ShardMarkers>> = OnceLock::new();
-    let start_markers = || {
-        let started = progress::ensure_plan(output, study_path, &study, options.shard.count)
-            .and_then(|()| progress::ShardMarkers::start(output, options.shard));
-        match started {
-            Ok(m) => Some(m),
-            Err(e) => {
-                eprintln!("warning: progress markers not written ({e:#}); `study status` will not see this run");
-                None
-            }
-        }
-    };
-    let t0 = Instant::now();
-    let terminal = std::io::stderr().is_terminal();
-    let bar = point_bar(study.shard_points(options.shard).len() as u64);
+    Ok(())
+}
+
+/// Run the study's shard on `threads` threads, with the points bar and the contacts bar (the
+/// contacts of every running point when several run at once) and the progress markers of
+/// `progress`; the bars are cleared when the run ends.
+fn run_with_progress(
+    threads: Option<usize>,
+    study: &Study,
+    store: &FsStore,
+    options: &RunOptions,
+    progress: &RunProgress,
+) -> anyhow::Result<ehl_bearing::study::StudyRun> {
     let multi = progress_container();
     let (contacts_bar, callback) = contact_progress(&multi);
     // Several points at once: the contacts bar counts the contacts of all running points.
@@ -258,89 +279,149 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
         }
         _ => callback(l),
     };
-    let done = Mutex::new(0usize);
-    let delay = args.delay_ms;
     let events = |e: StudyEvent| match e {
         StudyEvent::Planned {
             points,
             to_compute,
             redone,
-        } => {
-            // A late task of a merged study (every point stored, the outputs written, no markers
-            // left) leaves the folder as the merge left it: no markers that would ask for a
-            // merge again.
-            let merged = to_compute == 0
-                && output.join("points.csv").is_file()
-                && !progress::progress_dir(output).exists();
-            if merged {
-                markers.get_or_init(|| None);
-            } else {
-                markers.get_or_init(start_markers);
-            }
-            bar.set_position((points - to_compute) as u64);
-            if redone > 0 {
-                eprintln!("{redone} unreadable point file(s) (e.g. truncated by a crash) will be recomputed");
-            }
-        }
-        StudyEvent::PointStarted(p) => {
-            if let Some(Some(m)) = markers.get() {
-                m.point_started(&p.file_stem());
-            }
-            bar.set_message(format!("{} rpm × {}", p.inner_speed_rpm, p.load_scale));
-            if delay > 0 {
-                std::thread::sleep(std::time::Duration::from_millis(delay));
-            }
-        }
+        } => progress.planned(points, to_compute, redone),
+        StudyEvent::PointStarted(p) => progress.point_started(&p),
         StudyEvent::Loop(_, l) => callback(l),
         StudyEvent::PointDone {
             point,
             converged,
             error,
             seconds,
-        } => {
-            if let Some(Some(m)) = markers.get() {
-                m.point_done(&point.file_stem());
-            }
-            bar.inc(1);
-            let mut n = done.lock().unwrap_or_else(|p| p.into_inner());
-            *n += 1;
-            if !terminal {
-                // A log line per point when nobody watches a progress bar (pipes, batch jobs).
-                eprintln!(
-                    "point {} ({} rpm × {}): {} in {seconds:.1} s",
-                    point.index + 1,
-                    point.inner_speed_rpm,
-                    point.load_scale,
-                    match (&error, converged) {
-                        (Some(e), _) => format!("failed: {e}"),
-                        (None, true) => "converged".into(),
-                        (None, false) => "NOT converged".into(),
-                    }
-                );
-            }
-        }
+        } => progress.point_done(&point, converged, error.as_deref(), seconds),
     };
-    let run = with_threads(args.threads, || {
-        run_study(&study, &store, &options, &events).map_err(anyhow::Error::from)
+    let run = with_threads(threads, || {
+        run_study(study, store, options, &events).map_err(anyhow::Error::from)
     });
     contacts_bar.finish_and_clear();
-    bar.finish_and_clear();
-    let outcome = report_run(run, &study, study_path, &store, &options, t0);
-    match (markers.into_inner(), &outcome) {
-        (Some(Some(m)), _) => m.finish(&outcome),
-        (None, Err(e)) => progress::record_early_failure(output, options.shard, e),
-        _ => {}
+    progress.bar.finish_and_clear();
+    run
+}
+
+/// What a study run shows while it runs: the points bar, the progress markers in DIR/.progress
+/// (started once the run has checked the folder and planned its points, so that a refused run
+/// leaves the folder untouched), and a log line per point when stderr is not a terminal.
+struct RunProgress<'a> {
+    /// The output folder.
+    output: &'a Path,
+    /// The study file.
+    study_path: &'a Path,
+    /// The study.
+    study: &'a Study,
+    /// The shard that runs.
+    shard: Shard,
+    /// The markers: unset before the plan, `None` when they are not written.
+    markers: OnceLock<Option<progress::ShardMarkers>>,
+    /// Points of the shard done.
+    bar: ProgressBar,
+    /// Whether stderr is a terminal (else a log line per point).
+    terminal: bool,
+    /// Testing aid: sleep before each computed point, ms.
+    delay_ms: u64,
+    /// Points finished; its lock serializes the log lines of points finishing together.
+    done: Mutex<usize>,
+}
+
+impl<'a> RunProgress<'a> {
+    /// The progress of the shard of `options`; the points bar is shown at once.
+    fn new(
+        output: &'a Path,
+        study_path: &'a Path,
+        study: &'a Study,
+        options: &RunOptions,
+        delay_ms: u64,
+    ) -> Self {
+        let terminal = std::io::stderr().is_terminal();
+        let bar = point_bar(study.shard_points(options.shard).len() as u64);
+        Self {
+            output,
+            study_path,
+            study,
+            shard: options.shard,
+            markers: OnceLock::new(),
+            bar,
+            terminal,
+            delay_ms,
+            done: Mutex::new(0),
+        }
     }
-    outcome?;
-    if options.shard.count > 1 {
-        println!(
-            "when every shard is done: ehl-bearing study merge {} -o {}",
-            study_path.display(),
-            output.display()
-        );
-        return Ok(());
+
+    /// Start the progress markers (the plan and this shard's marker); a warning, not an error,
+    /// if they cannot be written.
+    fn start_markers(&self) -> Option<progress::ShardMarkers> {
+        let started =
+            progress::ensure_plan(self.output, self.study_path, self.study, self.shard.count)
+                .and_then(|()| progress::ShardMarkers::start(self.output, self.shard));
+        match started {
+            Ok(m) => Some(m),
+            Err(e) => {
+                eprintln!("warning: progress markers not written ({e:#}); `study status` will not see this run");
+                None
+            }
+        }
     }
-    finish(&study, &store)
+
+    /// The run planned `to_compute` of its `points` points (`redone` of them had an unreadable
+    /// file): the markers start, the bar counts the points already done.
+    fn planned(&self, points: usize, to_compute: usize, redone: usize) {
+        // A late task of a merged study (every point stored, the outputs written, no markers
+        // left) leaves the folder as the merge left it: no markers that would ask for a
+        // merge again.
+        let merged = to_compute == 0
+            && self.output.join("points.csv").is_file()
+            && !progress::progress_dir(self.output).exists();
+        if merged {
+            self.markers.get_or_init(|| None);
+        } else {
+            self.markers.get_or_init(|| self.start_markers());
+        }
+        self.bar.set_position((points - to_compute) as u64);
+        if redone > 0 {
+            eprintln!(
+                "{redone} unreadable point file(s) (e.g. truncated by a crash) will be recomputed"
+            );
+        }
+    }
+
+    /// Point `p` starts: its marker, the bar's message, and the testing delay.
+    fn point_started(&self, p: &StudyPoint) {
+        if let Some(Some(m)) = self.markers.get() {
+            m.point_started(&p.file_stem());
+        }
+        self.bar
+            .set_message(format!("{} rpm × {}", p.inner_speed_rpm, p.load_scale));
+        if self.delay_ms > 0 {
+            std::thread::sleep(std::time::Duration::from_millis(self.delay_ms));
+        }
+    }
+
+    /// `point` finished after `seconds` s, converged or not, or failed with `error`.
+    fn point_done(&self, point: &StudyPoint, converged: bool, error: Option<&str>, seconds: f64) {
+        if let Some(Some(m)) = self.markers.get() {
+            m.point_done(&point.file_stem());
+        }
+        self.bar.inc(1);
+        let mut n = self.done.lock().unwrap_or_else(|p| p.into_inner());
+        *n += 1;
+        if !self.terminal {
+            // A log line per point when nobody watches a progress bar (pipes, batch jobs).
+            eprintln!(
+                "point {} ({} rpm × {}): {} in {seconds:.1} s",
+                point.index + 1,
+                point.inner_speed_rpm,
+                point.load_scale,
+                match (error, converged) {
+                    (Some(e), _) => format!("failed: {e}"),
+                    (None, true) => "converged".into(),
+                    (None, false) => "NOT converged".into(),
+                }
+            );
+        }
+    }
 }
 
 /// Print what a run did; a shard run with failed points is an error (its task fails visibly).

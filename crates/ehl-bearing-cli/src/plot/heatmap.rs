@@ -1,69 +1,102 @@
 //! Colour maps of a field on a regular grid.
 
 use super::*;
+use plotters::coord::types::RangedCoordf64;
 
-/// A colour map (viridis) of `z` on a regular grid — `z[j][i]` at `(x[i], y[j])`,
-/// `x` and `y` increasing — with a colour bar labelled `z_label`, written as
-/// `<stem>.svg` and `<stem>.png` ([`FIGURE_WIDTH`] × [`FIGURE_HEIGHT`] px).
-/// The map is bilinearly interpolated at the output resolution, so any grid
-/// size works (513 × 513 included); the SVG embeds it as one PNG image.
-/// Non-finite cells are grey. Axes use equal scales (see [`HeatmapOptions`]).
-#[allow(clippy::too_many_arguments)]
+/// What a heat map shows: `z[j][i]` at `(x[i], y[j])` on a regular grid (`x` and `y`
+/// increasing), with the figure's title and the labels of its axes and of its colour bar.
+#[derive(Clone, Copy, Debug)]
+pub struct HeatmapData<'a> {
+    /// Title of the figure.
+    pub title: &'a str,
+    /// Label of the x axis.
+    pub x_label: &'a str,
+    /// Label of the y axis.
+    pub y_label: &'a str,
+    /// Abscissae of the grid, increasing.
+    pub x: &'a [f64],
+    /// Ordinates of the grid, increasing.
+    pub y: &'a [f64],
+    /// Values: `z[j][i]` at `(x[i], y[j])`, one row per ordinate.
+    pub z: &'a [Vec<f64>],
+    /// Label of the colour bar.
+    pub z_label: &'a str,
+}
+
+/// A colour map (viridis) of `map.z` on its regular grid with a colour bar labelled
+/// `map.z_label`, written as `<stem>.svg` and `<stem>.png` ([`FIGURE_WIDTH`] × [`FIGURE_HEIGHT`]
+/// px). The map is bilinearly interpolated at the output resolution, so any grid size works
+/// (513 × 513 included); the SVG embeds it as one PNG image. Non-finite cells are grey. Axes use
+/// equal scales (see [`HeatmapOptions`]).
 #[allow(dead_code)] // generic API, used by the tests
-pub fn heatmap(
-    stem: &Path,
-    title: &str,
-    x_label: &str,
-    y_label: &str,
-    x: &[f64],
-    y: &[f64],
-    z: &[Vec<f64>],
-    z_label: &str,
-) -> Result<()> {
-    heatmap_with(
-        stem,
-        title,
-        x_label,
-        y_label,
-        x,
-        y,
-        z,
-        z_label,
-        &HeatmapOptions::default(),
-    )
+pub fn heatmap(stem: &Path, map: &HeatmapData) -> Result<()> {
+    heatmap_with(stem, map, &HeatmapOptions::default())
 }
 
 /// [`heatmap`] with options: colour range, contour levels, overlaid curves, aspect.
-#[allow(clippy::too_many_arguments)]
-pub fn heatmap_with(
-    stem: &Path,
-    title: &str,
-    x_label: &str,
-    y_label: &str,
-    x: &[f64],
-    y: &[f64],
-    z: &[Vec<f64>],
-    z_label: &str,
-    options: &HeatmapOptions,
-) -> Result<()> {
-    check_grid_axis(x, "x")?;
-    check_grid_axis(y, "y")?;
+pub fn heatmap_with(stem: &Path, map: &HeatmapData, options: &HeatmapOptions) -> Result<()> {
+    check_heatmap(map, options)?;
+    let z_range = colour_range(map, options.z_range)?;
+    let grid = Grid {
+        x: map.x,
+        y: map.y,
+        z: map.z,
+    };
+    let contours: Vec<Vec<Segment>> = options
+        .contour_levels
+        .iter()
+        .filter(|c| c.is_finite())
+        .map(|&c| grid.contour(c))
+        .collect();
+    let spec = HeatSpec {
+        x_label: map.x_label,
+        y_label: map.y_label,
+        z_label: map.z_label,
+        grid: &grid,
+        z_range,
+        contours: &contours,
+        overlays: &options.overlays,
+        equal_aspect: options.equal_aspect,
+    };
+    save_both(
+        stem,
+        (FIGURE_WIDTH, FIGURE_HEIGHT),
+        &HeatFig {
+            title: map.title,
+            spec,
+        },
+    )
+}
+
+/// The grid's axes are increasing, `z` has one row of `x.len()` values per ordinate, and the
+/// overlays are well formed; the error names the figure and what does not fit.
+fn check_heatmap(map: &HeatmapData, options: &HeatmapOptions) -> Result<()> {
+    let title = map.title;
+    check_grid_axis(map.x, "x")?;
+    check_grid_axis(map.y, "y")?;
     ensure!(
-        z.len() == y.len(),
+        map.z.len() == map.y.len(),
         "heatmap '{title}': z has {} rows but y has {} values",
-        z.len(),
-        y.len()
+        map.z.len(),
+        map.y.len()
     );
-    for (j, row) in z.iter().enumerate() {
+    for (j, row) in map.z.iter().enumerate() {
         ensure!(
-            row.len() == x.len(),
+            row.len() == map.x.len(),
             "heatmap '{title}': z row {j} has {} values but x has {}",
             row.len(),
-            x.len()
+            map.x.len()
         );
     }
     check_series(&options.overlays).context("heatmap overlays")?;
-    let (z_lo, z_hi) = match options.z_range {
+    Ok(())
+}
+
+/// The z range of the colour scale: the given one (finite and increasing), else the range of
+/// the finite values, widened by 5 % of the value (or by 1 at 0) when the field is constant.
+fn colour_range(map: &HeatmapData, given: Option<(f64, f64)>) -> Result<(f64, f64)> {
+    let title = map.title;
+    Ok(match given {
         Some((a, b)) => {
             ensure!(
                 a.is_finite() && b.is_finite() && a < b,
@@ -72,7 +105,7 @@ pub fn heatmap_with(
             (a, b)
         }
         None => {
-            let (lo, hi) = finite_min_max(z.iter().flatten().copied())
+            let (lo, hi) = finite_min_max(map.z.iter().flatten().copied())
                 .ok_or_else(|| anyhow!("heatmap '{title}': no finite z value"))?;
             if lo < hi {
                 (lo, hi)
@@ -81,29 +114,7 @@ pub fn heatmap_with(
                 (lo - d, hi + d)
             }
         }
-    };
-    let grid = Grid { x, y, z };
-    let contours: Vec<Vec<Segment>> = options
-        .contour_levels
-        .iter()
-        .filter(|c| c.is_finite())
-        .map(|&c| grid.contour(c))
-        .collect();
-    let spec = HeatSpec {
-        x_label,
-        y_label,
-        z_label,
-        grid: &grid,
-        z_range: (z_lo, z_hi),
-        contours: &contours,
-        overlays: &options.overlays,
-        equal_aspect: options.equal_aspect,
-    };
-    save_both(
-        stem,
-        (FIGURE_WIDTH, FIGURE_HEIGHT),
-        &HeatFig { title, spec },
-    )
+    })
 }
 
 pub(crate) struct HeatFig<'a> {
@@ -225,6 +236,80 @@ pub(crate) fn colour_of(v: f64, (lo, hi): (f64, f64)) -> RGBColor {
     ViridisRGB.get_color(t as f32)
 }
 
+/// The chart of a heat map: linear axes in the grid's coordinates.
+type MapChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Width of the colour bar, px.
+const CBAR_W: u32 = 24;
+/// Gap between the map and the colour bar, px.
+const CBAR_GAP: u32 = 36;
+
+/// Pixel layout of a heat map, left to right: y labels, map, gap, colour bar, its tick labels
+/// and its rotated description; the whole group is centred. With equal scales the map is
+/// narrowed or its top and bottom margins widened so that one unit of x and of y has the same
+/// length.
+struct HeatLayout {
+    /// Margin above the map's plot area, px.
+    top: u32,
+    /// Margin below the map's x labels, px.
+    bottom: u32,
+    /// Left margin of the map (centring pad and figure margin), px.
+    left: u32,
+    /// Width of the y labels and description, px.
+    y_area: u32,
+    /// Where the area is split between the map and the colour bar, px from the left.
+    split: u32,
+    /// Width of the colour bar's tick labels, px.
+    z_ticks: u32,
+    /// Width of the colour bar's description, px (0 without one).
+    z_desc: u32,
+    /// Height of the map's plot area, px.
+    map_h: u32,
+}
+
+impl HeatLayout {
+    /// The layout of `s` in an area of `(aw, ah)` px, with the map's y axis and the colour
+    /// bar's axis (their tick labels set widths).
+    fn new((aw, ah): (u32, u32), s: &HeatSpec, y_axis: &Axis, z_axis: &Axis) -> Self {
+        let g = s.grid;
+        let (x0, x1) = (g.x[0], g.x[g.x.len() - 1]);
+        let (y0, y1) = (g.y[0], g.y[g.y.len() - 1]);
+        let y_area = y_label_area(y_axis, s.y_label);
+        let z_ticks = widest_tick(z_axis) + 12;
+        let z_desc = if s.z_label.is_empty() {
+            0
+        } else {
+            text_box(s.z_label, DESC_SIZE as f64).1.ceil() as u32 + 10
+        };
+        let fixed_w = 2 * MARGIN + y_area + CBAR_GAP + CBAR_W + z_ticks + z_desc;
+        let (mut top, mut bottom) = (8u32, MARGIN);
+        let avail_w = aw.saturating_sub(fixed_w) as f64;
+        let avail_h = ah.saturating_sub(X_AREA + top + bottom) as f64;
+        let ratio = (x1 - x0) / (y1 - y0);
+        let mut plot_w = avail_w;
+        if s.equal_aspect && (0.2..=5.0).contains(&ratio) && avail_w > 0.0 && avail_h > 0.0 {
+            plot_w = avail_w.min(avail_h * ratio);
+            let ey = (avail_h - plot_w / ratio).max(0.0) as u32;
+            top += ey / 2;
+            bottom += ey - ey / 2;
+        }
+        let plot_w = plot_w.max(1.0) as u32;
+        let pad = aw.saturating_sub(fixed_w + plot_w) / 2;
+        Self {
+            top,
+            bottom,
+            left: pad + MARGIN,
+            y_area,
+            split: pad + MARGIN + y_area + plot_w + CBAR_GAP,
+            z_ticks,
+            z_desc,
+            map_h: ah.saturating_sub(top + bottom + X_AREA),
+        }
+    }
+}
+
+/// Draws the heat map `s` into `area`: the map with its axes, contours and overlays (with their
+/// legend), and the colour bar beside it.
 pub(crate) fn draw_heatmap<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     s: &HeatSpec,
@@ -234,48 +319,34 @@ pub(crate) fn draw_heatmap<DB: DrawingBackend>(
     let (y0, y1) = (g.y[0], g.y[g.y.len() - 1]);
     let x_axis = Axis::new(x0, x1, false);
     let y_axis = Axis::new(y0, y1, false);
-
     let z_axis = Axis::new(s.z_range.0, s.z_range.1, false);
-    // Layout, left to right: y labels, map, gap, colour bar, its tick labels
-    // and its rotated description; the whole group is centred.
-    let (aw, ah) = area.dim_in_pixel();
-    let y_area = y_label_area(&y_axis, s.y_label);
-    let z_ticks = widest_tick(&z_axis) + 12;
-    let z_desc = if s.z_label.is_empty() {
-        0
-    } else {
-        text_box(s.z_label, DESC_SIZE as f64).1.ceil() as u32 + 10
-    };
-    let (cbar_w, gap) = (24u32, 36u32);
-    let fixed_w = 2 * MARGIN + y_area + gap + cbar_w + z_ticks + z_desc;
-    let (mut top, mut bottom) = (8u32, MARGIN);
-    let avail_w = aw.saturating_sub(fixed_w) as f64;
-    let avail_h = ah.saturating_sub(X_AREA + top + bottom) as f64;
-    let ratio = (x1 - x0) / (y1 - y0);
-    let mut plot_w = avail_w;
-    if s.equal_aspect && (0.2..=5.0).contains(&ratio) && avail_w > 0.0 && avail_h > 0.0 {
-        plot_w = avail_w.min(avail_h * ratio);
-        let ey = (avail_h - plot_w / ratio).max(0.0) as u32;
-        top += ey / 2;
-        bottom += ey - ey / 2;
-    }
-    let plot_w = plot_w.max(1.0) as u32;
-    let pad = aw.saturating_sub(fixed_w + plot_w) / 2;
-    let split = pad + MARGIN + y_area + plot_w + gap;
-    let (main, bar) = area.split_horizontally(split as i32);
-    let (left, right) = (pad + MARGIN, gap);
+    let layout = HeatLayout::new(area.dim_in_pixel(), s, &y_axis, &z_axis);
+    let (main, bar) = area.split_horizontally(layout.split as i32);
 
     let mut chart = ChartBuilder::on(&main)
-        .margin_left(left)
-        .margin_right(right)
-        .margin_top(top)
-        .margin_bottom(bottom)
+        .margin_left(layout.left)
+        .margin_right(CBAR_GAP)
+        .margin_top(layout.top)
+        .margin_bottom(layout.bottom)
         .x_label_area_size(X_AREA)
-        .y_label_area_size(y_area)
+        .y_label_area_size(layout.y_area)
         .build_cartesian_2d(x0..x1, y0..y1)
         .map_err(drawing)?;
+    draw_map_image(&mut chart, s)?;
+    draw_map_mesh(&mut chart, s, &x_axis, &y_axis)?;
+    draw_contours_and_overlays(&mut chart, s, &x_axis, &y_axis)?;
+    draw_colour_bar(&bar, s, &layout, &z_axis)
+}
 
-    // The map: one image at the plot's own resolution.
+/// The map itself: one image at the plot area's own resolution, each pixel the colour of the
+/// field sampled (bilinearly) at its centre.
+fn draw_map_image<'a, DB: DrawingBackend + 'a>(
+    chart: &mut MapChart<'a, DB>,
+    s: &HeatSpec,
+) -> Result<()> {
+    let g = s.grid;
+    let (x0, x1) = (g.x[0], g.x[g.x.len() - 1]);
+    let (y0, y1) = (g.y[0], g.y[g.y.len() - 1]);
     let (pw, ph) = chart.plotting_area().dim_in_pixel();
     if pw > 0 && ph > 0 {
         let cols: Vec<(usize, f64)> = (0..pw)
@@ -293,7 +364,16 @@ pub(crate) fn draw_heatmap<DB: DrawingBackend>(
             .ok_or_else(|| anyhow!("heatmap image buffer has the wrong size"))?;
         chart.draw_series(std::iter::once(image)).map_err(drawing)?;
     }
+    Ok(())
+}
 
+/// The map's axes: tick marks, tick labels and descriptions, no grid lines.
+fn draw_map_mesh<'a, DB: DrawingBackend + 'a>(
+    chart: &mut MapChart<'a, DB>,
+    s: &HeatSpec,
+    x_axis: &Axis,
+    y_axis: &Axis,
+) -> Result<()> {
     let x_fmt = |v: &f64| x_axis.tick_label(*v);
     let y_fmt = |v: &f64| y_axis.tick_label(*v);
     chart
@@ -309,8 +389,17 @@ pub(crate) fn draw_heatmap<DB: DrawingBackend>(
         .x_desc(s.x_label)
         .y_desc(s.y_label)
         .draw()
-        .map_err(drawing)?;
+        .map_err(drawing)
+}
 
+/// The contour lines (white) and the overlaid curves over the map, and the legend of the
+/// labelled overlays in the corner where it covers the fewest of their samples.
+fn draw_contours_and_overlays<'a, DB: DrawingBackend + 'a>(
+    chart: &mut MapChart<'a, DB>,
+    s: &HeatSpec,
+    x_axis: &Axis,
+    y_axis: &Axis,
+) -> Result<()> {
     for segs in s.contours {
         chart
             .draw_series(
@@ -321,11 +410,11 @@ pub(crate) fn draw_heatmap<DB: DrawingBackend>(
     }
     for (k, o) in s.overlays.iter().enumerate() {
         let colour = OVERLAY_PALETTE[k % OVERLAY_PALETTE.len()];
-        draw_series(&mut chart, o, k, colour, &x_axis, &y_axis)?;
+        draw_series(chart, o, k, colour, x_axis, y_axis)?;
     }
     if s.overlays.iter().any(|o| !o.label.is_empty()) {
         let (w, h) = chart.plotting_area().dim_in_pixel();
-        let pos = legend_position(s.overlays, &x_axis, &y_axis, (w, h));
+        let pos = legend_position(s.overlays, x_axis, y_axis, (w, h));
         chart
             .configure_series_labels()
             .position(pos)
@@ -336,18 +425,28 @@ pub(crate) fn draw_heatmap<DB: DrawingBackend>(
             .draw()
             .map_err(drawing)?;
     }
+    Ok(())
+}
 
-    // Colour bar, aligned with the plot area.
+/// The colour bar in `bar`, aligned with the map's plot area: 128 bands of the colour scale,
+/// its tick labels and its description (rotated, reading bottom to top).
+fn draw_colour_bar<DB: DrawingBackend>(
+    bar: &DrawingArea<DB, Shift>,
+    s: &HeatSpec,
+    layout: &HeatLayout,
+    z_axis: &Axis,
+) -> Result<()> {
     let (z0, z1) = s.z_range;
-    let mut cbar = ChartBuilder::on(&bar)
+    let (z_ticks, z_desc) = (layout.z_ticks, layout.z_desc);
+    let mut cbar = ChartBuilder::on(bar)
         .margin_left(0)
-        .margin_top(top)
-        .margin_bottom(bottom + X_AREA)
+        .margin_top(layout.top)
+        .margin_bottom(layout.bottom + X_AREA)
         .right_y_label_area_size(z_ticks + z_desc)
         .margin_right(
             bar.dim_in_pixel()
                 .0
-                .saturating_sub(cbar_w + z_ticks + z_desc),
+                .saturating_sub(CBAR_W + z_ticks + z_desc),
         )
         .build_cartesian_2d(0.0..1.0, z0..z1)
         .map_err(drawing)?;
@@ -374,8 +473,10 @@ pub(crate) fn draw_heatmap<DB: DrawingBackend>(
         let style = TextStyle::from((FONT, DESC_SIZE).into_font())
             .transform(FontTransform::Rotate270)
             .pos(Pos::new(HPos::Center, VPos::Top));
-        let map_h = ah.saturating_sub(top + bottom + X_AREA);
-        let at = ((cbar_w + z_ticks) as i32, (top + map_h / 2) as i32);
+        let at = (
+            (CBAR_W + z_ticks) as i32,
+            (layout.top + layout.map_h / 2) as i32,
+        );
         bar.draw_text(s.z_label, &style, at).map_err(drawing)?;
     }
     Ok(())

@@ -35,6 +35,19 @@ fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
         .collect()
 }
 
+/// A heat map titled `title` of `z` on `(x, y)`, with the axes labelled x, y and z.
+fn xyz<'a>(title: &'a str, x: &'a [f64], y: &'a [f64], z: &'a [Vec<f64>]) -> HeatmapData<'a> {
+    HeatmapData {
+        title,
+        x_label: "x",
+        y_label: "y",
+        x,
+        y,
+        z,
+        z_label: "z",
+    }
+}
+
 /// An EHL-like pressure map: Hertz dome plus an outlet spike, zero outside.
 fn pressure_map(n: usize) -> (Vec<f64>, Vec<f64>, Vec<Vec<f64>>) {
     let x = linspace(-4.5, 1.5, n);
@@ -161,17 +174,16 @@ fn dual_axis_chart_writes_svg_and_png() {
 fn heatmap_writes_svg_and_png() {
     let stem = test_dir("heat").join("p");
     let (x, y, z) = pressure_map(65);
-    heatmap(
-        &stem,
-        "Pressure",
-        "X = x/a",
-        "Y = y/b",
-        &x,
-        &y,
-        &z,
-        "P = p/p_H",
-    )
-    .unwrap();
+    let map = HeatmapData {
+        title: "Pressure",
+        x_label: "X = x/a",
+        y_label: "Y = y/b",
+        x: &x,
+        y: &y,
+        z: &z,
+        z_label: "P = p/p_H",
+    };
+    heatmap(&stem, &map).unwrap();
     let svg = check_outputs(&stem, "Pressure", (FIGURE_WIDTH, FIGURE_HEIGHT));
     assert!(svg.contains("data:image/png;base64,"), "map not embedded");
     let _ = std::fs::remove_dir_all(stem.parent().unwrap());
@@ -191,7 +203,16 @@ fn large_heatmap_with_contour_and_overlay() {
         )],
         ..Default::default()
     };
-    heatmap_with(&stem, "Pressure 513", "X", "Y", &x, &y, &z, "P", &opts).unwrap();
+    let map = HeatmapData {
+        title: "Pressure 513",
+        x_label: "X",
+        y_label: "Y",
+        x: &x,
+        y: &y,
+        z: &z,
+        z_label: "P",
+    };
+    heatmap_with(&stem, &map, &opts).unwrap();
     let svg = check_outputs(&stem, "Pressure 513", (FIGURE_WIDTH, FIGURE_HEIGHT));
     assert!(svg.len() < 4_000_000, "SVG is {} bytes", svg.len());
     let _ = std::fs::remove_dir_all(stem.parent().unwrap());
@@ -221,10 +242,10 @@ fn nan_and_inf_do_not_panic() {
     z[3][4] = f64::NAN;
     z[10][10] = f64::INFINITY;
     z[20][5] = f64::NEG_INFINITY;
-    heatmap(&dir.join("heat"), "NaN heat", "x", "y", &gx, &gy, &z, "z").unwrap();
+    heatmap(&dir.join("heat"), &xyz("NaN heat", &gx, &gy, &z)).unwrap();
     // A constant field still gets a usable colour scale.
     let flat = vec![vec![2.0; gx.len()]; gy.len()];
-    heatmap(&dir.join("flat"), "Flat", "x", "y", &gx, &gy, &flat, "z").unwrap();
+    heatmap(&dir.join("flat"), &xyz("Flat", &gx, &gy, &flat)).unwrap();
     let _ = std::fs::remove_dir_all(dir);
 }
 
@@ -256,14 +277,14 @@ fn bad_input_is_an_error() {
     let x = [0.0, 1.0, 2.0];
     let y = [0.0, 1.0];
     let z = vec![vec![0.0; 3]; 2];
-    assert!(heatmap(&stem, "t", "x", "y", &x, &y, &z, "z").is_ok());
+    assert!(heatmap(&stem, &xyz("t", &x, &y, &z)).is_ok());
     let ragged = vec![vec![0.0; 3], vec![0.0; 2]];
-    assert!(heatmap(&stem, "t", "x", "y", &x, &y, &ragged, "z").is_err());
-    assert!(heatmap(&stem, "t", "x", "y", &x, &y, &z[..1], "z").is_err());
-    assert!(heatmap(&stem, "t", "x", "y", &[2.0, 1.0, 0.0], &y, &z, "z").is_err());
-    assert!(heatmap(&stem, "t", "x", "y", &[0.0], &[0.0], &[vec![1.0]], "z").is_err());
+    assert!(heatmap(&stem, &xyz("t", &x, &y, &ragged)).is_err());
+    assert!(heatmap(&stem, &xyz("t", &x, &y, &z[..1])).is_err());
+    assert!(heatmap(&stem, &xyz("t", &[2.0, 1.0, 0.0], &y, &z)).is_err());
+    assert!(heatmap(&stem, &xyz("t", &[0.0], &[0.0], &[vec![1.0]])).is_err());
     let all_nan = vec![vec![f64::NAN; 3]; 2];
-    assert!(heatmap(&stem, "t", "x", "y", &x, &y, &all_nan, "z").is_err());
+    assert!(heatmap(&stem, &xyz("t", &x, &y, &all_nan)).is_err());
     let _ = std::fs::remove_dir_all(stem.parent().unwrap());
 }
 
@@ -535,13 +556,15 @@ fn demo() {
     let th = linspace(0.0, std::f64::consts::TAU, 120);
     heatmap_with(
         &dir.join("pressure_map"),
-        "EHL pressure",
-        "X = x/a",
-        "Y = y/b",
-        &x,
-        &y,
-        &z,
-        "P = p/p_H",
+        &HeatmapData {
+            title: "EHL pressure",
+            x_label: "X = x/a",
+            y_label: "Y = y/b",
+            x: &x,
+            y: &y,
+            z: &z,
+            z_label: "P = p/p_H",
+        },
         &HeatmapOptions {
             contour_levels: vec![0.5],
             overlays: vec![Series::line(
@@ -570,13 +593,15 @@ fn demo() {
         .collect();
     heatmap_with(
         &dir.join("film_map"),
-        "EHL film thickness",
-        "x (mm)",
-        "y (mm)",
-        &x.iter().map(|v| v * 0.2).collect::<Vec<_>>(),
-        &y.iter().map(|v| v * 0.2).collect::<Vec<_>>(),
-        &film,
-        "h (m)",
+        &HeatmapData {
+            title: "EHL film thickness",
+            x_label: "x (mm)",
+            y_label: "y (mm)",
+            x: &x.iter().map(|v| v * 0.2).collect::<Vec<_>>(),
+            y: &y.iter().map(|v| v * 0.2).collect::<Vec<_>>(),
+            z: &film,
+            z_label: "h (m)",
+        },
         &HeatmapOptions {
             z_range: Some((0.0, 1.0e-6)),
             ..Default::default()
