@@ -1,5 +1,6 @@
 //! `ehl-bearing law-map generate SPEC.toml -o DIR [--shard i/N]`, `law-map assemble SPEC.toml -o
-//! DIR --map FILE` and `law-map check FILE --points N`: the map of the dimensionless quasi-static
+//! DIR --map FILE`, `law-map sbatch SPEC.toml -o DIR --map FILE` (a Slurm job array of the
+//! shards and the assemble job: `law_map_slurm`) and `law-map check FILE --points N`: the map of the dimensionless quasi-static
 //! law over the groups (`ehl_bearing::law_map`, docs/law_map.md). The nodes are point files in
 //! DIR/points (atomic, resumable, shardable as a study's); `assemble` writes the map file from
 //! them; `check` compares the map with direct characterizations at random held-out points.
@@ -53,6 +54,9 @@ pub enum LawMapCommand {
         #[arg(long)]
         map: PathBuf,
     },
+    /// Write (and with --submit, submit) a Slurm job array that generates the nodes, one shard
+    /// per task, and the dependent job that assembles the map file.
+    Sbatch(crate::law_map_slurm::LawMapSbatchArgs),
     /// Compare the map with direct characterizations at random points inside its envelope.
     Check {
         /// Map file (JSON).
@@ -111,6 +115,7 @@ pub fn run(a: &LawMapArgs) -> anyhow::Result<()> {
             *threads,
         ),
         LawMapCommand::Assemble { spec, output, map } => assemble(spec, output, map),
+        LawMapCommand::Sbatch(args) => crate::law_map_slurm::run(args),
         LawMapCommand::Check {
             map,
             points,

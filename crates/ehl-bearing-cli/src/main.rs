@@ -7,6 +7,7 @@ mod contact_cmd;
 mod ehl_cmd;
 mod equilibrium_cmd;
 mod law_map_cmd;
+mod law_map_slurm;
 mod plot;
 mod progress;
 mod slurm_cmd;

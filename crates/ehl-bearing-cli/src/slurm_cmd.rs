@@ -99,7 +99,7 @@ pub fn shell_quote(s: &str) -> String {
     format!("'{}'", s.replace('\'', r"'\''"))
 }
 
-fn slurm_name_ok(s: &str) -> bool {
+pub(crate) fn slurm_name_ok(s: &str) -> bool {
     !s.is_empty()
         && s.len() <= 64
         && s.chars()
@@ -156,18 +156,40 @@ fn time_hms(min: u64) -> String {
 }
 
 fn header(p: &ScriptParams, name: &str, output: &str, cpus: usize) -> String {
+    script_header(&JobOptions {
+        name,
+        cpus,
+        time_limit_min: p.time_limit_min,
+        partition: p.partition.as_deref(),
+        log: &p.job_dir.join("logs").join(output),
+    })
+}
+
+/// The `#SBATCH` lines every job script of the command line starts with.
+pub(crate) struct JobOptions<'a> {
+    /// Job name.
+    pub name: &'a str,
+    /// CPUs per task.
+    pub cpus: usize,
+    /// Time limit, min.
+    pub time_limit_min: u64,
+    /// Partition (None: the cluster's default).
+    pub partition: Option<&'a str>,
+    /// Log file pattern (`%x`, `%A`, `%a`, `%j` as Slurm expands them).
+    pub log: &'a Path,
+}
+
+/// `#!/bin/bash` and the `#SBATCH` lines of `o`.
+pub(crate) fn script_header(o: &JobOptions) -> String {
     let mut s = String::from("#!/bin/bash\n");
-    s += &format!("#SBATCH --job-name={name}\n");
+    s += &format!("#SBATCH --job-name={}\n", o.name);
     s += "#SBATCH --ntasks=1\n";
-    s += &format!("#SBATCH --cpus-per-task={cpus}\n");
-    s += &format!("#SBATCH --time={}\n", time_hms(p.time_limit_min));
-    if let Some(part) = &p.partition {
+    s += &format!("#SBATCH --cpus-per-task={}\n", o.cpus);
+    s += &format!("#SBATCH --time={}\n", time_hms(o.time_limit_min));
+    if let Some(part) = o.partition {
         s += &format!("#SBATCH --partition={part}\n");
     }
-    s += &format!(
-        "#SBATCH --output={}\n",
-        p.job_dir.join("logs").join(output).display()
-    );
+    s += &format!("#SBATCH --output={}\n", o.log.display());
     s
 }
 
@@ -236,7 +258,7 @@ exec {} study merge {} -o {}{}
     s
 }
 
-fn absolute(p: &Path) -> anyhow::Result<PathBuf> {
+pub(crate) fn absolute(p: &Path) -> anyhow::Result<PathBuf> {
     std::fs::canonicalize(p).map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))
 }
 
@@ -262,7 +284,7 @@ pub fn parse_job_id(stdout: &str) -> anyhow::Result<String> {
     Ok(id.to_string())
 }
 
-fn sbatch(cmd: &str, args: &[String]) -> anyhow::Result<String> {
+pub(crate) fn sbatch(cmd: &str, args: &[String]) -> anyhow::Result<String> {
     let out = Command::new(cmd)
         .args(args)
         .output()
@@ -370,7 +392,7 @@ fn load(args: &SbatchArgs) -> anyhow::Result<Study> {
 /// `--bin`: an executable file where it exists on this machine (a folder or a file without
 /// execute permission is refused); a path absent here is accepted with a warning, since it may
 /// exist only on the compute nodes.
-fn check_bin(bin: &std::path::Path) -> anyhow::Result<()> {
+pub(crate) fn check_bin(bin: &std::path::Path) -> anyhow::Result<()> {
     match std::fs::metadata(bin) {
         Err(_) => {
             eprintln!(

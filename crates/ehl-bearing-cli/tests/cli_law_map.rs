@@ -169,3 +169,153 @@ fn map_method_feeds_studies_trends_and_coefficients() {
     let ross = std::fs::read_to_string(coef.join("ross_bearing.csv")).unwrap();
     assert_eq!(ross.lines().count(), 3, "{ross}");
 }
+
+/// A stand-in for sbatch that records its arguments and prints job ids like `sbatch --parsable`.
+fn fake_sbatch(dir: &std::path::Path) -> (std::path::PathBuf, std::path::PathBuf) {
+    let log = dir.join("sbatch.log");
+    let path = dir.join("fake-sbatch");
+    std::fs::write(
+        &path,
+        format!("#!/bin/sh\necho \"$*\" >> {log:?}\nn=$(wc -l < {log:?})\necho \"$((40 + n))\"\n"),
+    )
+    .unwrap();
+    std::process::Command::new("chmod")
+        .arg("+x")
+        .arg(&path)
+        .status()
+        .unwrap();
+    (path, log)
+}
+
+/// `law-map sbatch`: the array script's tasks generate the shards into the shared folder, a
+/// resubmission sends only the shards with nodes left, then the assemble job alone, whose script
+/// writes the map; invalid options are refused naming them.
+#[test]
+fn sbatch_runs_the_shards_as_array_tasks_and_resubmits_only_what_is_left() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = dir.path().join("spec.toml");
+    std::fs::write(&spec, SPEC).unwrap();
+    let out = dir.path().join("nodes");
+    let map = dir.path().join("map.json");
+    let (sb, log) = fake_sbatch(dir.path());
+    let submit = || {
+        let o = bin()
+            .args(["law-map", "sbatch"])
+            .arg(&spec)
+            .arg("-o")
+            .arg(&out)
+            .arg("--map")
+            .arg(&map)
+            .args([
+                "--shards",
+                "3",
+                "--cpus-per-task",
+                "1",
+                "--submit",
+                "--sbatch",
+            ])
+            .arg(&sb)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stdout).to_string()
+    };
+    let o = submit();
+    assert!(
+        o.contains("27 nodes in 3 shards")
+            && o.contains("submitted array job 41 (tasks 1-3) and assemble job 42"),
+        "{o}"
+    );
+    let calls = std::fs::read_to_string(&log).unwrap();
+    let lines: Vec<_> = calls.lines().collect();
+    assert!(
+        lines[0].starts_with("--parsable --array=1-3 ") && lines[0].ends_with("law_map.sbatch"),
+        "{calls}"
+    );
+    assert!(
+        lines[1].starts_with("--parsable --dependency=afterok:41 --kill-on-invalid-dep=yes ")
+            && lines[1].ends_with("assemble.sbatch"),
+        "{calls}"
+    );
+    let jobs = dir.path().join("nodes.slurm");
+    let task = |i: &str| {
+        let o = std::process::Command::new("bash")
+            .arg(jobs.join("law_map.sbatch"))
+            .env("SLURM_ARRAY_TASK_ID", i)
+            .env("SLURM_CPUS_PER_TASK", "1")
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stdout).to_string()
+    };
+    // Task 2 ran: the resubmission sends tasks 1 and 3.
+    let t = task("2");
+    assert!(
+        t.contains("shard 2/3: 9 nodes, 9 computed (0 failed)"),
+        "{t}"
+    );
+    assert!(submit().contains("(tasks 1,3)"));
+    task("1");
+    task("3");
+    let o = submit();
+    assert!(
+        o.contains("every node is done: submitting the assemble job only"),
+        "{o}"
+    );
+    let calls = std::fs::read_to_string(&log).unwrap();
+    let last = calls.lines().last().unwrap();
+    assert!(
+        last.starts_with("--parsable ")
+            && last.ends_with("assemble.sbatch")
+            && !last.contains("dependency"),
+        "{last}"
+    );
+    let o = std::process::Command::new("bash")
+        .arg(jobs.join("assemble.sbatch"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let m =
+        ehl_bearing::law_map::LawMap::from_json(&std::fs::read_to_string(&map).unwrap()).unwrap();
+    assert_eq!(m.laws.len(), 27);
+    // Invalid options name the option, the value and the range.
+    for (args, want) in [
+        (
+            vec!["--shards", "0"],
+            "--shards 0: expected an integer from 1 to 27",
+        ),
+        (
+            vec!["--shards", "28"],
+            "--shards 28: expected an integer from 1 to 27",
+        ),
+        (
+            vec!["--cpus-per-task", "0"],
+            "--cpus-per-task 0: expected an integer from 1 to 1024",
+        ),
+        (vec!["--job-name", "a b"], "--job-name \"a b\""),
+    ] {
+        let o = bin()
+            .args(["law-map", "sbatch"])
+            .arg(&spec)
+            .arg("-o")
+            .arg(&out)
+            .arg("--map")
+            .arg(&map)
+            .args(&args)
+            .output()
+            .unwrap();
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success() && e.contains(want), "{args:?}: {e}");
+    }
+    let o = bin()
+        .args(["law-map", "sbatch"])
+        .arg(&spec)
+        .arg("-o")
+        .arg(&out)
+        .arg("--map")
+        .arg(dir.path().join("absent/map.json"))
+        .output()
+        .unwrap();
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && e.contains("--map"), "{e}");
+}

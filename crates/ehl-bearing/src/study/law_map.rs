@@ -177,6 +177,33 @@ pub fn generate_map(
     })
 }
 
+/// The shards (1-based numbers of `shards` round-robin shards, as [`Shard`]) that still have a
+/// node without a characterized law of this spec in the store: those a resubmission must run.
+/// Empty when every node is done (the map can be assembled). A node file of another spec, an
+/// unreadable one or a failed node counts as not done, as in [`generate_map`].
+pub fn shards_with_nodes_left(
+    spec: &LawMapSpec,
+    store: &dyn PointStore,
+    shards: usize,
+) -> Result<Vec<usize>, MapGenerationError> {
+    spec.validate()?;
+    let shards = shards.max(1);
+    let mut left = vec![false; shards];
+    for k in 0..spec.node_count() {
+        if left[k % shards] {
+            continue;
+        }
+        let done = store
+            .load_point(&stem(k))?
+            .and_then(|t| serde_json::from_str::<NodeRecord>(&t).ok())
+            .is_some_and(|r| r.spec == *spec && r.index == k && r.law.is_some());
+        if !done {
+            left[k % shards] = true;
+        }
+    }
+    Ok((1..=shards).filter(|i| left[i - 1]).collect())
+}
+
 /// The map from the store's node files (every node must be present and characterized).
 pub fn assemble_map(
     spec: &LawMapSpec,

@@ -1,0 +1,331 @@
+//! `ehl-bearing law-map sbatch SPEC.toml -o DIR --map FILE`: a Slurm job-array script that
+//! generates a law map's nodes (array task i runs `law-map generate --shard i/N` into the shared
+//! folder DIR), the assemble job's script (`law-map assemble`, after every task succeeded), and
+//! with `--submit` the submission of both. The node files are the progress record: a
+//! resubmission submits only the shards with nodes left (a finished node is never computed
+//! again), or the assemble job alone when every node is done.
+
+use crate::slurm_cmd::{
+    absolute, array_ranges, check_bin, sbatch, script_header, shell_quote, slurm_name_ok,
+    JobOptions,
+};
+use anyhow::Context;
+use ehl_bearing::io::FsStore;
+use ehl_bearing::law_map::LawMapSpec;
+use ehl_bearing::study::shards_with_nodes_left;
+use std::path::{Path, PathBuf};
+
+/// Arguments of `law-map sbatch`.
+#[derive(clap::Args, Debug)]
+pub struct LawMapSbatchArgs {
+    /// Map spec (TOML), e.g. examples/law_map_seed_oil.toml.
+    pub spec: PathBuf,
+    /// Shared folder of the node files (on a file system every node sees); created if needed.
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
+    /// The map file the assemble job writes (JSON); its folder must exist.
+    #[arg(long)]
+    pub map: PathBuf,
+    /// Number of array tasks = shards (round robin over the nodes); from 1 to the map's number
+    /// of nodes.
+    #[arg(long, default_value_t = 4)]
+    pub shards: usize,
+    /// CPUs per array task (`#SBATCH --cpus-per-task`); each task runs that many nodes at once.
+    /// From 1 to 1024.
+    #[arg(long, default_value_t = 2)]
+    pub cpus_per_task: usize,
+    /// Time limit of each array task and of the assemble job, minutes (`#SBATCH --time`); from 1
+    /// to 525600 (a year). A task stopped by it keeps its finished nodes; resubmit.
+    #[arg(long, default_value_t = 120)]
+    pub time_limit_min: u64,
+    /// Slurm partition (`#SBATCH --partition`); default: the cluster's default partition.
+    #[arg(long)]
+    pub partition: Option<String>,
+    /// Job name (default: ehl-map-<spec file stem>).
+    #[arg(long)]
+    pub job_name: Option<String>,
+    /// Folder for the scripts (`law_map.sbatch`, `assemble.sbatch`) and the Slurm logs
+    /// (`logs/`); default: `<DIR>.slurm` next to the node folder.
+    #[arg(long)]
+    pub job_dir: Option<PathBuf>,
+    /// The ehl-bearing executable the jobs run (default: this one); must be reachable from the
+    /// compute nodes.
+    #[arg(long)]
+    pub bin: Option<PathBuf>,
+    /// Submit the array (only the shards with nodes left) and the dependent assemble job with
+    /// sbatch. Tasks of an earlier submission that are still queued or running are not looked
+    /// for: resubmit once they ended (a node computed twice is only time lost).
+    #[arg(long)]
+    pub submit: bool,
+    /// The sbatch command (default: sbatch on the PATH).
+    #[arg(long, default_value = "sbatch")]
+    pub sbatch: String,
+}
+
+/// Everything the two scripts depend on, validated and absolute.
+struct MapJob {
+    spec: PathBuf,
+    output: PathBuf,
+    map: PathBuf,
+    job_dir: PathBuf,
+    bin: PathBuf,
+    nodes: usize,
+    shards: usize,
+    cpus_per_task: usize,
+    time_limit_min: u64,
+    partition: Option<String>,
+    job_name: String,
+}
+
+impl MapJob {
+    fn options<'a>(&'a self, name: &'a str, cpus: usize, log: &'a Path) -> JobOptions<'a> {
+        JobOptions {
+            name,
+            cpus,
+            time_limit_min: self.time_limit_min,
+            partition: self.partition.as_deref(),
+            log,
+        }
+    }
+
+    fn q(p: &Path) -> String {
+        shell_quote(&p.display().to_string())
+    }
+
+    /// The job-array script: task i generates the nodes of shard i/N.
+    fn array_script(&self) -> String {
+        let log = self.job_dir.join("logs").join("%x-%A_%a.out");
+        let mut s = script_header(&self.options(&self.job_name, self.cpus_per_task, &log));
+        s += &format!("#SBATCH --array=1-{}\n", self.shards);
+        s += &format!(
+            "# Written by `ehl-bearing law-map sbatch` ({} {}): map spec {}, {} nodes in {n} shards
+# (shard i computes the nodes k with k mod {n} = i - 1). Array task i writes only its own node files
+# into the shared folder, each atomically; a resubmitted task skips the nodes already done. A task
+# with a failed node exits non-zero (the node file holds the error; a rerun retries it). When every
+# task succeeded, the assemble job (assemble.sbatch) writes the map file.
+set -euo pipefail
+: \"${{SLURM_ARRAY_TASK_ID:?submit this script with sbatch: it is a job array}}\"
+export RAYON_NUM_THREADS=\"${{SLURM_CPUS_PER_TASK:-1}}\"
+echo \"ehl-bearing law-map shard ${{SLURM_ARRAY_TASK_ID}}/{n} on $(hostname) with $RAYON_NUM_THREADS thread(s)\"
+exec {} law-map generate {} -o {} --shard \"${{SLURM_ARRAY_TASK_ID}}/{n}\" --threads \"$RAYON_NUM_THREADS\"
+",
+            env!("CARGO_PKG_NAME"),
+            env!("CARGO_PKG_VERSION"),
+            self.spec.display(),
+            self.nodes,
+            Self::q(&self.bin),
+            Self::q(&self.spec),
+            Self::q(&self.output),
+            n = self.shards,
+        );
+        s
+    }
+
+    /// The assemble job's script (submitted with `--dependency=afterok:<array job>`).
+    fn assemble_script(&self) -> String {
+        let name = format!("{}-assemble", self.job_name);
+        let log = self.job_dir.join("logs").join("%x-%j.out");
+        let mut s = script_header(&self.options(&name, 1, &log));
+        s += &format!(
+            "# Written by `ehl-bearing law-map sbatch`: builds the map file {} from the node files in
+# {}; fails, naming the first missing or failed node, unless every node is done.
+set -euo pipefail
+exec {} law-map assemble {} -o {} --map {}
+",
+            self.map.display(),
+            self.output.display(),
+            Self::q(&self.bin),
+            Self::q(&self.spec),
+            Self::q(&self.output),
+            Self::q(&self.map),
+        );
+        s
+    }
+}
+
+fn validate(a: &LawMapSbatchArgs, nodes: usize) -> anyhow::Result<()> {
+    let max = nodes.min(100_000);
+    anyhow::ensure!(
+        (1..=max).contains(&a.shards),
+        "--shards {}: expected an integer from 1 to {max} (the map's number of nodes)",
+        a.shards
+    );
+    anyhow::ensure!(
+        (1..=1024).contains(&a.cpus_per_task),
+        "--cpus-per-task {}: expected an integer from 1 to 1024",
+        a.cpus_per_task
+    );
+    anyhow::ensure!(
+        (1..=525_600).contains(&a.time_limit_min),
+        "--time-limit-min {}: expected minutes from 1 to 525600 (a year)",
+        a.time_limit_min
+    );
+    if let Some(p) = &a.partition {
+        anyhow::ensure!(
+            slurm_name_ok(p),
+            "--partition {p:?}: expected a partition name of 1 to 64 letters, digits, '.', '_' or '-'"
+        );
+    }
+    if let Some(j) = &a.job_name {
+        anyhow::ensure!(
+            slurm_name_ok(j),
+            "--job-name {j:?}: expected 1 to 64 letters, digits, '.', '_' or '-'"
+        );
+    }
+    Ok(())
+}
+
+/// `ehl-map-<stem>` with the characters Slurm does not take replaced by `_`, at most 64.
+fn default_job_name(spec: &Path) -> String {
+    let stem = spec
+        .file_stem()
+        .map(|s| s.to_string_lossy().to_string())
+        .unwrap_or_else(|| "map".into());
+    format!("ehl-map-{stem}")
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || "._-".contains(c) {
+                c
+            } else {
+                '_'
+            }
+        })
+        .take(64)
+        .collect()
+}
+
+/// The map file as an absolute path (its folder must exist; the file need not).
+fn absolute_map(map: &Path) -> anyhow::Result<PathBuf> {
+    let name = map
+        .file_name()
+        .with_context(|| format!("--map {}: expected a file name", map.display()))?;
+    let dir = match map.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let dir = absolute(&dir).map_err(|e| anyhow::anyhow!("--map: its folder: {e}"))?;
+    anyhow::ensure!(
+        dir.is_dir(),
+        "--map {}: its folder is not a directory",
+        map.display()
+    );
+    Ok(dir.join(name))
+}
+
+/// The job from the arguments: spec read and checked, folders created, paths absolute.
+fn job(a: &LawMapSbatchArgs) -> anyhow::Result<MapJob> {
+    let text = std::fs::read_to_string(&a.spec)
+        .with_context(|| format!("reading {}", a.spec.display()))?;
+    let spec = LawMapSpec::from_toml(&text).with_context(|| format!("in {}", a.spec.display()))?;
+    spec.validate()
+        .with_context(|| format!("in {}", a.spec.display()))?;
+    let nodes = spec.node_count();
+    validate(a, nodes)?;
+    let bin = match &a.bin {
+        Some(b) => {
+            let bin = absolute(b).map_err(|e| anyhow::anyhow!("--bin: {e}"))?;
+            check_bin(&bin)?;
+            bin
+        }
+        None => std::env::current_exe()?,
+    };
+    let map = absolute_map(&a.map)?;
+    std::fs::create_dir_all(a.output.join("points"))
+        .map_err(|e| anyhow::anyhow!("creating {}: {e}", a.output.display()))?;
+    let output = absolute(&a.output)?;
+    let job_dir = a.job_dir.clone().unwrap_or_else(|| {
+        let name = output
+            .file_name()
+            .map(|n| n.to_string_lossy().to_string())
+            .unwrap_or_else(|| "map".into());
+        output.with_file_name(format!("{name}.slurm"))
+    });
+    std::fs::create_dir_all(job_dir.join("logs"))
+        .map_err(|e| anyhow::anyhow!("creating {}: {e}", job_dir.join("logs").display()))?;
+    let job_dir = absolute(&job_dir)?;
+    anyhow::ensure!(
+        !job_dir.starts_with(&output),
+        "--job-dir {}: expected a folder outside the node folder {}",
+        job_dir.display(),
+        output.display()
+    );
+    let spec_path = absolute(&a.spec)?;
+    Ok(MapJob {
+        job_name: a
+            .job_name
+            .clone()
+            .unwrap_or_else(|| default_job_name(&spec_path)),
+        spec: spec_path,
+        output,
+        map,
+        job_dir,
+        bin,
+        nodes,
+        shards: a.shards,
+        cpus_per_task: a.cpus_per_task,
+        time_limit_min: a.time_limit_min,
+        partition: a.partition.clone(),
+    })
+}
+
+/// Runs `law-map sbatch`.
+pub fn run(a: &LawMapSbatchArgs) -> anyhow::Result<()> {
+    let j = job(a)?;
+    let array = j.job_dir.join("law_map.sbatch");
+    let assemble = j.job_dir.join("assemble.sbatch");
+    crate::cli_support::write_atomic(&array, j.array_script().as_bytes())?;
+    crate::cli_support::write_atomic(&assemble, j.assemble_script().as_bytes())?;
+    println!(
+        "law map {}: {} nodes in {} shards (array tasks 1-{}, {} CPU(s) each, {} min)\n  array script {}\n  assemble script {}\n  logs in {}",
+        j.spec.display(),
+        j.nodes,
+        j.shards,
+        j.shards,
+        j.cpus_per_task,
+        j.time_limit_min,
+        array.display(),
+        assemble.display(),
+        j.job_dir.join("logs").display()
+    );
+    if !a.submit {
+        println!(
+            "submit:\n  id=$(sbatch --parsable {})\n  sbatch --dependency=afterok:$id --kill-on-invalid-dep=yes {}",
+            MapJob::q(&array),
+            MapJob::q(&assemble)
+        );
+        return Ok(());
+    }
+    let text = std::fs::read_to_string(&j.spec)?;
+    let spec = LawMapSpec::from_toml(&text)?;
+    let store = FsStore::open(&j.output)?;
+    let left = shards_with_nodes_left(&spec, &store, j.shards)?;
+    let assemble_s = assemble.display().to_string();
+    if left.is_empty() {
+        println!("  every node is done: submitting the assemble job only");
+        let id = sbatch(&a.sbatch, &["--parsable".into(), assemble_s])?;
+        println!("submitted assemble job {id}");
+        return Ok(());
+    }
+    let tasks = array_ranges(&left);
+    let array_id = sbatch(
+        &a.sbatch,
+        &[
+            "--parsable".into(),
+            format!("--array={tasks}"),
+            array.display().to_string(),
+        ],
+    )?;
+    let assemble_id = sbatch(
+        &a.sbatch,
+        &[
+            "--parsable".into(),
+            format!("--dependency=afterok:{array_id}"),
+            "--kill-on-invalid-dep=yes".into(),
+            assemble_s,
+        ],
+    )?;
+    println!(
+        "submitted array job {array_id} (tasks {tasks}) and assemble job {assemble_id} (runs after every task of {array_id} succeeded)"
+    );
+    Ok(())
+}
