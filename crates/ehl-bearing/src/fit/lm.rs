@@ -362,8 +362,8 @@ impl LmState {
             a[(m + j) * n + j] = sq;
         }
         let mut rhs = vec![0.0; rows];
-        for i in 0..m {
-            rhs[i] = -self.r[i];
+        for (v, ri) in rhs.iter_mut().zip(&self.r) {
+            *v = -ri;
         }
         let rfac = householder_qr(&mut a, rows, n, Some(&mut rhs));
         let z = solve_upper(&rfac, n, &rhs[..n]);
