@@ -18,7 +18,9 @@ use crate::ehl::{
     solve_steady_extrapolated_within, solve_steady_from_within, solve_steady_within, EhlContact,
     EhlSettings, EhlSolution, TransientSolver, TransientStep,
 };
-use crate::fit::{fit_power_law, fit_power_law_damped, FitOptions, FittedLaw, PowerLawStdErrors};
+use crate::fit::{
+    fit_power_law, fit_power_law_damped, FitOptions, FittedLaw, PowerLawFit, PowerLawStdErrors,
+};
 use crate::Error;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
@@ -780,51 +782,334 @@ pub fn ball_mass(diameter: f64, density: f64) -> f64 {
     density * std::f64::consts::PI / 6.0 * diameter.powi(3)
 }
 
-/// The harmonic method's start at the load maximum (see `characterize_harmonic`): a steady
-/// solution under the film force w0·(1 + ε) + m·Ω²·δa, δa = ε·w0/(k − m·Ω²), solved on the
-/// physical domain and grid of the centre solution at w0 (its domain in semi-axes scaled by
-/// the ratio of the semi-axes, which grow as w^(1/3)) and returned with its pressure in units of
-/// w0's Hertz pressure, with the start's acceleration δ̈ = −Ω²·δa (m/s²). None when the centre's
-/// domain is automatic (nearly rigid contacts) or the solution does not converge.
-#[allow(clippy::too_many_arguments)]
-fn peak_start(
-    c: &EhlContact,
-    ehl: &EhlSettings,
-    centre: &EhlSolution,
-    warm: &EhlSolution,
-    amplitude: f64,
+/// One run of the harmonic method: the contact, the settings, and the excitation derived from
+/// the steady solutions at w0 (SI).
+struct HarmonicRun<'a> {
+    c: &'a EhlContact,
+    s: &'a HarmonicSettings,
+    /// Ball mass m, kg.
     mass: f64,
-    omega: f64,
+    /// Linearized stiffness k, the secant of the steady solutions at w0·(1 ± 5 %), N/m.
     k_lin: f64,
+    /// Linearized natural frequency ω_n = √(k/m), rad/s.
+    omega_n: f64,
+    /// Excitation frequency Ω, rad/s.
+    omega: f64,
+    /// Time steps per period.
+    n_per: usize,
+    /// Time step, s.
+    dt: f64,
     deadline: Option<Deadline>,
-) -> Option<(EhlSolution, f64)> {
-    let delta_a = amplitude * c.load / (k_lin - mass * omega * omega);
-    let load = c.load * (1.0 + amplitude) + mass * omega * omega * delta_a;
-    let domain = family_domain(ehl, centre);
-    let (Some(inlet), Some(half_width)) = (domain.inlet, domain.half_width) else {
-        return None;
-    };
-    let scale = (c.load / load).cbrt();
-    let settings = EhlSettings {
-        inlet: Some(inlet * scale),
-        outlet: domain.outlet * scale,
-        half_width: Some(half_width * scale),
-        ..*ehl
-    };
-    let mut sol =
-        solve_steady_from_within(&EhlContact { load, ..*c }, &settings, warm, deadline).ok()?;
-    let (x0, x1) = (centre.fields.x.first()?, sol.fields.x.first()?);
-    if !sol.converged
-        || sol.fields.x.len() != centre.fields.x.len()
-        || (x1 - x0).abs() > 1e-9 * centre.fields.a_x
-    {
-        return None;
+}
+
+/// The steady solutions of the harmonic method at w0 and w0·(1 ± 5 %), and the linearized
+/// stiffness from them.
+struct SteadyCentre {
+    /// The solution at w0.
+    centre: EhlSolution,
+    /// The solutions at 0.95·w0 and 1.05·w0.
+    lo: EhlSolution,
+    hi: EhlSolution,
+    /// Secant stiffness 0.1·w0/(δ(1.05·w0) − δ(0.95·w0)), N/m.
+    k_lin: f64,
+}
+
+/// The time history of a harmonic run and how far it settled.
+struct Recording {
+    /// Every step, the settling ones first.
+    history: Vec<TransientStep>,
+    /// Steps run before the recorded periods.
+    settling: usize,
+    /// See [`HarmonicExcitation::periodicity`].
+    periodicity: f64,
+}
+
+/// Steady start of the harmonic method at w0 (it must converge) and the linearized stiffness
+/// from the solutions at w0·(1 ± 5 %), each warm-started from the one at w0.
+fn steady_centre(
+    c: &EhlContact,
+    s: &HarmonicSettings,
+    deadline: Option<Deadline>,
+) -> Result<SteadyCentre, Error> {
+    let centre = solve_steady_within(c, &s.ehl, deadline)?;
+    if !centre.converged {
+        return Err(crate::ehl::EhlError::NotConverged {
+            stage: "steady start of the harmonic method",
+            residual: centre.residual,
+            force_residual: centre.force_balance_residual,
+        }
+        .into());
     }
-    let ratio = sol.p_hertz / centre.p_hertz;
-    for p in &mut sol.fields.p_dimensionless {
-        *p *= ratio;
+    let side = |f: f64| {
+        solve_steady_from_within(
+            &EhlContact {
+                load: c.load * f,
+                ..*c
+            },
+            &s.ehl,
+            &centre,
+            deadline,
+        )
+    };
+    let (lo, hi) = (side(0.95)?, side(1.05)?);
+    let k_lin = 0.1 * c.load / (hi.approach - lo.approach);
+    if !(k_lin.is_finite() && k_lin > 0.0) {
+        return Err(crate::fit::FitError::NoElasticApproach {
+            load_n: c.load,
+            secant_stiffness_n_m: k_lin,
+        }
+        .into());
     }
-    Some((sol, -omega * omega * delta_a))
+    Ok(SteadyCentre {
+        centre,
+        lo,
+        hi,
+        k_lin,
+    })
+}
+
+/// The steady settings of the transient steps: the settings' `step_tol_film`, and the steps'
+/// own coarsest level only with at least two levels above it (on 33² the 33/17 pair stalls in
+/// some steps of the seed contact; there the steady solutions' levels serve).
+fn step_settings(s: &HarmonicSettings) -> EhlSettings {
+    let mut step_settings = EhlSettings {
+        tol_film: s.step_tol_film,
+        ..s.ehl
+    };
+    if s.ehl.grid > 4 * (s.step_coarsest - 1) {
+        step_settings.coarsest = s.step_coarsest;
+        step_settings.coarse_sweeps = s.step_coarse_sweeps;
+    }
+    step_settings
+}
+
+/// The periodicity of `history` with `settling` steps before the recorded ones: the largest
+/// change of δ over one period (`n_per` steps) in the last `quarter` steps before the recorded
+/// ones (fewer if there are fewer settling steps), relative to the recorded peak-to-peak δ; NaN
+/// without settling steps.
+fn periodicity_of(history: &[TransientStep], settling: usize, quarter: usize, n_per: usize) -> f64 {
+    let window = settling.min(quarter);
+    if window == 0 {
+        return f64::NAN;
+    }
+    let (lo, hi) = history[settling..]
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(x.approach), b.max(x.approach))
+        });
+    (settling - window..settling)
+        .map(|i| (history[i + n_per].approach - history[i].approach).abs())
+        .fold(0.0, f64::max)
+        / (hi - lo)
+}
+
+impl HarmonicRun<'_> {
+    /// The start at the load maximum (see `characterize_harmonic`): a steady solution under the
+    /// film force w0·(1 + ε) + m·Ω²·δa, δa = ε·w0/(k − m·Ω²), solved on the physical domain and
+    /// grid of the centre solution at w0 (its domain in semi-axes scaled by the ratio of the
+    /// semi-axes, which grow as w^(1/3)), warm-started from `warm`, and returned with its
+    /// pressure in units of w0's Hertz pressure, with the start's acceleration δ̈ = −Ω²·δa
+    /// (m/s²). None when the centre's domain is automatic (nearly rigid contacts) or the
+    /// solution does not converge.
+    fn peak_start(&self, centre: &EhlSolution, warm: &EhlSolution) -> Option<(EhlSolution, f64)> {
+        let (c, ehl) = (self.c, &self.s.ehl);
+        let (amplitude, mass, omega) = (self.s.amplitude, self.mass, self.omega);
+        let delta_a = amplitude * c.load / (self.k_lin - mass * omega * omega);
+        let load = c.load * (1.0 + amplitude) + mass * omega * omega * delta_a;
+        let domain = family_domain(ehl, centre);
+        let (Some(inlet), Some(half_width)) = (domain.inlet, domain.half_width) else {
+            return None;
+        };
+        let scale = (c.load / load).cbrt();
+        let settings = EhlSettings {
+            inlet: Some(inlet * scale),
+            outlet: domain.outlet * scale,
+            half_width: Some(half_width * scale),
+            ..*ehl
+        };
+        let load_c = EhlContact { load, ..*c };
+        let mut sol = solve_steady_from_within(&load_c, &settings, warm, self.deadline).ok()?;
+        let (x0, x1) = (centre.fields.x.first()?, sol.fields.x.first()?);
+        if !sol.converged
+            || sol.fields.x.len() != centre.fields.x.len()
+            || (x1 - x0).abs() > 1e-9 * centre.fields.a_x
+        {
+            return None;
+        }
+        let ratio = sol.p_hertz / centre.p_hertz;
+        for p in &mut sol.fields.p_dimensionless {
+            *p *= ratio;
+        }
+        Some((sol, -omega * omega * delta_a))
+    }
+
+    /// The transient solver at its start, with the phase of the load w0·(1 + ε·sin(Ωt + φ)) that
+    /// matches it (φ, rad). Below 0.7·ω_n: at the load maximum (phase 0 of
+    /// w(t) = w0·(1 + ε·cos Ωt)), where the periodic response is nearly at rest — δ̇ = 0 up to
+    /// the squeeze film's phase lag (≈ c·Ω/k, 2 % of the rate's amplitude on the seed contact)
+    /// and δ̈ = −Ω²·δa with δa = ε·w0/(k − m·Ω²) — from a steady solution under the film force
+    /// w0·(1 + ε) + m·Ω²·δa on the grid of w0 ([`HarmonicRun::peak_start`]). Its start
+    /// transient is ≈ 40× smaller than that of a start at w0 with the quasi-static rate (the
+    /// steady film there carries no squeeze), so a fraction of a period settles it
+    /// (docs/contact.md). Otherwise, or if that solution fails: the steady solution at w0 with
+    /// the quasi-static rate δ̇(0) = ε·w0·Ω/k (phase 0 of w0·(1 + ε·sin Ωt)).
+    fn start_solver(
+        &self,
+        steady: &SteadyCentre,
+        step_settings: &EhlSettings,
+    ) -> Result<(TransientSolver, f64), Error> {
+        let (c, s) = (self.c, self.s);
+        let peak = if self.omega < 0.7 * self.omega_n {
+            self.peak_start(&steady.centre, &steady.hi)
+        } else {
+            None
+        };
+        let phase = if peak.is_some() {
+            0.5 * std::f64::consts::PI
+        } else {
+            0.0
+        };
+        let solver = match peak {
+            Some((start, acceleration)) => TransientSolver::from_steady(
+                c,
+                step_settings,
+                start,
+                self.mass,
+                self.dt,
+                0.0,
+                s.max_cycles_per_step,
+            )?
+            .with_initial_acceleration(acceleration)?,
+            None => TransientSolver::from_steady(
+                c,
+                step_settings,
+                steady.centre.clone(),
+                self.mass,
+                self.dt,
+                s.amplitude * c.load * self.omega / self.k_lin,
+                s.max_cycles_per_step,
+            )?,
+        }
+        .with_deadline(self.deadline);
+        Ok((solver, phase))
+    }
+
+    /// Runs `solver` under w0·(1 + ε·sin(Ωt + `phase`)) through the settling and the recorded
+    /// periods. Settling: a quarter period, then a sixteenth of a period at a time while the
+    /// measured periodicity exceeds its bound. The first quarter period's steps are never
+    /// recorded: they run at the settling film tolerance.
+    fn run_periodic(&self, solver: &mut TransientSolver, phase: f64) -> Result<Recording, Error> {
+        let (c, s, n_per) = (self.c, self.s, self.n_per);
+        let quarter = n_per.div_ceil(4);
+        let increment = n_per.div_ceil(16);
+        let max_settling = s.settling_periods * n_per;
+        let recorded = s.recorded_periods * n_per;
+        let mut settling = quarter.min(max_settling);
+        let loose = settling;
+        let mut history = Vec::with_capacity(max_settling + recorded);
+        let mut advance = |history: &mut Vec<TransientStep>, upto: usize| -> Result<(), Error> {
+            for k in history.len() + 1..=upto {
+                let t = k as f64 * self.dt;
+                let w = c.load * (1.0 + s.amplitude * (self.omega * t + phase).sin());
+                solver.set_tol_film(if k <= loose {
+                    s.settling_tol_film
+                } else {
+                    s.step_tol_film
+                })?;
+                history.push(solver.step(w)?);
+            }
+            Ok(())
+        };
+        advance(&mut history, settling + recorded)?;
+        let mut periodicity = periodicity_of(&history, settling, quarter, n_per);
+        let settled = |p: f64| p <= s.periodicity_tol;
+        while !settled(periodicity) && settling < max_settling {
+            settling = (settling + increment).min(max_settling);
+            advance(&mut history, settling + recorded)?;
+            periodicity = periodicity_of(&history, settling, quarter, n_per);
+        }
+        Ok(Recording {
+            history,
+            settling,
+            periodicity,
+        })
+    }
+
+    /// The law Q = K·δ^d + ΔF (+ c·δ̇) fitted to the recorded steps of `rec`; an error when a
+    /// recorded approach is ≤ 0 (hydrodynamic contact; `centre` is the steady solution at w0).
+    fn fit_recorded(
+        &self,
+        rec: &Recording,
+        centre: &EhlSolution,
+    ) -> Result<(PowerLawFit, FittedLaw), Error> {
+        let steps = &rec.history[rec.settling..];
+        if let Some(bad) = steps.iter().find(|x| x.approach <= 0.0) {
+            return Err(crate::fit::FitError::HydrodynamicRegime {
+                approach: bad.approach,
+                load: bad.load,
+                time: Some(bad.time),
+                centre_load: self.c.load,
+                centre_approach: centre.approach,
+                amplitude: self.s.amplitude,
+            }
+            .into());
+        }
+        let delta: Vec<f64> = steps.iter().map(|x| x.approach).collect();
+        let rate: Vec<f64> = steps.iter().map(|x| x.velocity).collect();
+        let force: Vec<f64> = steps.iter().map(|x| x.film_force).collect();
+        let fit = if self.s.damping_term {
+            fit_power_law_damped(&delta, &rate, &force, &FitOptions::default())?
+        } else {
+            fit_power_law(&delta, &force, &FitOptions::default())?
+        };
+        let law = fit.law()?;
+        Ok((fit, law))
+    }
+
+    /// The excitation's record: the settings, the frequencies (`omega_n_hertz` the dry Hertz
+    /// contact's natural frequency, rad/s), the steps' settings as used, `dtt` the dimensionless
+    /// time step, and what was measured of the run `rec`.
+    fn excitation(
+        &self,
+        omega_n_hertz: f64,
+        step_settings: &EhlSettings,
+        dtt: f64,
+        rec: &Recording,
+    ) -> HarmonicExcitation {
+        let s = self.s;
+        let history = &rec.history;
+        let not_converged = history.iter().filter(|x| !x.converged).count();
+        let max_res = history.iter().map(|x| x.residual).fold(0.0, f64::max);
+        let cycles: usize = history.iter().map(|x| x.cycles).sum();
+        HarmonicExcitation {
+            amplitude: s.amplitude,
+            frequency_rad_s: self.omega,
+            frequency_over_natural: self.omega / self.omega_n,
+            natural_frequency_rad_s: self.omega_n,
+            natural_frequency_hertz_rad_s: omega_n_hertz,
+            linearized_stiffness_n_m: self.k_lin,
+            mass_kg: self.mass,
+            settling_periods: s.settling_periods,
+            settling_steps: rec.settling,
+            periodicity_tol: s.periodicity_tol,
+            settled: rec.periodicity <= s.periodicity_tol,
+            recorded_periods: s.recorded_periods,
+            steps_per_period: self.n_per,
+            time_step_s: self.dt,
+            time_step_over_transit: dtt,
+            damping_term: s.damping_term,
+            grid: s.ehl.grid,
+            step_tol_film: s.step_tol_film,
+            settling_tol_film: s.settling_tol_film,
+            max_cycles_per_step: s.max_cycles_per_step,
+            step_coarsest: step_settings.coarsest,
+            step_coarse_sweeps: step_settings.coarse_sweeps,
+            steps_not_converged: not_converged,
+            max_step_residual: max_res,
+            cycles_per_step: cycles as f64 / history.len() as f64,
+            periodicity: rec.periodicity,
+        }
+    }
 }
 
 /// Characterize a contact by the harmonic method (see the module documentation). `ball_mass` is
@@ -857,36 +1142,8 @@ pub fn characterize_harmonic_within(
     if !(mass.is_finite() && mass > 0.0) {
         return Err(crate::fit::FitError::BallMass { mass_kg: mass }.into());
     }
-    // Steady start at w0 and the linearized stiffness from w0·(1 ± 5 %).
-    let centre = solve_steady_within(c, &s.ehl, deadline)?;
-    if !centre.converged {
-        return Err(crate::ehl::EhlError::NotConverged {
-            stage: "steady start of the harmonic method",
-            residual: centre.residual,
-            force_residual: centre.force_balance_residual,
-        }
-        .into());
-    }
-    let side = |f: f64| {
-        solve_steady_from_within(
-            &EhlContact {
-                load: c.load * f,
-                ..*c
-            },
-            &s.ehl,
-            &centre,
-            deadline,
-        )
-    };
-    let (lo, hi) = (side(0.95)?, side(1.05)?);
-    let k_lin = 0.1 * c.load / (hi.approach - lo.approach);
-    if !(k_lin.is_finite() && k_lin > 0.0) {
-        return Err(crate::fit::FitError::NoElasticApproach {
-            load_n: c.load,
-            secant_stiffness_n_m: k_lin,
-        }
-        .into());
-    }
+    let steady = steady_centre(c, s, deadline)?;
+    let (centre, k_lin) = (&steady.centre, steady.k_lin);
     let omega_n = (k_lin / mass).sqrt();
     let omega_n_hertz = (1.5 * c.load / (mass * centre.approach_hertz)).sqrt();
     let omega = match s.frequency {
@@ -895,145 +1152,32 @@ pub fn characterize_harmonic_within(
     };
     let period = 2.0 * std::f64::consts::PI / omega;
     let n_per = s.steps_per_period;
-    let dt = period / n_per as f64;
+    let run = HarmonicRun {
+        c,
+        s,
+        mass,
+        k_lin,
+        omega_n,
+        omega,
+        n_per,
+        dt: period / n_per as f64,
+        deadline,
+    };
     let samples = vec![
-        sample(&lo, 0.95 * c.load),
-        sample(&centre, c.load),
-        sample(&hi, 1.05 * c.load),
+        sample(&steady.lo, 0.95 * c.load),
+        sample(centre, c.load),
+        sample(&steady.hi, 1.05 * c.load),
     ];
-    // The steps' own coarsest level only with at least two levels above it (on 33² the 33/17
-    // pair stalls in some steps of the seed contact; there the steady solutions' levels serve).
-    let mut step_settings = EhlSettings {
-        tol_film: s.step_tol_film,
-        ..s.ehl
-    };
-    if s.ehl.grid > 4 * (s.step_coarsest - 1) {
-        step_settings.coarsest = s.step_coarsest;
-        step_settings.coarse_sweeps = s.step_coarse_sweeps;
-    }
-    // The start. Below 0.7·ω_n: at the load maximum (phase 0 of w(t) = w0·(1 + ε·cos Ωt)),
-    // where the periodic response is nearly at rest — δ̇ = 0 up to the squeeze film's phase lag
-    // (≈ c·Ω/k, 2 % of the rate's amplitude on the seed contact) and δ̈ = −Ω²·δa with
-    // δa = ε·w0/(k − m·Ω²) — from a steady solution under the film force w0·(1 + ε) + m·Ω²·δa
-    // on the grid of w0. Its start transient is ≈ 40× smaller than that of a start at w0 with
-    // the quasi-static rate (the steady film there carries no squeeze), so a fraction of a
-    // period settles it (docs/contact.md). Otherwise, or if that solution fails: the steady
-    // solution at w0 with the quasi-static rate δ̇(0) = ε·w0·Ω/k (phase 0 of w0·(1 + ε·sin Ωt)).
-    let peak = if omega < 0.7 * omega_n {
-        peak_start(
-            c,
-            &s.ehl,
-            &centre,
-            &hi,
-            s.amplitude,
-            mass,
-            omega,
-            k_lin,
-            deadline,
-        )
-    } else {
-        None
-    };
-    let phase = if peak.is_some() {
-        0.5 * std::f64::consts::PI
-    } else {
-        0.0
-    };
-    let mut solver = match peak {
-        Some((start, acceleration)) => TransientSolver::from_steady(
-            c,
-            &step_settings,
-            start,
-            mass,
-            dt,
-            0.0,
-            s.max_cycles_per_step,
-        )?
-        .with_initial_acceleration(acceleration)?,
-        None => TransientSolver::from_steady(
-            c,
-            &step_settings,
-            centre.clone(),
-            mass,
-            dt,
-            s.amplitude * c.load * omega / k_lin,
-            s.max_cycles_per_step,
-        )?,
-    }
-    .with_deadline(deadline);
-    // Settling: a quarter period, then a sixteenth of a period at a time while the measured
-    // periodicity exceeds its bound. The first `settling` steps are never recorded: they run at
-    // the settling film tolerance.
-    let quarter = n_per.div_ceil(4);
-    let increment = n_per.div_ceil(16);
-    let max_settling = s.settling_periods * n_per;
-    let recorded = s.recorded_periods * n_per;
-    let mut settling = quarter.min(max_settling);
-    let loose = settling;
-    let mut history = Vec::with_capacity(max_settling + recorded);
-    let mut advance = |history: &mut Vec<TransientStep>, upto: usize| -> Result<(), Error> {
-        for k in history.len() + 1..=upto {
-            let t = k as f64 * dt;
-            let w = c.load * (1.0 + s.amplitude * (omega * t + phase).sin());
-            solver.set_tol_film(if k <= loose {
-                s.settling_tol_film
-            } else {
-                s.step_tol_film
-            })?;
-            history.push(solver.step(w)?);
-        }
-        Ok(())
-    };
-    advance(&mut history, settling + recorded)?;
-    // The largest change of δ over one period in the last quarter period before the recorded
-    // one, relative to the recorded peak-to-peak δ.
-    let periodicity_of = |history: &[TransientStep], settling: usize| {
-        let window = settling.min(quarter);
-        if window == 0 {
-            return f64::NAN;
-        }
-        let (lo, hi) = history[settling..]
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-                (a.min(x.approach), b.max(x.approach))
-            });
-        (settling - window..settling)
-            .map(|i| (history[i + n_per].approach - history[i].approach).abs())
-            .fold(0.0, f64::max)
-            / (hi - lo)
-    };
-    let mut periodicity = periodicity_of(&history, settling);
-    let settled = |p: f64| p <= s.periodicity_tol;
-    while !settled(periodicity) && settling < max_settling {
-        settling = (settling + increment).min(max_settling);
-        advance(&mut history, settling + recorded)?;
-        periodicity = periodicity_of(&history, settling);
-    }
-    let total = history.len();
-    let rec = &history[settling..];
-    if let Some(bad) = rec.iter().find(|x| x.approach <= 0.0) {
-        return Err(crate::fit::FitError::HydrodynamicRegime {
-            approach: bad.approach,
-            load: bad.load,
-            time: Some(bad.time),
-            centre_load: c.load,
-            centre_approach: centre.approach,
-            amplitude: s.amplitude,
-        }
-        .into());
-    }
-    let delta: Vec<f64> = rec.iter().map(|x| x.approach).collect();
-    let rate: Vec<f64> = rec.iter().map(|x| x.velocity).collect();
-    let force: Vec<f64> = rec.iter().map(|x| x.film_force).collect();
-    let fit = if s.damping_term {
-        fit_power_law_damped(&delta, &rate, &force, &FitOptions::default())?
-    } else {
-        fit_power_law(&delta, &force, &FitOptions::default())?
-    };
-    let law = fit.law()?;
-    let not_converged = history.iter().filter(|x| !x.converged).count();
-    let max_res = history.iter().map(|x| x.residual).fold(0.0, f64::max);
-    let cycles: usize = history.iter().map(|x| x.cycles).sum();
+    let step_settings = step_settings(s);
+    let (mut solver, phase) = run.start_solver(&steady, &step_settings)?;
+    let rec = run.run_periodic(&mut solver, phase)?;
+    let (fit, law) = run.fit_recorded(&rec, centre)?;
+    let excitation = run.excitation(
+        omega_n_hertz,
+        &step_settings,
+        solver.dt_dimensionless(),
+        &rec,
+    );
     Ok(ContactFit {
         method: "harmonic".into(),
         k: fit.k,
@@ -1049,39 +1193,12 @@ pub fn characterize_harmonic_within(
         moes_m: centre.moes_m,
         moes_l: centre.moes_l,
         ry_over_rx: centre.ry_over_rx,
-        excitation: Excitation::Harmonic(HarmonicExcitation {
-            amplitude: s.amplitude,
-            frequency_rad_s: omega,
-            frequency_over_natural: omega / omega_n,
-            natural_frequency_rad_s: omega_n,
-            natural_frequency_hertz_rad_s: omega_n_hertz,
-            linearized_stiffness_n_m: k_lin,
-            mass_kg: mass,
-            settling_periods: s.settling_periods,
-            settling_steps: settling,
-            periodicity_tol: s.periodicity_tol,
-            settled: settled(periodicity),
-            recorded_periods: s.recorded_periods,
-            steps_per_period: n_per,
-            time_step_s: dt,
-            time_step_over_transit: solver.dt_dimensionless(),
-            damping_term: s.damping_term,
-            grid: s.ehl.grid,
-            step_tol_film: s.step_tol_film,
-            settling_tol_film: s.settling_tol_film,
-            max_cycles_per_step: s.max_cycles_per_step,
-            step_coarsest: step_settings.coarsest,
-            step_coarse_sweeps: step_settings.coarse_sweeps,
-            steps_not_converged: not_converged,
-            max_step_residual: max_res,
-            cycles_per_step: cycles as f64 / total as f64,
-            periodicity,
-        }),
-        converged: fit.converged && not_converged == 0,
+        converged: fit.converged && excitation.steps_not_converged == 0,
+        excitation: Excitation::Harmonic(excitation),
         seconds: t0.elapsed().as_secs_f64(),
         samples,
-        history,
-        settling_steps: settling,
+        history: rec.history,
+        settling_steps: rec.settling,
         film: None,
         law,
     })

@@ -290,16 +290,36 @@ impl Level {
     /// The sweep of [`Level::relax`] without the film update: P changes, H, ρ̄ and ε are those of
     /// before the sweep (for the coarsest grid, which updates H0 from ∬P and then the film).
     pub fn relax_lines(&mut self, pr: &Problem, prm: &MgParams) {
-        let (nx, ny) = (self.nx, self.ny);
-        let (ihx, ihx2) = (self.ihx, self.ihx2);
-        let ky = pr.kappa2 * self.ihy2;
-        let nb = 2 * BAND + 1;
+        let ny = self.ny;
         let mut delta = std::mem::take(&mut self.delta);
         delta.iter_mut().for_each(|v| *v = 0.0);
-        let mut band = std::mem::take(&mut self.band);
-        let mut rhs = std::mem::take(&mut self.rhs);
-        let mut jd = std::mem::take(&mut self.jd);
-        let k0 = self.kloc[0][0];
+        let mut ls = self.line_scratch(prm);
+        let mut any_jd = false;
+        for j in 1..ny - 1 {
+            self.line_coefficients(pr, prm, j, &mut ls);
+            self.line_band(pr, j, &mut ls);
+            if !self.solve_line(j, &mut ls) {
+                continue;
+            }
+            any_jd |= self.apply_line(j, &ls, &mut delta);
+        }
+        if any_jd {
+            self.distribute(&delta, prm.omega_jd);
+        }
+        self.delta = delta;
+        self.band = ls.band;
+        self.rhs = ls.rhs;
+        self.jd = ls.jd;
+    }
+
+    /// The work arrays of a sweep's line solves: the level's line buffers (taken, given back at
+    /// the end of the sweep), the per-row arrays, and the kernel of a Jacobi-distributive change.
+    #[inline]
+    fn line_scratch(&mut self, prm: &MgParams) -> LineScratch {
+        let nx = self.nx;
+        let band = std::mem::take(&mut self.band);
+        let rhs = std::mem::take(&mut self.rhs);
+        let jd = std::mem::take(&mut self.jd);
         // Kernel of a Jacobi-distributive change along its own line (dy = 0).
         let mut kd = [0.0; KX + 1];
         for (d, v) in kd.iter_mut().enumerate().take(KX) {
@@ -307,196 +327,265 @@ impl Level {
             *v = self.k(di, 0)
                 - 0.25 * (self.k(di - 1, 0) + self.k(di + 1, 0) + 2.0 * self.k(di, 1));
         }
-        let mut any_jd = false;
-        let mut om = vec![prm.omega_gs; nx];
-        let mut borig = band.clone();
-        let mut rorig = rhs.clone();
-        let mut held = vec![false; nx];
-        // The Poiseuille coefficients of each row of the line (centre, west, east, south, north),
-        // computed once for the classification, the residual and the band.
-        let mut cws = vec![[0.0; 5]; nx];
-        for j in 1..ny - 1 {
-            // classify and residuals
-            for i in 1..nx - 1 {
-                let idx = j * nx + i;
-                let e = &self.eps;
-                let ew = 0.5 * (e[idx] + e[idx - 1]);
-                let ee = 0.5 * (e[idx] + e[idx + 1]);
-                let es = 0.5 * (e[idx] + e[idx - nx]);
-                let en = 0.5 * (e[idx] + e[idx + nx]);
-                let cw = [
-                    -(ew + ee) * ihx2 - ky * (es + en),
-                    ew * ihx2,
-                    ee * ihx2,
-                    ky * es,
-                    ky * en,
-                ];
-                cws[i] = cw;
-                let ap = -cw[0];
-                let aw = self.rho[idx] * k0 * (ihx + pr.squeeze);
-                jd[i] = ap < prm.jd_threshold * aw;
-                // Deep in the Poiseuille-dominated inlet the line solve is stable undamped (ω = 1);
-                // damping there leaves interpolation errors of the coarse-grid correction alive.
-                om[i] = if ap > 1000.0 * aw { 1.0 } else { prm.omega_gs };
-                // The residual f − L(P) at the node (the operator of `op`, from the same faces).
-                let p = &self.p;
-                let poi = cw[0] * p[idx]
-                    + cw[1] * p[idx - 1]
-                    + cw[2] * p[idx + 1]
-                    + cw[3] * p[idx - nx]
-                    + cw[4] * p[idx + nx];
-                let wedge = self.wedge_flux(i, idx) * ihx;
-                let squeeze = pr.squeeze * self.rho[idx] * self.h[idx];
-                rhs[i] = self.f[idx] - (poi - wedge - squeeze);
-            }
-            // build band matrix: row r = i-1, column offset c = k - i + BAND
-            for i in 1..nx - 1 {
-                let idx = j * nx + i;
-                let cw = cws[i];
-                let ww = Self::wedge_w(i);
-                let rr = [
-                    (ww[0] * ihx + pr.squeeze) * self.rho[idx],
-                    ww[1] * self.rho[idx - 1] * ihx,
-                    if i >= 2 {
-                        ww[2] * self.rho[idx - 2] * ihx
-                    } else {
-                        0.0
-                    },
-                ];
-                // Poiseuille coefficient of row i for the node at offset o = −3…3 (index o + 3).
-                let pz = [0.0, 0.0, cw[1], cw[0], cw[2], 0.0, 0.0];
-                let row = &mut band[(i - 1) * nb..i * nb];
-                for (c, out) in row.iter_mut().enumerate() {
-                    // Column k = i + c − BAND, inside the line's interior 1…nx − 2.
-                    let kb = i + c;
-                    if kb < BAND + 1 || kb > nx - 2 + BAND {
-                        *out = 0.0;
-                        continue;
-                    }
-                    let k = kb - BAND;
-                    let d = c as isize - BAND as isize;
-                    // wedge: Σ_t rr_t · K(i − t − k) = Σ_t rr_t · K(d + t)
-                    let tab = if jd[k] { &kd } else { &self.kloc[0] };
-                    let wsum = rr[0] * tab[d.unsigned_abs()]
-                        + rr[1] * tab[(d + 1).unsigned_abs()]
-                        + rr[2] * tab[(d + 2).unsigned_abs()];
-                    let mut a = pz[c + 1] - wsum;
-                    if jd[k] {
-                        a -= 0.25 * (pz[c] + pz[c + 2]);
-                        if c == BAND {
-                            a -= 0.25 * (cw[3] + cw[4]);
-                        }
-                    }
-                    *out = a;
-                }
-            }
-            let n = nx - 2;
-            borig.copy_from_slice(&band);
-            rorig.copy_from_slice(&rhs);
-            // The active set starts from the Gauss–Seidel points at zero pressure (the last
-            // sweep's cavitated ones): where that is already the final set the line is solved
-            // once instead of twice (unconstrained, then constrained). A line without such points
-            // is solved unconstrained first and its set taken from that solve, as before.
-            let mut any = false;
-            for i in 1..nx - 1 {
-                held[i] = !jd[i] && self.p[j * nx + i] <= 0.0;
-                any |= held[i];
-            }
-            if !any {
-                if !solve_band(&mut band, &mut rhs[1..nx - 1], n) {
-                    continue;
-                }
-                for i in 1..nx - 1 {
-                    held[i] = !jd[i] && self.p[j * nx + i] + om[i] * rhs[i] < 0.0;
-                    any |= held[i];
-                }
-            }
-            // Projected solve (an active-set iteration on the line): Gauss–Seidel points that
-            // would become negative are held at zero and the line is solved again with those
-            // rows replaced by P + ω·δ = 0; then every Gauss–Seidel row is checked against its
-            // own equation with the neighbours' new changes — a held point whose free change
-            // would keep it positive is released, a free one that would go negative is held —
-            // and the line solved again, until the set is stable (at most ACTIVE_SET_PASSES).
-            // Holding points on the first solve's verdict alone kept nodes next to the outlet's
-            // cavitation boundary at zero for good: the coupling with their cavitating
-            // neighbours made their unconstrained change negative, while their own equation
-            // asked for a positive pressure (docs/ehl.md §2, "Projection").
-            if any {
-                let mut ok = true;
-                for pass in 0..=ACTIVE_SET_PASSES {
-                    band.copy_from_slice(&borig);
-                    rhs.copy_from_slice(&rorig);
-                    for i in 1..nx - 1 {
-                        if held[i] {
-                            let r = i - 1;
-                            band[r * nb..(r + 1) * nb].fill(0.0);
-                            band[r * nb + BAND] = 1.0;
-                            rhs[i] = -self.p[j * nx + i] / om[i];
-                        }
-                    }
-                    if !solve_band(&mut band, &mut rhs[1..nx - 1], n) {
-                        ok = false;
-                        break;
-                    }
-                    if pass == ACTIVE_SET_PASSES {
-                        break;
-                    }
-                    let mut changed = false;
-                    for i in 1..nx - 1 {
-                        if jd[i] {
-                            continue;
-                        }
-                        let r = i - 1;
-                        let row = &borig[r * nb..(r + 1) * nb];
-                        let mut free = rorig[i];
-                        for (c, a) in row.iter().enumerate() {
-                            let k = i + c;
-                            if c != BAND && k > BAND && k - BAND < nx - 1 {
-                                free -= a * rhs[k - BAND];
-                            }
-                        }
-                        let hold = self.p[j * nx + i] + om[i] * free / row[BAND] < 0.0;
-                        changed |= hold != held[i];
-                        held[i] = hold;
-                    }
-                    if !changed {
-                        break;
-                    }
-                }
-                if !ok {
-                    continue;
-                }
-            }
-            for i in 1..nx - 1 {
-                let d = rhs[i];
-                let idx = j * nx + i;
-                if jd[i] {
-                    delta[idx] = d;
-                    any_jd = true;
-                } else {
-                    let v = self.p[idx] + om[i] * d;
-                    self.p[idx] = v.max(0.0);
-                }
-            }
+        LineScratch {
+            borig: band.clone(),
+            rorig: rhs.clone(),
+            band,
+            rhs,
+            jd,
+            om: vec![prm.omega_gs; nx],
+            held: vec![false; nx],
+            cws: vec![[0.0; 5]; nx],
+            kd,
         }
-        if any_jd {
-            for j in 1..ny - 1 {
-                for i in 1..nx - 1 {
-                    let idx = j * nx + i;
-                    let d = delta[idx]
-                        - 0.25
-                            * (delta[idx - 1] + delta[idx + 1] + delta[idx - nx] + delta[idx + nx]);
-                    if d != 0.0 {
-                        self.p[idx] = (self.p[idx] + prm.omega_jd * d).max(0.0);
-                    }
-                }
-            }
-        }
-        self.delta = delta;
-        self.band = band;
-        self.rhs = rhs;
-        self.jd = jd;
     }
+
+    /// For each interior node of line j: the Poiseuille coefficients (into `ls.cws`), the
+    /// classification Gauss–Seidel or Jacobi-distributive (`ls.jd`), the relaxation factor
+    /// (`ls.om`) and the residual f − L(P) (`ls.rhs`).
+    #[inline]
+    fn line_coefficients(&self, pr: &Problem, prm: &MgParams, j: usize, ls: &mut LineScratch) {
+        let nx = self.nx;
+        let (ihx, ihx2) = (self.ihx, self.ihx2);
+        let ky = pr.kappa2 * self.ihy2;
+        let k0 = self.kloc[0][0];
+        for i in 1..nx - 1 {
+            let idx = j * nx + i;
+            let e = &self.eps;
+            let ew = 0.5 * (e[idx] + e[idx - 1]);
+            let ee = 0.5 * (e[idx] + e[idx + 1]);
+            let es = 0.5 * (e[idx] + e[idx - nx]);
+            let en = 0.5 * (e[idx] + e[idx + nx]);
+            let cw = [
+                -(ew + ee) * ihx2 - ky * (es + en),
+                ew * ihx2,
+                ee * ihx2,
+                ky * es,
+                ky * en,
+            ];
+            ls.cws[i] = cw;
+            let ap = -cw[0];
+            let aw = self.rho[idx] * k0 * (ihx + pr.squeeze);
+            ls.jd[i] = ap < prm.jd_threshold * aw;
+            // Deep in the Poiseuille-dominated inlet the line solve is stable undamped (ω = 1);
+            // damping there leaves interpolation errors of the coarse-grid correction alive.
+            ls.om[i] = if ap > 1000.0 * aw { 1.0 } else { prm.omega_gs };
+            // The residual f − L(P) at the node (the operator of `op`, from the same faces).
+            let p = &self.p;
+            let poi = cw[0] * p[idx]
+                + cw[1] * p[idx - 1]
+                + cw[2] * p[idx + 1]
+                + cw[3] * p[idx - nx]
+                + cw[4] * p[idx + nx];
+            let wedge = self.wedge_flux(i, idx) * ihx;
+            let squeeze = pr.squeeze * self.rho[idx] * self.h[idx];
+            ls.rhs[i] = self.f[idx] - (poi - wedge - squeeze);
+        }
+    }
+
+    /// The band matrix of line j's system (`ls.band`): Poiseuille terms, the wedge and squeeze
+    /// terms through the deformation of the line's own points within the band, and the
+    /// distribution of the Jacobi-distributive points' changes. Row r = i − 1, column offset
+    /// c = k − i + BAND.
+    #[inline]
+    fn line_band(&self, pr: &Problem, j: usize, ls: &mut LineScratch) {
+        let nx = self.nx;
+        let ihx = self.ihx;
+        let nb = 2 * BAND + 1;
+        for i in 1..nx - 1 {
+            let idx = j * nx + i;
+            let cw = ls.cws[i];
+            let ww = Self::wedge_w(i);
+            let rr = [
+                (ww[0] * ihx + pr.squeeze) * self.rho[idx],
+                ww[1] * self.rho[idx - 1] * ihx,
+                if i >= 2 {
+                    ww[2] * self.rho[idx - 2] * ihx
+                } else {
+                    0.0
+                },
+            ];
+            // Poiseuille coefficient of row i for the node at offset o = −3…3 (index o + 3).
+            let pz = [0.0, 0.0, cw[1], cw[0], cw[2], 0.0, 0.0];
+            let row = &mut ls.band[(i - 1) * nb..i * nb];
+            for (c, out) in row.iter_mut().enumerate() {
+                // Column k = i + c − BAND, inside the line's interior 1…nx − 2.
+                let kb = i + c;
+                if kb < BAND + 1 || kb > nx - 2 + BAND {
+                    *out = 0.0;
+                    continue;
+                }
+                let k = kb - BAND;
+                let d = c as isize - BAND as isize;
+                // wedge: Σ_t rr_t · K(i − t − k) = Σ_t rr_t · K(d + t)
+                let tab = if ls.jd[k] { &ls.kd } else { &self.kloc[0] };
+                let wsum = rr[0] * tab[d.unsigned_abs()]
+                    + rr[1] * tab[(d + 1).unsigned_abs()]
+                    + rr[2] * tab[(d + 2).unsigned_abs()];
+                let mut a = pz[c + 1] - wsum;
+                if ls.jd[k] {
+                    a -= 0.25 * (pz[c] + pz[c + 2]);
+                    if c == BAND {
+                        a -= 0.25 * (cw[3] + cw[4]);
+                    }
+                }
+                *out = a;
+            }
+        }
+    }
+
+    /// Solves line j's system for the changes δ (into `ls.rhs`), projected so that no
+    /// Gauss–Seidel point goes below P = 0. False when a pivot fails: the line is left as it is.
+    ///
+    /// The active set starts from the Gauss–Seidel points at zero pressure (the last sweep's
+    /// cavitated ones): where that is already the final set the line is solved once instead of
+    /// twice (unconstrained, then constrained). A line without such points is solved
+    /// unconstrained first and its set taken from that solve.
+    #[inline]
+    fn solve_line(&self, j: usize, ls: &mut LineScratch) -> bool {
+        let nx = self.nx;
+        let n = nx - 2;
+        ls.borig.copy_from_slice(&ls.band);
+        ls.rorig.copy_from_slice(&ls.rhs);
+        let mut any = false;
+        for i in 1..nx - 1 {
+            ls.held[i] = !ls.jd[i] && self.p[j * nx + i] <= 0.0;
+            any |= ls.held[i];
+        }
+        if !any {
+            if !solve_band(&mut ls.band, &mut ls.rhs[1..nx - 1], n) {
+                return false;
+            }
+            for i in 1..nx - 1 {
+                ls.held[i] = !ls.jd[i] && self.p[j * nx + i] + ls.om[i] * ls.rhs[i] < 0.0;
+                any |= ls.held[i];
+            }
+        }
+        !any || self.projected_solve(j, ls)
+    }
+
+    /// The projected solve of line j (an active-set iteration on the line): Gauss–Seidel points
+    /// that would become negative are held at zero and the line is solved again with those rows
+    /// replaced by P + ω·δ = 0; then every Gauss–Seidel row is checked against its own equation
+    /// with the neighbours' new changes ([`Level::update_active_set`]) and the line solved again,
+    /// until the set is stable (at most ACTIVE_SET_PASSES). Holding points on the first solve's
+    /// verdict alone kept nodes next to the outlet's cavitation boundary at zero for good: the
+    /// coupling with their cavitating neighbours made their unconstrained change negative, while
+    /// their own equation asked for a positive pressure (docs/ehl.md §2, "Projection"). False
+    /// when a pivot fails.
+    #[inline]
+    fn projected_solve(&self, j: usize, ls: &mut LineScratch) -> bool {
+        let nx = self.nx;
+        let n = nx - 2;
+        let nb = 2 * BAND + 1;
+        for pass in 0..=ACTIVE_SET_PASSES {
+            ls.band.copy_from_slice(&ls.borig);
+            ls.rhs.copy_from_slice(&ls.rorig);
+            for i in 1..nx - 1 {
+                if ls.held[i] {
+                    let r = i - 1;
+                    ls.band[r * nb..(r + 1) * nb].fill(0.0);
+                    ls.band[r * nb + BAND] = 1.0;
+                    ls.rhs[i] = -self.p[j * nx + i] / ls.om[i];
+                }
+            }
+            if !solve_band(&mut ls.band, &mut ls.rhs[1..nx - 1], n) {
+                return false;
+            }
+            if pass == ACTIVE_SET_PASSES || !self.update_active_set(j, ls) {
+                break;
+            }
+        }
+        true
+    }
+
+    /// Checks every Gauss–Seidel row of line j against its own equation (`ls.borig`,
+    /// `ls.rorig`) with the neighbours' new changes (`ls.rhs`): a held point whose free change
+    /// would keep it positive is released, a free one that would go negative is held. Returns
+    /// whether the active set changed.
+    #[inline]
+    fn update_active_set(&self, j: usize, ls: &mut LineScratch) -> bool {
+        let nx = self.nx;
+        let nb = 2 * BAND + 1;
+        let mut changed = false;
+        for i in 1..nx - 1 {
+            if ls.jd[i] {
+                continue;
+            }
+            let r = i - 1;
+            let row = &ls.borig[r * nb..(r + 1) * nb];
+            let mut free = ls.rorig[i];
+            for (c, a) in row.iter().enumerate() {
+                let k = i + c;
+                if c != BAND && k > BAND && k - BAND < nx - 1 {
+                    free -= a * ls.rhs[k - BAND];
+                }
+            }
+            let hold = self.p[j * nx + i] + ls.om[i] * free / row[BAND] < 0.0;
+            changed |= hold != ls.held[i];
+            ls.held[i] = hold;
+        }
+        changed
+    }
+
+    /// Applies line j's changes (`ls.rhs`): Gauss–Seidel points at once (P + ω·δ, kept ≥ 0),
+    /// Jacobi-distributive ones stored in `delta` for [`Level::distribute`]. Returns whether
+    /// the line has Jacobi-distributive points.
+    #[inline]
+    fn apply_line(&mut self, j: usize, ls: &LineScratch, delta: &mut [f64]) -> bool {
+        let nx = self.nx;
+        let mut any_jd = false;
+        for i in 1..nx - 1 {
+            let d = ls.rhs[i];
+            let idx = j * nx + i;
+            if ls.jd[i] {
+                delta[idx] = d;
+                any_jd = true;
+            } else {
+                let v = self.p[idx] + ls.om[i] * d;
+                self.p[idx] = v.max(0.0);
+            }
+        }
+        any_jd
+    }
+
+    /// The Jacobi-distributive changes of a sweep: δ at a point and −δ/4 at its four
+    /// neighbours, relaxed by `omega_jd`, P kept ≥ 0.
+    #[inline]
+    fn distribute(&mut self, delta: &[f64], omega_jd: f64) {
+        let (nx, ny) = (self.nx, self.ny);
+        for j in 1..ny - 1 {
+            for i in 1..nx - 1 {
+                let idx = j * nx + i;
+                let d = delta[idx]
+                    - 0.25 * (delta[idx - 1] + delta[idx + 1] + delta[idx - nx] + delta[idx + nx]);
+                if d != 0.0 {
+                    self.p[idx] = (self.p[idx] + omega_jd * d).max(0.0);
+                }
+            }
+        }
+    }
+}
+
+/// Work arrays of a relaxation sweep's line solves, reused from line to line.
+struct LineScratch {
+    /// Band matrix of the line system: rows 1…nx − 2 of the line, 2·BAND + 1 entries each.
+    band: Vec<f64>,
+    /// Right-hand side (the residuals) and, after the solve, the changes δ, indexed by node i.
+    rhs: Vec<f64>,
+    /// `band` and `rhs` before the active-set rows replace theirs.
+    borig: Vec<f64>,
+    rorig: Vec<f64>,
+    /// Per node: relaxed Jacobi-distributive (else Gauss–Seidel).
+    jd: Vec<bool>,
+    /// Per node: relaxation factor ω of a Gauss–Seidel change.
+    om: Vec<f64>,
+    /// Per node: held at P = 0 in the projected solve.
+    held: Vec<bool>,
+    /// Per node: the Poiseuille coefficients (centre, west, east, south, north).
+    cws: Vec<[f64; 5]>,
+    /// Kernel of a Jacobi-distributive change along its own line (dy = 0).
+    kd: [f64; KX + 1],
 }
 
 /// Whether a pivot cannot be divided by (vanishing or not finite): the line solvers give up.

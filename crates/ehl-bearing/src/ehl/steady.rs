@@ -335,45 +335,68 @@ fn hertz_fill(lv: &mut super::multigrid::Level) {
     }
 }
 
-/// Runs the multigrid iteration. `Err((cycles, lowest residual reached))` on divergence.
-fn iterate(
+/// Central film H_c (dimensionless) of level `k`, bilinear at X = Y = 0.
+fn centre_film(hier: &Hierarchy, k: usize) -> f64 {
+    let lv = &hier.levels[k];
+    bilinear(&lv.h, &lv.x, &lv.y, 0.0, 0.0)
+}
+
+/// What the discretization-error estimate of an iteration is measured against: (H_c, H0) on
+/// the next coarser grid at the end of the full-multigrid start, or an estimate carried over
+/// from a neighbouring solution (warm starts).
+struct DiscretizationReference {
+    coarse: Option<(f64, f64)>,
+    prior: Option<[f64; 2]>,
+}
+
+impl DiscretizationReference {
+    /// Relative discretization errors of (H_c, H0) for the finest grid's `hc` and `h0`: from the
+    /// coarser grid's values, |X − X_2h|/3 over the scales `scale` (H_c) and `s0` (H0), else the
+    /// carried-over estimate, else None.
+    fn estimate(&self, hc: f64, h0: f64, scale: f64, s0: f64) -> Option<[f64; 2]> {
+        match (self.coarse, self.prior) {
+            (Some((hc2, h02)), _) => {
+                Some([(hc - hc2).abs() / scale / 3.0, (h0 - h02).abs() / s0 / 3.0])
+            }
+            (None, p) => p,
+        }
+    }
+}
+
+/// Puts the start into `hier`: for [`Start::Hertz`] a Hertzian pressure on the coarsest grid
+/// with H0 from `h_est`, 4 cycles there and `s.fmg_cycles` on each finer grid below the finest
+/// (full multigrid); for [`Start::Given`] the pressure and H0 (or H0 from `h_est`) on the finest
+/// grid. Returns the reference of the discretization-error estimate.
+fn start_hierarchy(
+    hier: &mut Hierarchy,
     pr: &Problem,
+    prm: &MgParams,
     s: &EhlSettings,
     start: Start,
     h_est: f64,
-    max_cycles: usize,
-    deadline: Option<Deadline>,
-) -> Result<Core, (usize, f64)> {
-    let mut prm = params(s);
-    prm.h0_relax *= pr.h0_gain_scale;
-    let mut hier = Hierarchy::new(pr, s.grid, s.coarsest);
+) -> DiscretizationReference {
     let nl = hier.levels.len();
     let top = nl - 1;
-    let centre_of = |h: &Hierarchy, k: usize| {
-        let lv = &h.levels[k];
-        bilinear(&lv.h, &lv.x, &lv.y, 0.0, 0.0)
-    };
-    // (H_c, H0) on the next coarser grid at the end of the full-multigrid start.
-    let mut coarse_ref: Option<(f64, f64)> = None;
-    let mut prior: Option<[f64; 2]> = None;
+    let mut coarse = None;
+    let mut prior = None;
     match start {
         Start::Hertz => {
             hertz_fill(&mut hier.levels[0]);
-            set_h0_from_estimate(&mut hier, pr, 0, h_est);
+            set_h0_from_estimate(hier, pr, 0, h_est);
             for _ in 0..4 {
-                hier.cycle(pr, &prm, 0);
+                hier.cycle(pr, prm, 0);
             }
             if top == 1 {
-                coarse_ref = Some((centre_of(&hier, 0), hier.h0));
+                coarse = Some((centre_film(hier, 0), hier.h0));
             }
             for k in 1..nl {
                 hier.prolong_solution(pr, k);
                 if k < top {
                     for _ in 0..s.fmg_cycles {
-                        hier.cycle(pr, &prm, k);
+                        hier.cycle(pr, prm, k);
                     }
                     if k + 1 == top {
-                        coarse_ref = Some((centre_of(&hier, k), hier.h0));
+                        coarse = Some((centre_film(hier, k), hier.h0));
                     }
                 }
             }
@@ -386,10 +409,63 @@ fn iterate(
                     hier.h0 = h0;
                     hier.levels[top].update_film(pr, h0);
                 }
-                None => set_h0_from_estimate(&mut hier, pr, top, h_est),
+                None => set_h0_from_estimate(hier, pr, top, h_est),
             }
         }
     }
+    DiscretizationReference { coarse, prior }
+}
+
+/// The stopping rule of [`EhlSettings::discretization_fraction`] `theta`: whether the iteration
+/// error left in (H_c, H0) — the last relative changes `change` continued geometrically with the
+/// observed convergence factor — and the force-balance error `fb` are below `theta` times the
+/// discretization estimate `d` (clamped to [DISCRETIZATION_FLOOR, DISCRETIZATION_CAP]), with
+/// the relative residual (the last of `history`) below DISCRETIZATION_RESIDUAL_GUARD. `prev` are
+/// the changes of the cycle before.
+fn within_discretization(
+    theta: f64,
+    d: [f64; 2],
+    change: [f64; 2],
+    prev: [f64; 2],
+    history: &[f64],
+    fb: f64,
+) -> bool {
+    // Convergence factor: the more pessimistic of the last change ratio and the
+    // residual ratio (the film can oscillate from cycle to cycle while the
+    // residual falls steadily).
+    let n = history.len();
+    let rel = history[n - 1];
+    let rho_res = history[n - 1] / history[n - 2];
+    let small = (0..2).all(|q| {
+        let rho = if change[q] == 0.0 {
+            rho_res.max(DISC_RHO_MIN)
+        } else {
+            (change[q] / prev[q]).max(rho_res).max(DISC_RHO_MIN)
+        };
+        let allowed = theta * d[q].clamp(DISCRETIZATION_FLOOR, DISCRETIZATION_CAP);
+        rho < DISC_RHO_MAX && change[q] * rho / (1.0 - rho) <= allowed
+    });
+    let allowed_fb = theta
+        * d[0]
+            .max(d[1])
+            .clamp(DISCRETIZATION_FLOOR, DISCRETIZATION_CAP);
+    small && fb <= allowed_fb && rel < DISCRETIZATION_RESIDUAL_GUARD
+}
+
+/// Runs the multigrid iteration. `Err((cycles, lowest residual reached))` on divergence.
+fn iterate(
+    pr: &Problem,
+    s: &EhlSettings,
+    start: Start,
+    h_est: f64,
+    max_cycles: usize,
+    deadline: Option<Deadline>,
+) -> Result<Core, (usize, f64)> {
+    let mut prm = params(s);
+    prm.h0_relax *= pr.h0_gain_scale;
+    let mut hier = Hierarchy::new(pr, s.grid, s.coarsest);
+    let top = hier.levels.len() - 1;
+    let reference = start_hierarchy(&mut hier, pr, &prm, s, start, h_est);
     let mut history = Vec::new();
     let mut converged = false;
     let mut residual = f64::NAN;
@@ -400,13 +476,12 @@ fn iterate(
     let mut by_disc = false;
     // Changes of (H_c, H0) over the previous cycle, relative.
     let mut prev_change: Option<[f64; 2]> = None;
-    let centre = |h: &Hierarchy| centre_of(h, top);
     for _ in 0..max_cycles {
         // The wall-time budget ends the iteration like the cycle limit; the caller reports it.
         if crate::budget::expired(&deadline) {
             break;
         }
-        let hc_old = centre(&hier);
+        let hc_old = centre_film(&hier, top);
         let h0_old = hier.h0;
         hier.cycle(pr, &prm, top);
         cycles += 1;
@@ -414,7 +489,7 @@ fn iterate(
         let (sr, sw) = lv.residual(pr);
         let rel = if sw > 0.0 { sr / sw } else { f64::INFINITY };
         fb = (lv.integral() - lv.g).abs() / lv.g;
-        let hc = centre(&hier);
+        let hc = centre_film(&hier, top);
         let best_so_far = history.iter().cloned().fold(f64::NAN, f64::min);
         // A film a million times the estimate is a blown-up iterate (seen with Barus at
         // αp ~ 50–100), even when its relative residual is still finite.
@@ -428,37 +503,12 @@ fn iterate(
         let dh =
             ((hc - hc_old).abs() / scale).max((hier.h0 - h0_old).abs() / hier.h0.abs().max(scale));
         let s0 = hier.h0.abs().max(scale);
-        let estimate = match (coarse_ref, prior) {
-            (Some((hc2, h02)), _) => Some([
-                (hc - hc2).abs() / scale / 3.0,
-                (hier.h0 - h02).abs() / s0 / 3.0,
-            ]),
-            (None, p) => p,
-        };
-        if let Some(d) = estimate {
+        if let Some(d) = reference.estimate(hc, hier.h0, scale, s0) {
             disc = Some(d);
             let change = [(hc - hc_old).abs() / scale, (hier.h0 - h0_old).abs() / s0];
             let theta = s.discretization_fraction;
             if let (Some(prev), true) = (prev_change, theta > 0.0) {
-                // Convergence factor: the more pessimistic of the last change ratio and the
-                // residual ratio (the film can oscillate from cycle to cycle while the
-                // residual falls steadily).
-                let n = history.len();
-                let rho_res = history[n - 1] / history[n - 2];
-                let small = (0..2).all(|q| {
-                    let rho = if change[q] == 0.0 {
-                        rho_res.max(DISC_RHO_MIN)
-                    } else {
-                        (change[q] / prev[q]).max(rho_res).max(DISC_RHO_MIN)
-                    };
-                    let allowed = theta * d[q].clamp(DISCRETIZATION_FLOOR, DISCRETIZATION_CAP);
-                    rho < DISC_RHO_MAX && change[q] * rho / (1.0 - rho) <= allowed
-                });
-                let allowed_fb = theta
-                    * d[0]
-                        .max(d[1])
-                        .clamp(DISCRETIZATION_FLOOR, DISCRETIZATION_CAP);
-                if small && fb <= allowed_fb && rel < DISCRETIZATION_RESIDUAL_GUARD {
+                if within_discretization(theta, d, change, prev, &history, fb) {
                     converged = true;
                     by_disc = true;
                 }
@@ -583,7 +633,15 @@ pub fn solve_steady_within(
     let t0 = Instant::now();
     let (pr, sc) = setup(c, s)?;
     let order = order_for(&pr, &sc);
-    solve_ordered(c, s, &pr, &sc, &order, Vec::new(), 0, t0, deadline)
+    let ctx = SolveContext {
+        c,
+        s,
+        pr: &pr,
+        sc: &sc,
+        t0,
+        deadline,
+    };
+    solve_ordered(&ctx, &order, Vec::new(), 0)
 }
 
 /// [`solve_steady`] with the starts tried in the given order (for studies of the start choice;
@@ -605,7 +663,15 @@ pub fn solve_steady_starts(
             "at least one cold start",
         ));
     }
-    solve_ordered(c, s, &pr, &sc, order, Vec::new(), 0, t0, deadline)
+    let ctx = SolveContext {
+        c,
+        s,
+        pr: &pr,
+        sc: &sc,
+        t0,
+        deadline,
+    };
+    solve_ordered(&ctx, order, Vec::new(), 0)
 }
 
 /// The order in which [`solve_steady`] tries its starts for this contact (docs/ehl.md §2):
@@ -670,219 +736,352 @@ fn record(
     });
 }
 
-/// Runs the starts of `order` until one converges. Every start is recorded in `log`; `cycles`
-/// counts the cycles spent before (a failed warm start).
-#[allow(clippy::too_many_arguments)]
-fn solve_ordered(
-    c: &EhlContact,
-    s: &EhlSettings,
-    pr: &Problem,
-    sc: &Scales,
-    order: &[StartStrategy],
-    mut log: Vec<EhlAttempt>,
-    mut cycles: usize,
+/// What every start of one steady solve shares: the contact and its settings, the
+/// dimensionless problem and scales, the solve's start time and its wall-time budget.
+#[derive(Clone, Copy)]
+struct SolveContext<'a> {
+    c: &'a EhlContact,
+    s: &'a EhlSettings,
+    pr: &'a Problem,
+    sc: &'a Scales,
+    /// Start of the solve (for the reported wall time).
     t0: Instant,
     deadline: Option<Deadline>,
-) -> Result<EhlSolution, EhlError> {
-    let h_est = h_estimate(sc);
-    let ladder = fallback_ladder(s);
-    let mut best: Option<(Core, StartStrategy)> = None;
-    let mut load_cont: Option<Result<EhlSolution, EhlError>> = None;
-    let mut alpha_lowest = f64::NAN;
-    let mut alpha_best: Option<(Vec<f64>, f64, usize)> = None;
-    let mut last_history: Vec<f64> = Vec::new();
-    let time_limit = |cycles: usize, history: &[f64]| {
-        deadline.map(|d| EhlError::TimeLimit {
+}
+
+impl SolveContext<'_> {
+    /// [`EhlError::TimeLimit`] after `cycles` cycles in all, with the residual history of the
+    /// last start that ran cycles; None without a budget.
+    fn time_limit(&self, cycles: usize, history: &[f64]) -> Option<EhlError> {
+        self.deadline.map(|d| EhlError::TimeLimit {
             limit_s: d.limit_seconds(),
-            seconds: t0.elapsed().as_secs_f64(),
+            seconds: self.t0.elapsed().as_secs_f64(),
             cycles,
-            m: sc.m,
-            l: sc.l,
-            ratio: sc.ratio,
+            m: self.sc.m,
+            l: self.sc.l,
+            ratio: self.sc.ratio,
             residual_history: history.to_vec(),
         })
-    };
-    for &st in order {
-        if crate::budget::expired(&deadline) {
-            if let Some(e) = time_limit(cycles, &last_history) {
-                return Err(e);
+    }
+
+    /// The time-limit error if the budget has passed (see [`SolveContext::time_limit`]).
+    fn expired(&self, cycles: usize, history: &[f64]) -> Option<EhlError> {
+        if crate::budget::expired(&self.deadline) {
+            self.time_limit(cycles, history)
+        } else {
+            None
+        }
+    }
+}
+
+/// The unconverged (finite) iterate of the α-continuation's last step with the lowest residual:
+/// dimensionless pressure on the finest grid, H0, and the continuation steps so far.
+struct AlphaIterate {
+    p: Vec<f64>,
+    h0: f64,
+    steps: usize,
+}
+
+/// The starts of one solve so far: their log, the cycles spent, and what the later starts and
+/// the final answer need of the ones that failed.
+struct Attempts {
+    log: Vec<EhlAttempt>,
+    /// Cycles spent in all.
+    cycles: usize,
+    /// The unconverged multigrid start with the lowest residual.
+    best: Option<(Core, StartStrategy)>,
+    /// The load continuation's outcome, if it ran and did not converge.
+    load_cont: Option<Result<EhlSolution, EhlError>>,
+    /// Lowest residual at the case's α of the α-continuation and the single-grid relaxation.
+    alpha_lowest: f64,
+    /// The α-continuation's best iterate, for the single-grid relaxation.
+    alpha_best: Option<AlphaIterate>,
+    /// Residual history of the last start that ran cycles (for the time-limit error).
+    last_history: Vec<f64>,
+}
+
+impl Attempts {
+    /// A multigrid start `st` from a Hertzian pressure with the settings `sk` of the fallback
+    /// ladder (`h_est` the film estimate): the solution if it converges, else recorded (the
+    /// lowest-residual one kept).
+    fn multigrid(
+        &mut self,
+        ctx: &SolveContext,
+        st: StartStrategy,
+        sk: &EhlSettings,
+        h_est: f64,
+    ) -> Option<EhlSolution> {
+        let ta = Instant::now();
+        match iterate(
+            ctx.pr,
+            sk,
+            Start::Hertz,
+            h_est,
+            ctx.s.max_cycles,
+            ctx.deadline,
+        ) {
+            Ok(core) => {
+                self.cycles += core.cycles;
+                if !core.history.is_empty() {
+                    self.last_history.clone_from(&core.history);
+                }
+                record(
+                    &mut self.log,
+                    st,
+                    core.outcome(),
+                    core.cycles,
+                    core.residual,
+                    ta,
+                );
+                if core.converged {
+                    let mut r = finish(ctx.c, ctx.sc, core, self.cycles, 0, ctx.t0);
+                    r.attempts = st.number();
+                    r.attempt_log = std::mem::take(&mut self.log);
+                    return Some(r);
+                }
+                if self
+                    .best
+                    .as_ref()
+                    .map_or(true, |b| core.residual < b.0.residual)
+                {
+                    self.best = Some((core, st));
+                }
+            }
+            Err((n, res)) => {
+                self.cycles += n;
+                record(&mut self.log, st, AttemptOutcome::Diverged, n, res, ta);
             }
         }
+        None
+    }
+
+    /// The load continuation `st` with the settings `sk`: the solution if it converges, else
+    /// recorded and kept for the final answer.
+    fn load_continuation(
+        &mut self,
+        ctx: &SolveContext,
+        st: StartStrategy,
+        sk: &EhlSettings,
+    ) -> Option<EhlSolution> {
         let ta = Instant::now();
-        let before = cycles;
-        match st {
-            StartStrategy::Warm => {}
+        let before = self.cycles;
+        let r = continuation(ctx, sk, self.cycles);
+        let (outcome, res) = match &r {
+            Ok(sol) => {
+                self.cycles = sol.cycles;
+                if !sol.residual_history.is_empty() {
+                    self.last_history.clone_from(&sol.residual_history);
+                }
+                let o = if sol.converged {
+                    AttemptOutcome::Converged
+                } else {
+                    AttemptOutcome::CycleLimit
+                };
+                (o, sol.residual)
+            }
+            Err(EhlError::Diverged {
+                cycles: n,
+                residual,
+                ..
+            }) => {
+                self.cycles = *n;
+                (AttemptOutcome::Diverged, *residual)
+            }
+            Err(_) => (AttemptOutcome::Diverged, f64::NAN),
+        };
+        record(&mut self.log, st, outcome, self.cycles - before, res, ta);
+        if let Ok(mut sol) = r {
+            if sol.converged {
+                sol.attempt_log = std::mem::take(&mut self.log);
+                return Some(sol);
+            }
+            self.load_cont = Some(Ok(sol));
+        } else {
+            self.load_cont = Some(r);
+        }
+        None
+    }
+
+    /// The α-continuation `st` over the settings of `ladder`: the solution if it completes, else
+    /// recorded, its lowest residual and best iterate kept.
+    fn alpha(
+        &mut self,
+        ctx: &SolveContext,
+        st: StartStrategy,
+        ladder: &[EhlSettings; LADDER],
+    ) -> Option<EhlSolution> {
+        let ta = Instant::now();
+        let before = self.cycles;
+        match alpha_continuation(ctx, ladder, self.cycles) {
+            Ok(mut r) => {
+                record(
+                    &mut self.log,
+                    st,
+                    AttemptOutcome::Converged,
+                    r.cycles - before,
+                    r.residual,
+                    ta,
+                );
+                r.attempt_log = std::mem::take(&mut self.log);
+                Some(r)
+            }
+            Err(AlphaFailure {
+                cycles: n,
+                lowest,
+                best: b,
+            }) => {
+                self.cycles = n;
+                self.alpha_lowest = self.alpha_lowest.min(lowest);
+                let o = if b.is_some() {
+                    AttemptOutcome::CycleLimit
+                } else {
+                    AttemptOutcome::Diverged
+                };
+                record(&mut self.log, st, o, self.cycles - before, lowest, ta);
+                self.alpha_best = b;
+                None
+            }
+        }
+    }
+
+    /// The single-grid relaxation `st` (settings `sk`) of the α-continuation's best iterate:
+    /// the solution if it converges; skipped without such an iterate.
+    fn single_grid(
+        &mut self,
+        ctx: &SolveContext,
+        st: StartStrategy,
+        sk: &EhlSettings,
+    ) -> Option<EhlSolution> {
+        let ta = Instant::now();
+        let before = self.cycles;
+        let Some(it) = self.alpha_best.take() else {
+            record(&mut self.log, st, AttemptOutcome::Skipped, 0, f64::NAN, ta);
+            return None;
+        };
+        match polish(ctx, sk, it, self.cycles) {
+            Ok(mut r) => {
+                record(
+                    &mut self.log,
+                    st,
+                    AttemptOutcome::Converged,
+                    r.cycles - before,
+                    r.residual,
+                    ta,
+                );
+                r.attempt_log = std::mem::take(&mut self.log);
+                Some(r)
+            }
+            Err((n, res)) => {
+                self.cycles = n;
+                self.alpha_lowest = self.alpha_lowest.min(res);
+                record(
+                    &mut self.log,
+                    st,
+                    AttemptOutcome::CycleLimit,
+                    self.cycles - before,
+                    res,
+                    ta,
+                );
+                None
+            }
+        }
+    }
+
+    /// The answer when no start converged: the lowest-residual multigrid start (unconverged),
+    /// else the load continuation's unconverged solution, else its error or
+    /// [`EhlError::Diverged`] with the lowest residual reached.
+    fn into_result(self, ctx: &SolveContext) -> Result<EhlSolution, EhlError> {
+        let Attempts {
+            log,
+            cycles,
+            best,
+            load_cont,
+            alpha_lowest,
+            ..
+        } = self;
+        let sc = ctx.sc;
+        match best {
+            Some((core, st)) => {
+                let mut r = finish(ctx.c, sc, core, cycles, 0, ctx.t0);
+                r.attempts = st.number();
+                r.attempt_log = log;
+                Ok(r)
+            }
+            None => match load_cont {
+                Some(Ok(mut r)) => {
+                    r.cycles = cycles;
+                    r.attempt_log = log;
+                    Ok(r)
+                }
+                Some(Err(EhlError::Diverged {
+                    m,
+                    l,
+                    ratio,
+                    residual,
+                    ..
+                })) => Err(EhlError::Diverged {
+                    cycles,
+                    m,
+                    l,
+                    ratio,
+                    residual: residual.min(alpha_lowest),
+                }),
+                Some(Err(e)) => Err(e),
+                None => Err(EhlError::Diverged {
+                    cycles,
+                    m: sc.m,
+                    l: sc.l,
+                    ratio: sc.ratio,
+                    residual: alpha_lowest,
+                }),
+            },
+        }
+    }
+}
+
+/// Runs the starts of `order` until one converges. Every start is recorded in `log`; `cycles`
+/// counts the cycles spent before (a failed warm start).
+fn solve_ordered(
+    ctx: &SolveContext,
+    order: &[StartStrategy],
+    log: Vec<EhlAttempt>,
+    cycles: usize,
+) -> Result<EhlSolution, EhlError> {
+    let h_est = h_estimate(ctx.sc);
+    let ladder = fallback_ladder(ctx.s);
+    let mut at = Attempts {
+        log,
+        cycles,
+        best: None,
+        load_cont: None,
+        alpha_lowest: f64::NAN,
+        alpha_best: None,
+        last_history: Vec::new(),
+    };
+    for &st in order {
+        if let Some(e) = ctx.expired(at.cycles, &at.last_history) {
+            return Err(e);
+        }
+        let solved = match st {
+            StartStrategy::Warm => None,
             StartStrategy::Given
             | StartStrategy::SmallH0Gain
             | StartStrategy::WideJacobi
             | StartStrategy::WideJacobiSmallSteps
             | StartStrategy::Conservative
-            | StartStrategy::DampedLines => {
-                let sk = &ladder[st.number() - 1];
-                match iterate(pr, sk, Start::Hertz, h_est, s.max_cycles, deadline) {
-                    Ok(core) => {
-                        cycles += core.cycles;
-                        if !core.history.is_empty() {
-                            last_history.clone_from(&core.history);
-                        }
-                        record(&mut log, st, core.outcome(), core.cycles, core.residual, ta);
-                        if core.converged {
-                            let mut r = finish(c, sc, core, cycles, 0, t0);
-                            r.attempts = st.number();
-                            r.attempt_log = log;
-                            return Ok(r);
-                        }
-                        if best.as_ref().map_or(true, |b| core.residual < b.0.residual) {
-                            best = Some((core, st));
-                        }
-                    }
-                    Err((n, res)) => {
-                        cycles += n;
-                        record(&mut log, st, AttemptOutcome::Diverged, n, res, ta);
-                    }
-                }
-            }
-            StartStrategy::LoadContinuation => {
-                let r = continuation(c, &ladder[CONSERVATIVE], sc, cycles, t0, deadline);
-                let (outcome, res) = match &r {
-                    Ok(sol) => {
-                        cycles = sol.cycles;
-                        if !sol.residual_history.is_empty() {
-                            last_history.clone_from(&sol.residual_history);
-                        }
-                        let o = if sol.converged {
-                            AttemptOutcome::Converged
-                        } else {
-                            AttemptOutcome::CycleLimit
-                        };
-                        (o, sol.residual)
-                    }
-                    Err(EhlError::Diverged {
-                        cycles: n,
-                        residual,
-                        ..
-                    }) => {
-                        cycles = *n;
-                        (AttemptOutcome::Diverged, *residual)
-                    }
-                    Err(_) => (AttemptOutcome::Diverged, f64::NAN),
-                };
-                record(&mut log, st, outcome, cycles - before, res, ta);
-                if let Ok(mut sol) = r {
-                    if sol.converged {
-                        sol.attempt_log = log;
-                        return Ok(sol);
-                    }
-                    load_cont = Some(Ok(sol));
-                } else {
-                    load_cont = Some(r);
-                }
-            }
-            StartStrategy::AlphaContinuation => {
-                match alpha_continuation(c, pr, sc, &ladder, cycles, t0, deadline) {
-                    Ok(mut r) => {
-                        record(
-                            &mut log,
-                            st,
-                            AttemptOutcome::Converged,
-                            r.cycles - before,
-                            r.residual,
-                            ta,
-                        );
-                        r.attempt_log = log;
-                        return Ok(r);
-                    }
-                    Err(AlphaFailure {
-                        cycles: n,
-                        lowest,
-                        best: b,
-                    }) => {
-                        cycles = n;
-                        alpha_lowest = alpha_lowest.min(lowest);
-                        let o = if b.is_some() {
-                            AttemptOutcome::CycleLimit
-                        } else {
-                            AttemptOutcome::Diverged
-                        };
-                        record(&mut log, st, o, cycles - before, lowest, ta);
-                        alpha_best = b;
-                    }
-                }
-            }
-            StartStrategy::SingleGrid => match alpha_best.take() {
-                Some((p, h0, steps)) => {
-                    match polish(c, pr, sc, &ladder[0], p, h0, cycles, steps, t0, deadline) {
-                        Ok(mut r) => {
-                            record(
-                                &mut log,
-                                st,
-                                AttemptOutcome::Converged,
-                                r.cycles - before,
-                                r.residual,
-                                ta,
-                            );
-                            r.attempt_log = log;
-                            return Ok(r);
-                        }
-                        Err((n, res)) => {
-                            cycles = n;
-                            alpha_lowest = alpha_lowest.min(res);
-                            record(
-                                &mut log,
-                                st,
-                                AttemptOutcome::CycleLimit,
-                                cycles - before,
-                                res,
-                                ta,
-                            );
-                        }
-                    }
-                }
-                None => record(&mut log, st, AttemptOutcome::Skipped, 0, f64::NAN, ta),
-            },
+            | StartStrategy::DampedLines => at.multigrid(ctx, st, &ladder[st.number() - 1], h_est),
+            StartStrategy::LoadContinuation => at.load_continuation(ctx, st, &ladder[CONSERVATIVE]),
+            StartStrategy::AlphaContinuation => at.alpha(ctx, st, &ladder),
+            StartStrategy::SingleGrid => at.single_grid(ctx, st, &ladder[0]),
+        };
+        if let Some(r) = solved {
+            return Ok(r);
         }
     }
-    if crate::budget::expired(&deadline) {
-        if let Some(e) = time_limit(cycles, &last_history) {
-            return Err(e);
-        }
+    if let Some(e) = ctx.expired(at.cycles, &at.last_history) {
+        return Err(e);
     }
-    match best {
-        Some((core, st)) => {
-            let mut r = finish(c, sc, core, cycles, 0, t0);
-            r.attempts = st.number();
-            r.attempt_log = log;
-            Ok(r)
-        }
-        None => match load_cont {
-            Some(Ok(mut r)) => {
-                r.cycles = cycles;
-                r.attempt_log = log;
-                Ok(r)
-            }
-            Some(Err(EhlError::Diverged {
-                m,
-                l,
-                ratio,
-                residual,
-                ..
-            })) => Err(EhlError::Diverged {
-                cycles,
-                m,
-                l,
-                ratio,
-                residual: residual.min(alpha_lowest),
-            }),
-            Some(Err(e)) => Err(e),
-            None => Err(EhlError::Diverged {
-                cycles,
-                m: sc.m,
-                l: sc.l,
-                ratio: sc.ratio,
-                residual: alpha_lowest,
-            }),
-        },
-    }
+    at.into_result(ctx)
 }
 
 /// Smallest pressure–viscosity coefficient of the α-continuation, as a fraction of the case's.
@@ -900,12 +1099,12 @@ const ALPHA_OMEGA_GS: f64 = 0.1;
 const ALPHA_COARSEST: usize = 65;
 
 /// An α-continuation that could not be completed: cycles spent, lowest residual reached at the
-/// case's α, and the unconverged (finite) iterate of its last step with the lowest residual
-/// (pressure, H0, continuation steps so far), if any.
+/// case's α, and the unconverged (finite) iterate of its last step with the lowest residual, if
+/// any.
 struct AlphaFailure {
     cycles: usize,
     lowest: f64,
-    best: Option<(Vec<f64>, f64, usize)>,
+    best: Option<AlphaIterate>,
 }
 
 /// Last resort after a failed α-continuation (`attempts` = 9): the lowest-residual iterate of its
@@ -915,35 +1114,37 @@ struct AlphaFailure {
 /// contact (Ry/Rx 100, M 2000, 257²) the pressure spike is one node wide and the multigrid
 /// cycles end in a period-2 limit cycle at a relative residual of ≈ 1.2e-3 (the spike height
 /// alternates by ~30 %), whatever the coarsest grid down to 65²; the single-grid relaxation
-/// converges (docs/ehl.md §5.8). `Err((cycles, lowest residual))` if it does not.
-#[allow(clippy::too_many_arguments)]
+/// converges (docs/ehl.md §5.8). `s` are the settings it starts from, `cycles_total` the cycles
+/// spent before. `Err((cycles, lowest residual))` if it does not.
 fn polish(
-    c: &EhlContact,
-    pr: &Problem,
-    sc: &Scales,
+    ctx: &SolveContext,
     s: &EhlSettings,
-    p: Vec<f64>,
-    h0: f64,
+    it: AlphaIterate,
     cycles_total: usize,
-    steps: usize,
-    t0: Instant,
-    deadline: Option<Deadline>,
 ) -> Result<EhlSolution, (usize, f64)> {
+    let (pr, sc) = (ctx.pr, ctx.sc);
     let single = EhlSettings {
         omega_gs: s.omega_gs.min(ALPHA_OMEGA_GS),
         coarsest: s.grid,
         ..*s
     };
     let start = Start::Given {
-        p,
-        h0: Some(h0),
+        p: it.p,
+        h0: Some(it.h0),
         disc: None,
     };
-    match iterate(pr, &single, start, h_estimate(sc), s.max_cycles, deadline) {
+    match iterate(
+        pr,
+        &single,
+        start,
+        h_estimate(sc),
+        s.max_cycles,
+        ctx.deadline,
+    ) {
         Ok(core) => {
             let n = cycles_total + core.cycles;
             if core.converged {
-                let mut r = finish(c, sc, core, n, steps + 1, t0);
+                let mut r = finish(ctx.c, sc, core, n, it.steps + 1, ctx.t0);
                 r.attempts = LADDER + 3;
                 Ok(r)
             } else {
@@ -976,83 +1177,77 @@ fn intermediate(s: &EhlSettings) -> EhlSettings {
     }
 }
 
-/// Continuation in the pressure–viscosity coefficient α, i.e. in L at fixed M (tried last, after
-/// the starts of [`fallback_ladder`] and load continuation have failed; meant for Barus at large
-/// αp_h, docs/ehl.md §5.8). The case is solved at α·`ALPHA_FROM` from a Hertzian start (the
-/// starts of the ladder in turn), then α is raised geometrically to its value, each step
-/// warm-started from the previous pressure and H0 on the same grid and domain, with ω_GS ≤
-/// `ALPHA_OMEGA_GS` and a coarsest grid of at least `ALPHA_COARSEST` points (with larger ω_GS,
-/// or the 33² coarsest grid, the warm starts diverge within 2–5 cycles at αp_max ≳ 60–90).
-/// Intermediate steps get `ALPHA_STEP_CYCLES` cycles and need not converge; the last one must.
-/// [`AlphaFailure`] if it cannot be completed.
-fn alpha_continuation(
-    c: &EhlContact,
-    pr: &Problem,
-    sc: &Scales,
-    ladder: &[EhlSettings; LADDER],
-    mut cycles_total: usize,
-    t0: Instant,
-    deadline: Option<Deadline>,
-) -> Result<EhlSolution, AlphaFailure> {
-    let mut lowest = f64::NAN;
-    let mut best: Option<(Vec<f64>, f64, usize)> = None;
-    let mut best_res = f64::INFINITY;
-    if pr.lub.pressure_viscosity <= 0.0 {
-        return Err(AlphaFailure {
-            cycles: cycles_total,
-            lowest,
-            best,
-        });
+/// The α-continuation's progress: cycles spent, the lowest residual at the case's α and the
+/// best unconverged iterate there, and the steps taken.
+struct AlphaRun {
+    cycles: usize,
+    lowest: f64,
+    best: Option<AlphaIterate>,
+    /// Residual of `best`.
+    best_res: f64,
+    /// Continuation steps so far (the reduced-α start is the first).
+    steps: usize,
+}
+
+/// Outcome of one step of the α-continuation.
+enum AlphaStep {
+    /// The last step (the case's α) converged.
+    Solved(Box<EhlSolution>),
+    /// An intermediate step ended finite: its pressure and H0 start the next one.
+    Advanced(Vec<f64>, f64),
+    /// The step diverged, or the last one did not converge.
+    Failed,
+}
+
+impl AlphaRun {
+    /// The failure to report, with what was reached.
+    fn failure(self) -> AlphaFailure {
+        AlphaFailure {
+            cycles: self.cycles,
+            lowest: self.lowest,
+            best: self.best,
+        }
     }
-    let (pr0, sc0) = with_alpha(pr, sc, ALPHA_FROM);
-    let h_est0 = h_estimate(&sc0);
-    let mut state = None;
-    for sk in ladder.iter() {
-        // The reduced-α start only feeds the continuation: converged to the fixed tolerances
-        // (the discretization-following rule is for solutions that are returned; stopping
-        // this one at the grid's error left Barus, L 25, M 5 diverging later in the steps).
-        let sk = &intermediate(sk);
-        match iterate(&pr0, sk, Start::Hertz, h_est0, sk.max_cycles, deadline) {
-            Ok(core) => {
-                cycles_total += core.cycles;
-                if core.converged {
-                    let lv = core.hier.levels.last().expect("at least one level");
-                    state = Some((lv.p.clone(), core.hier.h0));
-                    break;
+
+    /// The first stage: the case at α·`ALPHA_FROM` from a Hertzian start, the settings of
+    /// `ladder` tried in turn until one converges; its pressure and H0, None if none does.
+    fn reduced_alpha_start(
+        &mut self,
+        ctx: &SolveContext,
+        ladder: &[EhlSettings; LADDER],
+    ) -> Option<(Vec<f64>, f64)> {
+        let (pr0, sc0) = with_alpha(ctx.pr, ctx.sc, ALPHA_FROM);
+        let h_est0 = h_estimate(&sc0);
+        for sk in ladder.iter() {
+            // The reduced-α start only feeds the continuation: converged to the fixed tolerances
+            // (the discretization-following rule is for solutions that are returned; stopping
+            // this one at the grid's error left Barus, L 25, M 5 diverging later in the steps).
+            let sk = &intermediate(sk);
+            match iterate(&pr0, sk, Start::Hertz, h_est0, sk.max_cycles, ctx.deadline) {
+                Ok(core) => {
+                    self.cycles += core.cycles;
+                    if core.converged {
+                        let lv = core.hier.levels.last().expect("at least one level");
+                        return Some((lv.p.clone(), core.hier.h0));
+                    }
                 }
+                Err((n, _)) => self.cycles += n,
             }
-            Err((n, _)) => cycles_total += n,
         }
+        None
     }
-    let Some(mut state) = state else {
-        return Err(AlphaFailure {
-            cycles: cycles_total,
-            lowest,
-            best,
-        });
-    };
-    let warm = EhlSettings {
-        omega_gs: ladder[0].omega_gs.min(ALPHA_OMEGA_GS),
-        coarsest: ladder[0].coarsest.max(ALPHA_COARSEST),
-        ..ladder[0]
-    };
-    let mut done = ALPHA_FROM;
-    let mut q = ALPHA_STEP;
-    let mut steps = 1;
-    loop {
-        if crate::budget::expired(&deadline) {
-            return Err(AlphaFailure {
-                cycles: cycles_total,
-                lowest,
-                best,
-            });
-        }
-        let mut f = done * q;
-        if f > 1.0 - 1e-9 {
-            f = 1.0;
-        }
+
+    /// One step of the continuation to the fraction `f` of the case's α (the last step when
+    /// f = 1), warm-started from `state` (pressure, H0) with the settings `warm`.
+    fn step(
+        &mut self,
+        ctx: &SolveContext,
+        warm: &EhlSettings,
+        state: &(Vec<f64>, f64),
+        f: f64,
+    ) -> AlphaStep {
         let last = f == 1.0;
-        let (prk, sck) = with_alpha(pr, sc, f);
+        let (prk, sck) = with_alpha(ctx.pr, ctx.sc, f);
         let start = Start::Given {
             p: state.0.clone(),
             h0: Some(state.1),
@@ -1063,36 +1258,92 @@ fn alpha_continuation(
         } else {
             ALPHA_STEP_CYCLES.min(warm.max_cycles)
         };
-        steps += 1;
-        let ok = match iterate(&prk, &warm, start, h_estimate(&sck), maxc, deadline) {
+        self.steps += 1;
+        match iterate(&prk, warm, start, h_estimate(&sck), maxc, ctx.deadline) {
             Ok(core) => {
-                cycles_total += core.cycles;
+                self.cycles += core.cycles;
                 if last {
-                    lowest = lowest.min(core.residual);
+                    self.lowest = self.lowest.min(core.residual);
                     if core.converged {
-                        let mut r = finish(c, sc, core, cycles_total, steps, t0);
+                        let mut r = finish(ctx.c, ctx.sc, core, self.cycles, self.steps, ctx.t0);
                         r.attempts = LADDER + 2;
-                        return Ok(r);
+                        return AlphaStep::Solved(Box::new(r));
                     }
-                    if core.residual < best_res {
-                        best_res = core.residual;
+                    if core.residual < self.best_res {
+                        self.best_res = core.residual;
                         let lv = core.hier.levels.last().expect("at least one level");
-                        best = Some((lv.p.clone(), core.hier.h0, steps));
+                        self.best = Some(AlphaIterate {
+                            p: lv.p.clone(),
+                            h0: core.hier.h0,
+                            steps: self.steps,
+                        });
                     }
-                    false
+                    AlphaStep::Failed
                 } else {
                     let lv = core.hier.levels.last().expect("at least one level");
-                    state = (lv.p.clone(), core.hier.h0);
-                    true
+                    AlphaStep::Advanced(lv.p.clone(), core.hier.h0)
                 }
             }
             Err((n, res)) => {
-                cycles_total += n;
+                self.cycles += n;
                 if last {
-                    lowest = lowest.min(res);
+                    self.lowest = self.lowest.min(res);
                 }
-                false
+                AlphaStep::Failed
             }
+        }
+    }
+}
+
+/// Continuation in the pressure–viscosity coefficient α, i.e. in L at fixed M (tried last, after
+/// the starts of [`fallback_ladder`] and load continuation have failed; meant for Barus at large
+/// αp_h, docs/ehl.md §5.8). The case is solved at α·`ALPHA_FROM` from a Hertzian start (the
+/// starts of the ladder in turn), then α is raised geometrically to its value, each step
+/// warm-started from the previous pressure and H0 on the same grid and domain, with ω_GS ≤
+/// `ALPHA_OMEGA_GS` and a coarsest grid of at least `ALPHA_COARSEST` points (with larger ω_GS,
+/// or the 33² coarsest grid, the warm starts diverge within 2–5 cycles at αp_max ≳ 60–90).
+/// Intermediate steps get `ALPHA_STEP_CYCLES` cycles and need not converge; the last one must.
+/// `cycles_total` counts the cycles spent before. [`AlphaFailure`] if it cannot be completed.
+fn alpha_continuation(
+    ctx: &SolveContext,
+    ladder: &[EhlSettings; LADDER],
+    cycles_total: usize,
+) -> Result<EhlSolution, AlphaFailure> {
+    let mut run = AlphaRun {
+        cycles: cycles_total,
+        lowest: f64::NAN,
+        best: None,
+        best_res: f64::INFINITY,
+        steps: 1,
+    };
+    if ctx.pr.lub.pressure_viscosity <= 0.0 {
+        return Err(run.failure());
+    }
+    let Some(mut state) = run.reduced_alpha_start(ctx, ladder) else {
+        return Err(run.failure());
+    };
+    let warm = EhlSettings {
+        omega_gs: ladder[0].omega_gs.min(ALPHA_OMEGA_GS),
+        coarsest: ladder[0].coarsest.max(ALPHA_COARSEST),
+        ..ladder[0]
+    };
+    let mut done = ALPHA_FROM;
+    let mut q = ALPHA_STEP;
+    loop {
+        if crate::budget::expired(&ctx.deadline) {
+            return Err(run.failure());
+        }
+        let mut f = done * q;
+        if f > 1.0 - 1e-9 {
+            f = 1.0;
+        }
+        let ok = match run.step(ctx, &warm, &state, f) {
+            AlphaStep::Solved(r) => return Ok(*r),
+            AlphaStep::Advanced(p, h0) => {
+                state = (p, h0);
+                true
+            }
+            AlphaStep::Failed => false,
         };
         if ok {
             done = f;
@@ -1100,11 +1351,7 @@ fn alpha_continuation(
         } else {
             q = (f / done).sqrt();
             if q < ALPHA_MIN_STEP {
-                return Err(AlphaFailure {
-                    cycles: cycles_total,
-                    lowest,
-                    best,
-                });
+                return Err(run.failure());
             }
         }
     }
@@ -1153,15 +1400,14 @@ fn fallback_ladder(s: &EhlSettings) -> [EhlSettings; LADDER] {
     [*s, a, b, c, d, e]
 }
 
-/// Load continuation: solve at M_k = M_start·2^k (dimensionless pressure carried over), up to M.
+/// Load continuation: solve at M_k = M_start·2^k (dimensionless pressure carried over), up to M,
+/// with the settings `s`; `cycles_total` counts the cycles spent before.
 fn continuation(
-    c: &EhlContact,
+    ctx: &SolveContext,
     s: &EhlSettings,
-    sc: &Scales,
     mut cycles_total: usize,
-    t0: Instant,
-    deadline: Option<Deadline>,
 ) -> Result<EhlSolution, EhlError> {
+    let (c, sc, t0, deadline) = (ctx.c, ctx.sc, ctx.t0, ctx.deadline);
     let m_start = (sc.m / 2.0).min(20.0);
     let mut loads = Vec::new();
     let mut mk = m_start;
@@ -1394,7 +1640,15 @@ fn solve_warm(
             n
         }
     };
-    solve_ordered(c, s, &pr, &sc, &order, log, spent, t0, deadline)
+    let ctx = SolveContext {
+        c,
+        s,
+        pr: &pr,
+        sc: &sc,
+        t0,
+        deadline,
+    };
+    solve_ordered(&ctx, &order, log, spent)
 }
 
 /// Largest Moes material parameter L accepted by [`solve_moes`] (dimensionless).

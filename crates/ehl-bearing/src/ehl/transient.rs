@@ -317,6 +317,16 @@ impl TransientSolver {
     /// time. A step that stops at the cycle limit is returned with `converged: false`; a step
     /// whose iteration produces non-finite numbers is an error.
     pub fn step(&mut self, load: f64) -> Result<TransientStep, EhlError> {
+        self.check_step(load)?;
+        let (g, prev) = self.new_time_level(load);
+        self.predict(&prev);
+        let it = self.iterate_step(g)?;
+        let v = self.shift_motion(&prev);
+        Ok(self.report(load, v, &it))
+    }
+
+    /// The checks before a step: `load` (N) finite, the wall-time budget not passed.
+    fn check_step(&self, load: f64) -> Result<(), EhlError> {
         if !load.is_finite() {
             return Err(EhlError::Invalid {
                 field: "load [N]",
@@ -335,14 +345,26 @@ impl TransientSolver {
                 residual_history: Vec::new(),
             });
         }
+        Ok(())
+    }
+
+    /// Sets up the discrete equations of the new time level under the external load `load` (N):
+    /// shifts the (ρ̄H) history, writes the history part of the BDF2 squeeze term as the finest
+    /// level's right-hand side and the equation of motion as the force target ∬P = g + γ·H0ⁿ.
+    /// Returns g and the H0, V of the two previous time levels.
+    fn new_time_level(&mut self, load: f64) -> (f64, PreviousLevels) {
         let top = self.hier.levels.len() - 1;
         let dtt = self.dtt;
         // Shift the history: the current state becomes level n−1.
         let rh_cur = self.hier.levels[top].rho_h();
         std::mem::swap(&mut self.rh_prev, &mut self.rh_now);
         self.rh_now = rh_cur;
-        let (h0_1, h0_2) = (self.hier.h0, self.h0_prev);
-        let (v_1, v_2) = (self.v_now, self.v_prev);
+        let prev = PreviousLevels {
+            h0: [self.hier.h0, self.h0_prev],
+            v: [self.v_now, self.v_prev],
+        };
+        let [h0_1, h0_2] = prev.h0;
+        let [v_1, v_2] = prev.v;
         // Right-hand side: history part of BDF2, (−2(ρ̄H)ⁿ⁻¹ + ½(ρ̄H)ⁿ⁻²)/ΔT.
         for (f, (a, b)) in self
             .source
@@ -363,6 +385,14 @@ impl TransientSolver {
         let lv = &mut self.hier.levels[top];
         lv.set_source(&self.source);
         lv.g = g;
+        (g, prev)
+    }
+
+    /// The predictor of the new time level: P extrapolated from the last time levels and H0
+    /// from the previous ones (`prev` the two before the new level), then the film updated.
+    fn predict(&mut self, prev: &PreviousLevels) {
+        let top = self.hier.levels.len() - 1;
+        let [h0_1, h0_2] = prev.h0;
         // Predictor: quadratic extrapolation of P (kept ≥ 0) from the last three time levels
         // (linear on the first two steps) and cubic extrapolation of H0 from the last four
         // (quadratic on the third step). On the seed contact at 64 steps per period the quadratic
@@ -398,14 +428,22 @@ impl TransientSolver {
         };
         let h0 = self.hier.h0;
         self.hier.levels[top].update_film(&self.pr, h0);
+    }
+
+    /// FAS cycles on the new time level (force target g) until the tolerances are met, the
+    /// cycle limit or the wall-time budget is reached; an error when the iterate is not finite.
+    fn iterate_step(&mut self, g: f64) -> Result<StepIteration, EhlError> {
+        let top = self.hier.levels.len() - 1;
         let centre = |h: &Hierarchy| {
             let lv = &h.levels[top];
             bilinear(&lv.h, &lv.x, &lv.y, 0.0, 0.0)
         };
-        let mut converged = false;
-        let mut residual = f64::NAN;
-        let mut force_residual = f64::NAN;
-        let mut cycles = 0;
+        let mut it = StepIteration {
+            converged: false,
+            residual: f64::NAN,
+            force_residual: f64::NAN,
+            cycles: 0,
+        };
         // Whether `residual` and `force_residual` describe the current state.
         let mut evaluated = false;
         for cycle in 0..self.max_cycles {
@@ -415,18 +453,12 @@ impl TransientSolver {
             let hc_old = centre(&self.hier);
             let h0_old = self.hier.h0;
             self.hier.cycle(&self.pr, &self.prm, top);
-            cycles += 1;
+            it.cycles += 1;
             evaluated = false;
             let h0 = self.hier.h0;
             let hc = centre(&self.hier);
             if !(h0.is_finite() && hc.is_finite()) {
-                return Err(EhlError::Diverged {
-                    cycles,
-                    m: self.sc.m,
-                    l: self.sc.l,
-                    ratio: self.sc.ratio,
-                    residual: f64::NAN,
-                });
+                return Err(self.diverged(it.cycles, f64::NAN));
             }
             let scale = hc.abs().max(1e-12);
             let dh = ((hc - hc_old).abs() / scale).max((h0 - h0_old).abs() / h0.abs().max(scale));
@@ -435,31 +467,45 @@ impl TransientSolver {
             if dh >= self.s.tol_film && cycle + 1 < self.max_cycles {
                 continue;
             }
-            (residual, force_residual) = self.residuals(g);
+            (it.residual, it.force_residual) = self.residuals(g);
             evaluated = true;
-            if !residual.is_finite() {
-                return Err(EhlError::Diverged {
-                    cycles,
-                    m: self.sc.m,
-                    l: self.sc.l,
-                    ratio: self.sc.ratio,
-                    residual,
-                });
+            if !it.residual.is_finite() {
+                return Err(self.diverged(it.cycles, it.residual));
             }
-            if residual < self.s.tol_residual
-                && force_residual < self.s.tol_force
+            if it.residual < self.s.tol_residual
+                && it.force_residual < self.s.tol_force
                 && dh < self.s.tol_film
             {
-                converged = true;
+                it.converged = true;
                 break;
             }
         }
-        if !evaluated && cycles > 0 {
+        if !evaluated && it.cycles > 0 {
             // Stopped by the deadline after a cycle whose residual was not evaluated.
-            (residual, force_residual) = self.residuals(g);
+            (it.residual, it.force_residual) = self.residuals(g);
         }
+        Ok(it)
+    }
+
+    /// [`EhlError::Diverged`] of this contact after `cycles` cycles of a step.
+    fn diverged(&self, cycles: usize, residual: f64) -> EhlError {
+        EhlError::Diverged {
+            cycles,
+            m: self.sc.m,
+            l: self.sc.l,
+            ratio: self.sc.ratio,
+            residual,
+        }
+    }
+
+    /// Closes the step in the equation of motion's history: V = dH0/dT of the new level by BDF2
+    /// (returned), the H0 and V of the previous levels (`prev`) moved back one level, the time
+    /// advanced by Δt.
+    fn shift_motion(&mut self, prev: &PreviousLevels) -> f64 {
+        let [h0_1, h0_2] = prev.h0;
+        let [v_1, _] = prev.v;
         let h0 = self.hier.h0;
-        let v = (1.5 * h0 - 2.0 * h0_1 + 0.5 * h0_2) / dtt;
+        let v = (1.5 * h0 - 2.0 * h0_1 + 0.5 * h0_2) / self.dtt;
         self.h0_prev3 = self.h0_prev2;
         self.h0_prev2 = h0_2;
         self.h0_prev = h0_1;
@@ -467,13 +513,21 @@ impl TransientSolver {
         self.v_prev = v_1;
         self.v_now = v;
         self.time += self.dt;
-        let lv = &self.hier.levels[top];
+        v
+    }
+
+    /// The step's record in SI units: the new state under `load` (N) with the dimensionless
+    /// approach rate `v` = dH0/dT and the iteration's outcome `it`.
+    fn report(&self, load: f64, v: f64, it: &StepIteration) -> TransientStep {
+        let target = 2.0 * PI / 3.0;
+        let h0 = self.hier.h0;
+        let lv = self.hier.levels.last().expect("at least one level");
         let length = self.sc.ax * self.sc.ax / self.sc.rx;
         let um_over_ax = self.dtt / self.dt; // u_m/a_x, 1/s
         let hc = bilinear(&lv.h, &lv.x, &lv.y, 0.0, 0.0);
         let hmin = lv.h.iter().cloned().fold(f64::INFINITY, f64::min);
         let pmax = lv.p.iter().cloned().fold(0.0, f64::max);
-        Ok(TransientStep {
+        TransientStep {
             time: self.time,
             load,
             approach: -h0 * length,
@@ -482,10 +536,28 @@ impl TransientSolver {
             h_central: self.sc.h(hc),
             h_min: self.sc.h(hmin),
             p_max: pmax * self.sc.ph,
-            residual,
-            force_residual,
-            cycles,
-            converged,
-        })
+            residual: it.residual,
+            force_residual: it.force_residual,
+            cycles: it.cycles,
+            converged: it.converged,
+        }
     }
+}
+
+/// H0 and V = dH0/dT (dimensionless) of the two time levels before the new one: index 0 the
+/// level n−1, index 1 the level n−2.
+struct PreviousLevels {
+    h0: [f64; 2],
+    v: [f64; 2],
+}
+
+/// Outcome of the FAS cycles of one time step.
+struct StepIteration {
+    /// Whether the tolerances were met.
+    converged: bool,
+    /// Relative Reynolds residual and error of the discrete equation of motion (units of w0).
+    residual: f64,
+    force_residual: f64,
+    /// FAS cycles used.
+    cycles: usize,
 }

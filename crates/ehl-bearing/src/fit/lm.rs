@@ -152,6 +152,91 @@ pub fn levenberg_marquardt<P: LeastSquaresProblem + ?Sized>(
     x0: &[f64],
     conv: &LmConvergence,
 ) -> Result<LmReport, FitError> {
+    check_input(problem, x0, conv)?;
+    let mut st = LmState::start(problem, x0, conv.initial_damping)?;
+    let initial_cost = st.cost;
+    let mut iterations = 0;
+    let mut history = Vec::new();
+    let mut r_trial = vec![0.0; st.m];
+    let mut x_trial = vec![0.0; st.n];
+
+    let stop = loop {
+        let g = gradient(&st.jac, &st.r, st.m, st.n);
+        let rnorm = norm2(&st.r);
+        if rnorm == 0.0 {
+            break LmStop::ZeroResidual;
+        }
+        let gm = gradient_measure(&g, &st.cn, rnorm);
+        if gm <= conv.g_tol {
+            break LmStop::Gradient;
+        }
+        if iterations >= conv.max_iterations {
+            break LmStop::MaxIterations;
+        }
+        iterations += 1;
+
+        let step = st.step(&g, conv.x_tol);
+        let trial_cost = st.trial_cost(problem, &step.h, &mut x_trial, &mut r_trial);
+        let rho = if step.predicted > 0.0 && trial_cost.is_finite() {
+            (st.cost - trial_cost) / step.predicted
+        } else {
+            -1.0
+        };
+
+        if rho > 0.0 {
+            let mut jac_trial = vec![0.0; st.m * st.n];
+            problem.jacobian(&x_trial, &mut jac_trial);
+            if jac_trial.iter().all(|v| v.is_finite()) {
+                let actual_rel = (st.cost - trial_cost) / st.cost;
+                let predicted_rel = step.predicted / st.cost;
+                st.accept(&x_trial, &r_trial, jac_trial, trial_cost, rho);
+                history.push(st.cost);
+                if st.cost == 0.0 {
+                    break LmStop::ZeroResidual;
+                }
+                if step.small {
+                    break LmStop::Step;
+                }
+                if actual_rel <= conv.f_tol && predicted_rel <= conv.f_tol {
+                    break LmStop::Cost;
+                }
+                continue;
+            }
+        }
+        // Rejected step.
+        history.push(st.cost);
+        if step.small {
+            // Even the damped step is below the resolution asked for: nothing left to gain.
+            break LmStop::Step;
+        }
+        if !st.reject() {
+            break LmStop::DampingOverflow;
+        }
+    };
+
+    let g = gradient(&st.jac, &st.r, st.m, st.n);
+    let gm = gradient_measure(&g, &st.cn, norm2(&st.r));
+    Ok(LmReport {
+        params: st.x,
+        iterations,
+        evaluations: st.evaluations,
+        initial_cost,
+        cost: st.cost,
+        gradient_measure: gm,
+        damping: st.mu,
+        cost_history: history,
+        stop,
+        converged: stop.is_converged(),
+    })
+}
+
+/// The input checks of [`levenberg_marquardt`]: at least as many residuals as parameters, `x0`
+/// of the problem's length and finite, tolerances finite and ≥ 0, initial damping > 0.
+fn check_input<P: LeastSquaresProblem + ?Sized>(
+    problem: &P,
+    x0: &[f64],
+    conv: &LmConvergence,
+) -> Result<(), FitError> {
     let n = problem.n_params();
     let m = problem.n_residuals();
     if n == 0 || x0.len() != n {
@@ -171,166 +256,184 @@ pub fn levenberg_marquardt<P: LeastSquaresProblem + ?Sized>(
     if tols.iter().any(|t| !(t.is_finite() && *t >= 0.0)) || conv.initial_damping <= 0.0 {
         return Err(FitError::LmSettings { settings: *conv });
     }
-    check_finite("initial parameters", x0)?;
+    check_finite("initial parameters", x0)
+}
 
-    let mut x = x0.to_vec();
-    let mut r = vec![0.0; m];
-    let mut jac = vec![0.0; m * n];
-    problem.residuals(&x, &mut r);
-    check_finite("residuals at the initial parameters", &r)?;
-    problem.jacobian(&x, &mut jac);
-    check_finite("Jacobian at the initial parameters", &jac)?;
-    let mut evaluations = 1;
+/// Euclidean norms of the n columns of the row-major m × n Jacobian `jac`.
+fn column_norms(jac: &[f64], m: usize, n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|j| {
+            (0..m)
+                .map(|i| jac[i * n + j] * jac[i * n + j])
+                .sum::<f64>()
+                .sqrt()
+        })
+        .collect()
+}
 
-    let col_norms = |jac: &[f64]| -> Vec<f64> {
-        (0..n)
-            .map(|j| {
-                (0..m)
-                    .map(|i| jac[i * n + j] * jac[i * n + j])
-                    .sum::<f64>()
-                    .sqrt()
-            })
-            .collect()
-    };
-    let mut cn = col_norms(&jac);
-    // Scaling D: column norms, never decreased (Moré); a zero column gets scale 1.
-    let mut diag: Vec<f64> = cn.iter().map(|&c| if c > 0.0 { c } else { 1.0 }).collect();
+/// Gradient Jᵀr of the cost ½‖r‖² (units of the residuals squared per unit of each parameter).
+fn gradient(jac: &[f64], r: &[f64], m: usize, n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|j| (0..m).map(|i| jac[i * n + j] * r[i]).sum())
+        .collect()
+}
 
-    let mut cost = 0.5 * norm2(&r).powi(2);
-    let initial_cost = cost;
-    let mut mu = conv.initial_damping;
-    let mut nu = 2.0_f64;
-    let mut iterations = 0;
-    let mut history = Vec::new();
-    let mut r_trial = vec![0.0; m];
-    let mut x_trial = vec![0.0; n];
+/// A trial step of [`levenberg_marquardt`] from the current iterate.
+struct TrialStep {
+    /// Step h in the parameters (units of the parameters).
+    h: Vec<f64>,
+    /// Predicted reduction L(0) − L(h) = ½(μ‖D h‖² − hᵀg) of the cost (squared units of the
+    /// residuals).
+    predicted: f64,
+    /// Whether the step is below the relative step tolerance: ‖D·h‖ ≤ x_tol·(‖D·x‖ + x_tol).
+    small: bool,
+}
 
-    let gradient = |jac: &[f64], r: &[f64]| -> Vec<f64> {
-        (0..n)
-            .map(|j| (0..m).map(|i| jac[i * n + j] * r[i]).sum())
-            .collect()
-    };
+/// The iterate of [`levenberg_marquardt`]: parameters with their residuals and Jacobian, the
+/// scaling D and the damping.
+struct LmState {
+    /// Number of parameters n and of residuals m.
+    n: usize,
+    m: usize,
+    /// Parameters x, residuals r(x) and row-major Jacobian J(x).
+    x: Vec<f64>,
+    r: Vec<f64>,
+    jac: Vec<f64>,
+    /// Column norms of J.
+    cn: Vec<f64>,
+    /// Scaling D: column norms, never decreased (Moré); a zero column gets scale 1.
+    diag: Vec<f64>,
+    /// Cost ½‖r‖² (squared units of the residuals).
+    cost: f64,
+    /// Damping μ (relative to D²) and its growth factor ν after a rejected step.
+    mu: f64,
+    nu: f64,
+    /// Residual evaluations, including the initial one.
+    evaluations: usize,
+}
 
-    let stop = loop {
-        let g = gradient(&jac, &r);
-        let rnorm = norm2(&r);
-        if rnorm == 0.0 {
-            break LmStop::ZeroResidual;
-        }
-        let gm = gradient_measure(&g, &cn, rnorm);
-        if gm <= conv.g_tol {
-            break LmStop::Gradient;
-        }
-        if iterations >= conv.max_iterations {
-            break LmStop::MaxIterations;
-        }
-        iterations += 1;
+impl LmState {
+    /// The iterate at `x0` with damping `mu`; errors when r or J is not finite there.
+    fn start<P: LeastSquaresProblem + ?Sized>(
+        problem: &P,
+        x0: &[f64],
+        mu: f64,
+    ) -> Result<Self, FitError> {
+        let n = problem.n_params();
+        let m = problem.n_residuals();
+        let x = x0.to_vec();
+        let mut r = vec![0.0; m];
+        let mut jac = vec![0.0; m * n];
+        problem.residuals(&x, &mut r);
+        check_finite("residuals at the initial parameters", &r)?;
+        problem.jacobian(&x, &mut jac);
+        check_finite("Jacobian at the initial parameters", &jac)?;
+        let cn = column_norms(&jac, m, n);
+        let diag: Vec<f64> = cn.iter().map(|&c| if c > 0.0 { c } else { 1.0 }).collect();
+        let cost = 0.5 * norm2(&r).powi(2);
+        Ok(LmState {
+            n,
+            m,
+            x,
+            r,
+            jac,
+            cn,
+            diag,
+            cost,
+            mu,
+            nu: 2.0,
+            evaluations: 1,
+        })
+    }
 
-        // Step: minimise ‖J h + r‖² + μ‖D h‖² via QR of [J D⁻¹; √μ I] in the scaled variable z = D h.
+    /// The damped step: minimises ‖J h + r‖² + μ‖D h‖² via QR of [J D⁻¹; √μ I] in the scaled
+    /// variable z = D h; `g` is the gradient Jᵀr, `x_tol` the relative step tolerance.
+    fn step(&self, g: &[f64], x_tol: f64) -> TrialStep {
+        let (m, n) = (self.m, self.n);
         let rows = m + n;
         let mut a = vec![0.0; rows * n];
         for i in 0..m {
             for j in 0..n {
-                a[i * n + j] = jac[i * n + j] / diag[j];
+                a[i * n + j] = self.jac[i * n + j] / self.diag[j];
             }
         }
-        let sq = mu.sqrt();
+        let sq = self.mu.sqrt();
         for j in 0..n {
             a[(m + j) * n + j] = sq;
         }
         let mut rhs = vec![0.0; rows];
-        for i in 0..m {
-            rhs[i] = -r[i];
+        for (v, ri) in rhs.iter_mut().zip(&self.r) {
+            *v = -ri;
         }
         let rfac = householder_qr(&mut a, rows, n, Some(&mut rhs));
         let z = solve_upper(&rfac, n, &rhs[..n]);
-        let h: Vec<f64> = z.iter().zip(&diag).map(|(zi, di)| zi / di).collect();
+        let h: Vec<f64> = z.iter().zip(&self.diag).map(|(zi, di)| zi / di).collect();
         let dh = norm2(&z);
         let dx = norm2(
-            &x.iter()
-                .zip(&diag)
+            &self
+                .x
+                .iter()
+                .zip(&self.diag)
                 .map(|(xi, di)| xi * di)
                 .collect::<Vec<_>>(),
         );
-        let step_small = dh <= conv.x_tol * (dx + conv.x_tol);
+        let small = dh <= x_tol * (dx + x_tol);
 
         // Predicted reduction L(0) − L(h) = ½(μ‖D h‖² − hᵀg), a sum of non-negative terms.
-        let htg: f64 = h.iter().zip(&g).map(|(a, b)| a * b).sum();
-        let predicted = 0.5 * (mu * dh * dh - htg);
+        let htg: f64 = h.iter().zip(g).map(|(a, b)| a * b).sum();
+        let predicted = 0.5 * (self.mu * dh * dh - htg);
+        TrialStep {
+            h,
+            predicted,
+            small,
+        }
+    }
 
+    /// Cost ½‖r‖² at x + h, with the point and its residuals left in `x_trial` and `r_trial`;
+    /// infinite when h or the residuals there are not finite.
+    fn trial_cost<P: LeastSquaresProblem + ?Sized>(
+        &mut self,
+        problem: &P,
+        h: &[f64],
+        x_trial: &mut [f64],
+        r_trial: &mut [f64],
+    ) -> f64 {
         let mut trial_cost = f64::INFINITY;
         if h.iter().all(|v| v.is_finite()) {
-            for j in 0..n {
-                x_trial[j] = x[j] + h[j];
+            for j in 0..self.n {
+                x_trial[j] = self.x[j] + h[j];
             }
-            problem.residuals(&x_trial, &mut r_trial);
-            evaluations += 1;
+            problem.residuals(x_trial, r_trial);
+            self.evaluations += 1;
             if r_trial.iter().all(|v| v.is_finite()) {
-                trial_cost = 0.5 * norm2(&r_trial).powi(2);
+                trial_cost = 0.5 * norm2(r_trial).powi(2);
             }
         }
-        let rho = if predicted > 0.0 && trial_cost.is_finite() {
-            (cost - trial_cost) / predicted
-        } else {
-            -1.0
-        };
+        trial_cost
+    }
 
-        if rho > 0.0 {
-            let mut jac_trial = vec![0.0; m * n];
-            problem.jacobian(&x_trial, &mut jac_trial);
-            if jac_trial.iter().all(|v| v.is_finite()) {
-                let actual_rel = (cost - trial_cost) / cost;
-                let predicted_rel = predicted / cost;
-                x.copy_from_slice(&x_trial);
-                r.copy_from_slice(&r_trial);
-                jac = jac_trial;
-                cost = trial_cost;
-                cn = col_norms(&jac);
-                for j in 0..n {
-                    diag[j] = diag[j].max(cn[j]);
-                }
-                mu *= (1.0 / 3.0_f64).max(1.0 - (2.0 * rho - 1.0).powi(3));
-                nu = 2.0;
-                history.push(cost);
-                if cost == 0.0 {
-                    break LmStop::ZeroResidual;
-                }
-                if step_small {
-                    break LmStop::Step;
-                }
-                if actual_rel <= conv.f_tol && predicted_rel <= conv.f_tol {
-                    break LmStop::Cost;
-                }
-                continue;
-            }
+    /// Moves to the accepted trial point (its residuals, Jacobian and cost), widens the scaling
+    /// and lowers the damping by Nielsen's rule for the gain ratio `rho`.
+    fn accept(&mut self, x_trial: &[f64], r_trial: &[f64], jac: Vec<f64>, cost: f64, rho: f64) {
+        self.x.copy_from_slice(x_trial);
+        self.r.copy_from_slice(r_trial);
+        self.jac = jac;
+        self.cost = cost;
+        self.cn = column_norms(&self.jac, self.m, self.n);
+        for j in 0..self.n {
+            self.diag[j] = self.diag[j].max(self.cn[j]);
         }
-        // Rejected step.
-        history.push(cost);
-        if step_small {
-            // Even the damped step is below the resolution asked for: nothing left to gain.
-            break LmStop::Step;
-        }
-        mu *= nu;
-        nu *= 2.0;
-        if !(mu.is_finite() && mu < 1e150) {
-            break LmStop::DampingOverflow;
-        }
-    };
+        self.mu *= (1.0 / 3.0_f64).max(1.0 - (2.0 * rho - 1.0).powi(3));
+        self.nu = 2.0;
+    }
 
-    let g = gradient(&jac, &r);
-    let gm = gradient_measure(&g, &cn, norm2(&r));
-    Ok(LmReport {
-        params: x,
-        iterations,
-        evaluations,
-        initial_cost,
-        cost,
-        gradient_measure: gm,
-        damping: mu,
-        cost_history: history,
-        stop,
-        converged: stop.is_converged(),
-    })
+    /// Raises the damping after a rejected step (μ ← μ·ν, ν ← 2ν); false when μ overflows
+    /// (not finite or ≥ 1e150).
+    fn reject(&mut self) -> bool {
+        self.mu *= self.nu;
+        self.nu *= 2.0;
+        self.mu.is_finite() && self.mu < 1e150
+    }
 }
 
 fn gradient_measure(g: &[f64], col_norms: &[f64], rnorm: f64) -> f64 {

@@ -223,64 +223,11 @@ fn fit_impl(
     opts: &FitOptions,
 ) -> Result<PowerLawFit, FitError> {
     validate_options(opts)?;
+    let p = check_samples(delta, delta_dot, q)?;
     let n = q.len();
-    if delta.len() != n {
-        return Err(FitError::LengthMismatch {
-            what: "approach δ vs force Q",
-            expected: n,
-            found: delta.len(),
-        });
-    }
-    if let Some(v) = delta_dot {
-        if v.len() != n {
-            return Err(FitError::LengthMismatch {
-                what: "approach rate δ̇ vs force Q",
-                expected: n,
-                found: v.len(),
-            });
-        }
-    }
-    let p = if delta_dot.is_some() { 4 } else { 3 };
-    if n < p + 1 {
-        return Err(FitError::TooFewPoints {
-            points: n,
-            required: p + 1,
-        });
-    }
-    check_finite("approach δ", delta)?;
-    check_finite("force Q", q)?;
-    if let Some(v) = delta_dot {
-        check_finite("approach rate δ̇", v)?;
-    }
-    if let Some(index) = delta.iter().position(|&x| x <= 0.0) {
-        return Err(FitError::NonPositiveApproach {
-            index,
-            value: delta[index],
-        });
-    }
-    let mut sorted = delta.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    let (dmin, dmax) = (sorted[0], sorted[n - 1]);
-    let distinct = 1 + sorted
-        .windows(2)
-        .filter(|w| w[1] - w[0] > 1e-9 * w[1])
-        .count();
-    if distinct < 3 {
-        return Err(FitError::DegenerateApproach {
-            distinct,
-            min: dmin,
-            max: dmax,
-        });
-    }
+    let [dmin, dmax] = approach_range(delta)?;
     let v_ref = match delta_dot {
-        Some(v) => {
-            let vmin = v.iter().copied().fold(f64::INFINITY, f64::min);
-            let vmax = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-            if vmax - vmin <= 1e-9 * vmax.abs().max(vmin.abs()) {
-                return Err(FitError::DegenerateRate { value: v[0] });
-            }
-            (v.iter().map(|a| a * a).sum::<f64>() / n as f64).sqrt()
-        }
+        Some(v) => rate_scale(v)?,
         None => 1.0,
     };
 
@@ -295,47 +242,7 @@ fn fit_impl(
         y: q.iter().map(|a| a / q_ref).collect(),
     };
 
-    // Start: variable projection over a grid of d.
-    let mut best: Option<(f64, Vec<f64>)> = None;
-    let lin_p = p - 1;
-    for g in 0..opts.d_grid_points {
-        let [lo, hi] = opts.d_start_range;
-        let d = lo + (hi - lo) * g as f64 / (opts.d_grid_points - 1) as f64;
-        let mut a = vec![0.0; n * lin_p];
-        for i in 0..n {
-            a[i * lin_p] = (d * problem.ln_u[i]).exp();
-            a[i * lin_p + 1] = 1.0;
-            if let Some(w) = &problem.w {
-                a[i * lin_p + 2] = w[i];
-            }
-        }
-        let Some(sol) = least_squares(&a, n, lin_p, &problem.y, 1e-10) else {
-            continue;
-        };
-        let ssr: f64 = (0..n)
-            .map(|i| {
-                let m: f64 = (0..lin_p).map(|j| a[i * lin_p + j] * sol[j]).sum();
-                (m - problem.y[i]).powi(2)
-            })
-            .sum();
-        let better = match &best {
-            Some((s, _)) => ssr < *s,
-            None => true,
-        };
-        if ssr.is_finite() && better {
-            let mut x = vec![sol[0], d, sol[1]];
-            if p == 4 {
-                x.push(sol[2]);
-            }
-            best = Some((ssr, x));
-        }
-    }
-    let Some((_, x0)) = best else {
-        return Err(FitError::Singular {
-            detail: "the linear parameters (K, ΔF[, c]) are not identifiable for any d on the start grid".to_string(),
-        });
-    };
-
+    let x0 = projected_start(&problem, opts, p)?;
     let report = levenberg_marquardt(&problem, &x0, &opts.convergence)?;
     let x = &report.params;
     // With a negligible power-law term d has no influence on the model: not identifiable.
@@ -354,27 +261,7 @@ fn fit_impl(
     let k = q_ref * a * (-d * mean_ln).exp();
     let delta_f = q_ref * b;
     let c = (p == 4).then(|| q_ref * x[3] / v_ref);
-    // G = ∂θ/∂x (p × p).
-    let mut g = vec![0.0; p * p];
-    g[0] = q_ref * (-d * mean_ln).exp(); // ∂K/∂a
-    g[1] = -k * mean_ln; // ∂K/∂d
-    g[p + 1] = 1.0; // ∂d/∂d
-    g[2 * p + 2] = q_ref; // ∂ΔF/∂b
-    if p == 4 {
-        g[3 * p + 3] = q_ref / v_ref; // ∂c/∂e
-    }
-    let mut cov = vec![0.0; p * p];
-    for i in 0..p {
-        for j in 0..p {
-            let mut s = 0.0;
-            for u in 0..p {
-                for v in 0..p {
-                    s += g[i * p + u] * cov_int[u * p + v] * g[j * p + v];
-                }
-            }
-            cov[i * p + j] = s;
-        }
-    }
+    let cov = physical_covariance(&cov_int, p, [k, d], mean_ln, q_ref, v_ref);
     let force_at_ref = q_ref * a;
 
     // Goodness of fit in N.
@@ -417,4 +304,164 @@ fn fit_impl(
             && c.map_or(true, f64::is_finite),
         stop: report.stop,
     })
+}
+
+/// The sample checks of the fit: equal lengths of δ, δ̇ (if given) and Q, at least p + 1
+/// samples, all finite, all δ > 0. Returns p, the number of fitted parameters (3, or 4 with
+/// the rates).
+fn check_samples(delta: &[f64], delta_dot: Option<&[f64]>, q: &[f64]) -> Result<usize, FitError> {
+    let n = q.len();
+    if delta.len() != n {
+        return Err(FitError::LengthMismatch {
+            what: "approach δ vs force Q",
+            expected: n,
+            found: delta.len(),
+        });
+    }
+    if let Some(v) = delta_dot {
+        if v.len() != n {
+            return Err(FitError::LengthMismatch {
+                what: "approach rate δ̇ vs force Q",
+                expected: n,
+                found: v.len(),
+            });
+        }
+    }
+    let p = if delta_dot.is_some() { 4 } else { 3 };
+    if n < p + 1 {
+        return Err(FitError::TooFewPoints {
+            points: n,
+            required: p + 1,
+        });
+    }
+    check_finite("approach δ", delta)?;
+    check_finite("force Q", q)?;
+    if let Some(v) = delta_dot {
+        check_finite("approach rate δ̇", v)?;
+    }
+    if let Some(index) = delta.iter().position(|&x| x <= 0.0) {
+        return Err(FitError::NonPositiveApproach {
+            index,
+            value: delta[index],
+        });
+    }
+    Ok(p)
+}
+
+/// Smallest and largest approach [δ_min, δ_max] (m) of the samples (non-empty); an error unless
+/// at least 3 of them are distinct (relative spacing > 1e-9).
+fn approach_range(delta: &[f64]) -> Result<[f64; 2], FitError> {
+    let mut sorted = delta.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let (dmin, dmax) = (sorted[0], sorted[sorted.len() - 1]);
+    let distinct = 1 + sorted
+        .windows(2)
+        .filter(|w| w[1] - w[0] > 1e-9 * w[1])
+        .count();
+    if distinct < 3 {
+        return Err(FitError::DegenerateApproach {
+            distinct,
+            min: dmin,
+            max: dmax,
+        });
+    }
+    Ok([dmin, dmax])
+}
+
+/// Rate scale v_ref, the root-mean-square of the rates δ̇ (m/s); an error when the rates do
+/// not vary (relative spread ≤ 1e-9).
+fn rate_scale(v: &[f64]) -> Result<f64, FitError> {
+    let vmin = v.iter().copied().fold(f64::INFINITY, f64::min);
+    let vmax = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    if vmax - vmin <= 1e-9 * vmax.abs().max(vmin.abs()) {
+        return Err(FitError::DegenerateRate { value: v[0] });
+    }
+    Ok((v.iter().map(|a| a * a).sum::<f64>() / v.len() as f64).sqrt())
+}
+
+/// Start of the Levenberg–Marquardt polish by variable projection: for each d of the start grid
+/// the linear parameters (a, b[, e]) by linear least squares, and the (a, d, b[, e]) of the
+/// smallest sum of squared residuals. An error when no d of the grid gives a solution.
+fn projected_start(
+    problem: &ScaledPowerLaw,
+    opts: &FitOptions,
+    p: usize,
+) -> Result<Vec<f64>, FitError> {
+    let n = problem.y.len();
+    let mut best: Option<(f64, Vec<f64>)> = None;
+    let lin_p = p - 1;
+    for g in 0..opts.d_grid_points {
+        let [lo, hi] = opts.d_start_range;
+        let d = lo + (hi - lo) * g as f64 / (opts.d_grid_points - 1) as f64;
+        let mut a = vec![0.0; n * lin_p];
+        for i in 0..n {
+            a[i * lin_p] = (d * problem.ln_u[i]).exp();
+            a[i * lin_p + 1] = 1.0;
+            if let Some(w) = &problem.w {
+                a[i * lin_p + 2] = w[i];
+            }
+        }
+        let Some(sol) = least_squares(&a, n, lin_p, &problem.y, 1e-10) else {
+            continue;
+        };
+        let ssr: f64 = (0..n)
+            .map(|i| {
+                let m: f64 = (0..lin_p).map(|j| a[i * lin_p + j] * sol[j]).sum();
+                (m - problem.y[i]).powi(2)
+            })
+            .sum();
+        let better = match &best {
+            Some((s, _)) => ssr < *s,
+            None => true,
+        };
+        if ssr.is_finite() && better {
+            let mut x = vec![sol[0], d, sol[1]];
+            if p == 4 {
+                x.push(sol[2]);
+            }
+            best = Some((ssr, x));
+        }
+    }
+    match best {
+        Some((_, x0)) => Ok(x0),
+        None => Err(FitError::Singular {
+            detail: "the linear parameters (K, ΔF[, c]) are not identifiable for any d on the start grid".to_string(),
+        }),
+    }
+}
+
+/// Covariance of the physical parameters θ = (K, d, ΔF[, c]) (row-major p × p) from that of the
+/// scaled ones, G·C·Gᵀ with G = ∂θ/∂x; `kd` holds the fitted K (N/m^d) and d, `mean_ln` is
+/// ln δ_ref, `q_ref` (N) and `v_ref` (m/s) the force and rate scales.
+fn physical_covariance(
+    cov_int: &[f64],
+    p: usize,
+    kd: [f64; 2],
+    mean_ln: f64,
+    q_ref: f64,
+    v_ref: f64,
+) -> Vec<f64> {
+    let [k, d] = kd;
+    // G = ∂θ/∂x (p × p).
+    let mut g = vec![0.0; p * p];
+    g[0] = q_ref * (-d * mean_ln).exp(); // ∂K/∂a
+    g[1] = -k * mean_ln; // ∂K/∂d
+    g[p + 1] = 1.0; // ∂d/∂d
+    g[2 * p + 2] = q_ref; // ∂ΔF/∂b
+    if p == 4 {
+        g[3 * p + 3] = q_ref / v_ref; // ∂c/∂e
+    }
+    let mut cov = vec![0.0; p * p];
+    for i in 0..p {
+        for j in 0..p {
+            let mut s = 0.0;
+            for u in 0..p {
+                for v in 0..p {
+                    s += g[i * p + u] * cov_int[u * p + v] * g[j * p + v];
+                }
+            }
+            cov[i * p + j] = s;
+        }
+    }
+    cov
 }
