@@ -19,6 +19,7 @@
 #     `ehl-bearing study sbatch … --shards 3 --cpus-per-task 1 --submit` (3 array tasks + the
 #     dependent merge job), waits (bounded), checks every job COMPLETED and `diff -r` of the two
 #     output folders;
+#     then a 3 x 3 x 3 law map by `law-map sbatch --submit` against one generated on this machine;
 #  5. a failing task (a foreign point file in its shard): FAILED, message in its log and in
 #     `study status`, merge not run; after removing the cause, the resubmission runs that task only;
 #  6. fault test: the quasi-static array again, task 2 cancelled with scancel while its point is in
@@ -147,6 +148,62 @@ diff -r "$TMP/ref-hertz" "$FAILING" || fail "failing task: the merged folder dif
 log "failing task: FAILED with its message in the log and the status; only task 1 resubmitted; identical merge"
 
 study_on_slurm quasi-static "$QS_STUDY" quasi-static
+
+# ---------------------------------------------------------------- 4b. a law map
+# A 3 x 3 x 3 law map on grid 33 (seconds): `law-map sbatch --shards 3 --submit` (3 array tasks
+# of `law-map generate --shard` and the dependent assemble job) against `law-map generate` and
+# `assemble` on this machine: the map files must be the same bytes but the CPU times they record.
+MAP_SPEC=$TMP/law_map_small.toml
+cat >"$MAP_SPEC" <<EOF
+viscosity_model = "roelands"
+density_model = "dowson-higginson"
+alpha_p0 = 4.312
+ln_eta0_ratio = 6.451124175131799
+amplitude = 0.2
+points = 7
+grid = 33
+[[axis]]
+group = "m"
+min = 300.0
+max = 1000.0
+nodes = 3
+log = true
+[[axis]]
+group = "l"
+min = 20.0
+max = 24.0
+nodes = 3
+log = false
+[[axis]]
+group = "ry_over_rx"
+min = 10.0
+max = 20.0
+nodes = 3
+log = true
+EOF
+log "law map: single-machine generate + assemble"
+RAYON_NUM_THREADS=2 run_bin law-map generate "$MAP_SPEC" -o "$TMP/ref-map" >"$TMP/ref-map.log" 2>&1 ||
+    fail "law map: single-machine generate failed (log $TMP/ref-map.log)"
+run_bin law-map assemble "$MAP_SPEC" -o "$TMP/ref-map" --map "$TMP/ref-map.json" >>"$TMP/ref-map.log" 2>&1 ||
+    fail "law map: single-machine assemble failed (log $TMP/ref-map.log)"
+log "law map: law-map sbatch --shards 3 --submit"
+out=$(run_bin law-map sbatch "$MAP_SPEC" -o "$TMP/slurm-map" --map "$TMP/slurm-map.json" --shards 3 \
+    --cpus-per-task 1 --time-limit-min 30 --submit) || fail "law map: law-map sbatch --submit failed: $out"
+line=$(grep '^submitted array job' <<<"$out") || fail "law map: no submission in: $out"
+MAP_ARRAY=$(sed -E 's/^submitted array job ([0-9]+) .*/\1/' <<<"$line")
+MAP_ASSEMBLE=$(sed -E 's/.* and assemble job ([0-9]+) .*/\1/' <<<"$line")
+wait_jobs "$JOB_LIMIT" "$MAP_ARRAY" "$MAP_ASSEMBLE"
+expect_completed "law map array" "$MAP_ARRAY"
+expect_completed "law map assemble" "$MAP_ASSEMBLE"
+[ "$(job_states "$MAP_ARRAY" | wc -l)" = 3 ] || fail "law map: array job $MAP_ARRAY does not have 3 tasks"
+strip_cpu() { sed -E 's/"(seconds|cpu_seconds)": *[0-9.eE+-]+/"\1": _/g' "$1"; }
+cmp <(strip_cpu "$TMP/ref-map.json") <(strip_cpu "$TMP/slurm-map.json") ||
+    fail "law map: the map assembled on Slurm differs from the single-machine map (beyond CPU times)"
+out=$(run_bin law-map sbatch "$MAP_SPEC" -o "$TMP/slurm-map" --map "$TMP/slurm-map.json" --shards 3 --submit) ||
+    fail "law map: resubmission failed: $out"
+grep -q "every node is done: submitting the assemble job only" <<<"$out" ||
+    fail "law map: a resubmission of a finished map did not submit the assemble job alone: $out"
+log "law map: 3 array tasks + assemble COMPLETED; map identical to the single-machine one; resubmission assembles only"
 
 # ---------------------------------------------------------------- 5. fault test
 log "fault test: quasi-static array, task 2 cancelled mid-run"
