@@ -481,9 +481,9 @@ mod embedded {
         );
     }
 
-    /// The fourth embedded map, with the rheology groups as axes (other oils), is what
-    /// `law-map generate` and `assemble` give for examples/law_map_mineral_oils.toml: its spec is
-    /// the file's and recomputed nodes (the first, one in the middle, the last) reproduce its
+    /// The embedded maps with the rheology groups as axes (other oils) are what `law-map
+    /// generate` and `assemble` give for examples/law_map_mineral_oils.toml and
+    /// examples/law_map_mineral_oils_light.toml: their specs are the files' and recomputed nodes (the first, one in the middle, the last) reproduce its
     /// stored laws to round-off.
     #[test]
     fn oils_map_is_the_example_spec_and_reproduces_its_nodes() {
@@ -494,20 +494,29 @@ mod embedded {
             &[0, 1102, 2204],
             "oils",
         );
+        assert_reproduces(
+            5,
+            include_str!("../../../examples/law_map_mineral_oils_light.toml"),
+            Some(7 * 7 * 5 * 3 * 3),
+            &[0, 1102, 2204],
+            "oils, light contacts",
+        );
     }
 
-    /// The oils map against direct characterizations at held-out points (a fresh seed, not the
-    /// 200 of docs/law_map.md §6), within the acceptance bounds (force at the nominal approach
+    /// The oils maps (the fifth and its light-contact neighbour) against direct characterizations
+    /// at held-out points (fresh seeds, not the 200 of docs/law_map.md §5), within the acceptance bounds (force at the nominal approach
     /// 0.5 %, d 0.005, ΔF 3 %).
     #[test]
     fn oils_map_against_direct_characterizations() {
-        let r = held_out_check(&LawMap::embedded_maps()[4], 6, 20261127);
-        assert_eq!(r.len(), 6);
-        for h in &r {
-            assert!(
-                h.force_error < 5e-3 && h.d_error < 5e-3 && h.delta_f_error < 0.03,
-                "{h:?}"
-            );
+        for (index, seed) in [(4, 20261127), (5, 20261128)] {
+            let r = held_out_check(&LawMap::embedded_maps()[index], 6, seed);
+            assert_eq!(r.len(), 6);
+            for h in &r {
+                assert!(
+                    h.force_error < 5e-3 && h.d_error < 5e-3 && h.delta_f_error < 0.03,
+                    "map {index}: {h:?}"
+                );
+            }
         }
     }
 

@@ -534,8 +534,10 @@ impl LawMap {
     /// (`examples/law_map_seed_oil_high_m.toml`: the heavy contacts of the seed study's larger
     /// loads). One for other oils, with the rheology groups as axes: 7 × 7 × 5 × 3 × 3 nodes over
     /// M 500–2700, L 12.5–23, Ry/Rx 14–45, α·p0 3.15–5.05 and ln(η0/η∞) 4.4–7.0 (ISO VG 22–68
-    /// mineral oils at 40–80 °C; `examples/law_map_mineral_oils.toml`). A query uses the first
-    /// that holds it.
+    /// mineral oils at 40–80 °C; `examples/law_map_mineral_oils.toml`), and its light-contact
+    /// neighbour: 7 × 7 × 5 × 3 × 3 nodes over M 100–500, L 12.5–23, Ry/Rx 14–45, α·p0 2.9–5.05
+    /// and ln(η0/η∞) 4.1–7.0 (`examples/law_map_mineral_oils_light.toml`). A query uses the
+    /// first that holds it.
     pub fn embedded_maps() -> &'static [LawMap] {
         static MAPS: std::sync::OnceLock<Vec<LawMap>> = std::sync::OnceLock::new();
         MAPS.get_or_init(|| {
@@ -545,6 +547,7 @@ impl LawMap {
                 include_str!("../../data/law_map_seed_oil_low_m_g65.json"),
                 include_str!("../../data/law_map_seed_oil_high_m_g65.json"),
                 include_str!("../../data/law_map_mineral_oils_g65.json"),
+                include_str!("../../data/law_map_mineral_oils_light_g65.json"),
             ]
             .iter()
             .map(|t| {
