@@ -671,7 +671,7 @@ mod bearing {
     }
 
     /// Without the fallback, a contact outside the envelope is an error naming the group and the
-    /// option that characterizes such contacts by EHL.
+    /// option that characterizes such contacts by EHL; the fallback is the default.
     #[test]
     fn outside_the_envelope_without_fallback_names_the_group() {
         let case = read_case(std::path::Path::new(concat!(
@@ -691,6 +691,11 @@ mod bearing {
                 && e.contains("outside the map's envelope")
                 && e.contains("fallback = true"),
             "{e}"
+        );
+        // The default is the fallback: `method = "map"` alone gives every case its laws.
+        assert_eq!(
+            Method::parse("map", None).unwrap(),
+            Method::Map(MapSettings { fallback: true })
         );
     }
 }

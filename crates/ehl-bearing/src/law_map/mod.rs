@@ -138,7 +138,7 @@ pub enum LawMapError {
         max: f64,
     },
     /// A contact outside every embedded map.
-    #[error("outside every embedded map: {reasons} (with `fallback = true` in [method_options] such contacts are characterized by the quasi-static method)")]
+    #[error("outside every embedded map: {reasons} (the map method's default, `fallback = true` in [method_options], characterizes such contacts by the quasi-static method)")]
     OutsideEveryMap {
         /// Each map's refusal.
         reasons: String,

@@ -723,12 +723,21 @@ pub enum Method {
 }
 
 /// Settings of the `map` method.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub struct MapSettings {
     /// Outside the map's envelope, characterize the contact by the quasi-static method with the
-    /// map's settings (true; the contact's `method` then says so) or fail with an error naming
-    /// the group, its value and the envelope (false, the default).
+    /// map's settings (true, the default; the contact's `method` then says so) or fail with an
+    /// error naming the group, its value and the envelope (false).
     pub fallback: bool,
+}
+
+impl Default for MapSettings {
+    /// With the quasi-static fallback: every case gets its laws, from the map where it holds
+    /// the contacts (milliseconds) and by EHL solutions elsewhere, each contact naming its
+    /// method.
+    fn default() -> Self {
+        MapSettings { fallback: true }
+    }
 }
 
 /// Options of `map` as a user gives them.
@@ -915,7 +924,7 @@ impl Method {
             "map" => {
                 let o: MapOptions = options(name, table)?;
                 Method::Map(MapSettings {
-                    fallback: o.fallback.unwrap_or(false),
+                    fallback: o.fallback.unwrap_or(MapSettings::default().fallback),
                 })
             }
             other => {
