@@ -166,16 +166,32 @@ pub fn variables() -> &'static [Variable] {
     TABLE.get_or_init(build)
 }
 
+/// The table in the order of `ModelVariables`: inputs, reactions, stiffness, damping, the
+/// status outputs, then the parameters.
 fn build() -> Vec<Variable> {
-    use Causality::*;
     let mut v = Vec::new();
-    let q_what = [
-        "axial displacement x",
-        "radial displacement y",
-        "radial displacement z",
-        "tilt about +y",
-        "tilt about +z",
-    ];
+    inputs(&mut v);
+    reactions(&mut v);
+    matrix_outputs(&mut v, MatrixOutput::Stiffness);
+    matrix_outputs(&mut v, MatrixOutput::Damping);
+    status_outputs(&mut v);
+    parameters(&mut v);
+    v
+}
+
+/// What each displacement input q_k is, in words.
+const Q_WHAT: [&str; 5] = [
+    "axial displacement x",
+    "radial displacement y",
+    "radial displacement z",
+    "tilt about +y",
+    "tilt about +z",
+];
+
+/// The 13 Real inputs: displacements q (m, rad), their rates (m/s, rad/s), the ring speeds
+/// (rad/s) and the cage angle (rad).
+fn inputs(v: &mut Vec<Variable>) {
+    use Causality::Input;
     for k in 0..5 {
         let unit = if k < 3 { "m" } else { "rad" };
         v.push(real(
@@ -185,7 +201,7 @@ fn build() -> Vec<Variable> {
             unit,
             &format!(
                 "Inner-ring {} relative to the outer ring, {unit}",
-                q_what[k]
+                Q_WHAT[k]
             ),
         ));
     }
@@ -196,7 +212,7 @@ fn build() -> Vec<Variable> {
             VR_V + k as u32,
             Input,
             unit,
-            &format!("Rate of the inner-ring {}, {unit}", q_what[k]),
+            &format!("Rate of the inner-ring {}, {unit}", Q_WHAT[k]),
         ));
     }
     v.push(real(
@@ -220,6 +236,10 @@ fn build() -> Vec<Variable> {
         "rad",
         "Cage angle, rad: ball j at azimuth 2*pi*j/Z + cage angle from +y toward +z (integrate cage_speed_rad_s for the varying-compliance excitation, or hold fixed)",
     ));
+}
+
+/// The five reaction outputs (N, N·m).
+fn reactions(v: &mut Vec<Variable>) {
     let r_what = [
         "axial force Fx, N",
         "radial force Fy, N",
@@ -231,7 +251,7 @@ fn build() -> Vec<Variable> {
         v.push(real(
             REACTION_NAMES[k],
             VR_REACTION + k as u32,
-            Output,
+            Causality::Output,
             if k < 3 { "N" } else { "N.m" },
             &format!(
                 "Load on the inner ring in equilibrium with the balls (damping term included): {} (the bearing acts on the shaft with the opposite)",
@@ -239,43 +259,84 @@ fn build() -> Vec<Variable> {
             ),
         ));
     }
+}
+
+/// The two 5×5 matrix outputs.
+#[derive(Clone, Copy)]
+enum MatrixOutput {
+    /// ∂F/∂q.
+    Stiffness,
+    /// ∂F/∂q̇.
+    Damping,
+}
+
+/// The 25 outputs of a 5×5 matrix, row-major, each named by its row (force or moment), its
+/// column (displacement or rate) and its unit.
+fn matrix_outputs(v: &mut Vec<Variable>, which: MatrixOutput) {
     for (i, row) in ROWS.iter().enumerate() {
         for j in 0..5 {
-            let (suffix, unit) = match (i < 3, j < 3) {
-                (true, true) => ("N_m", "N/m"),
-                (true, false) => ("N_rad", "N/rad"),
-                (false, true) => ("Nm_m", "N"),
-                (false, false) => ("Nm_rad", "N.m/rad"),
+            let (name, vr, unit, description) = match which {
+                MatrixOutput::Stiffness => {
+                    let (suffix, unit) = match (i < 3, j < 3) {
+                        (true, true) => ("N_m", "N/m"),
+                        (true, false) => ("N_rad", "N/rad"),
+                        (false, true) => ("Nm_m", "N"),
+                        (false, false) => ("Nm_rad", "N.m/rad"),
+                    };
+                    (
+                        format!("K_{row}_{}_{suffix}", COLS[j]),
+                        VR_K,
+                        unit,
+                        format!("Stiffness d{row}/d{} ({unit}; not symmetrized)", Q_NAMES[j]),
+                    )
+                }
+                MatrixOutput::Damping => {
+                    let (suffix, unit) = match (i < 3, j < 3) {
+                        (true, true) => ("Ns_m", "N.s/m"),
+                        (true, false) => ("Ns_rad", "N.s/rad"),
+                        (false, true) => ("Nms_m", "N.s"),
+                        (false, false) => ("Nms_rad", "N.m.s/rad"),
+                    };
+                    (
+                        format!("C_{row}_{}_{suffix}", COLS[j]),
+                        VR_C,
+                        unit,
+                        format!(
+                            "Damping d{row}/d{} ({unit}; zero for laws without damping terms)",
+                            V_NAMES[j]
+                        ),
+                    )
+                }
             };
             v.push(real(
-                &format!("K_{row}_{}_{suffix}", COLS[j]),
-                VR_K + (5 * i + j) as u32,
-                Output,
+                &name,
+                vr + (5 * i + j) as u32,
+                Causality::Output,
                 unit,
-                &format!("Stiffness d{row}/d{} ({unit}; not symmetrized)", Q_NAMES[j]),
+                &description,
             ));
         }
     }
-    for (i, row) in ROWS.iter().enumerate() {
-        for j in 0..5 {
-            let (suffix, unit) = match (i < 3, j < 3) {
-                (true, true) => ("Ns_m", "N.s/m"),
-                (true, false) => ("Ns_rad", "N.s/rad"),
-                (false, true) => ("Nms_m", "N.s"),
-                (false, false) => ("Nms_rad", "N.m.s/rad"),
-            };
-            v.push(real(
-                &format!("C_{row}_{}_{suffix}", COLS[j]),
-                VR_C + (5 * i + j) as u32,
-                Output,
-                unit,
-                &format!(
-                    "Damping d{row}/d{} ({unit}; zero for laws without damping terms)",
-                    V_NAMES[j]
-                ),
-            ));
-        }
+}
+
+/// A Real output counting something (unit "1", no start value).
+fn count(name: &str, vr: u32, description: &str) -> Variable {
+    Variable {
+        name: name.into(),
+        vr,
+        causality: Causality::Output,
+        kind: Kind::Real {
+            unit: "1",
+            start: None,
+        },
+        description: description.into(),
     }
+}
+
+/// The status outputs: the cage speed (rad/s), the largest contact loads (N) and the counts of
+/// contacts beyond their limits.
+fn status_outputs(v: &mut Vec<Variable>) {
+    use Causality::Output;
     v.push(real(
         "cage_speed_rad_s",
         VR_CAGE_SPEED,
@@ -297,58 +358,47 @@ fn build() -> Vec<Variable> {
         "N",
         "Largest outer-race contact load (without the damping term), N",
     ));
-    v.push(Variable {
-        name: "overloaded_contacts".into(),
-        vr: VR_OVERLOADED,
-        causality: Output,
-        kind: Kind::Real {
-            unit: "1",
-            start: None,
-        },
-        description: "Number of contacts whose approach exceeds 2 percent of the ball diameter (no bearing survives; numbers returned as computed)".into(),
-    });
-    v.push(Variable {
-        name: "outside_range_contacts".into(),
-        vr: VR_OUTSIDE_RANGE,
-        causality: Output,
-        kind: Kind::Real {
-            unit: "1",
-            start: None,
-        },
-        description: "Number of loaded contacts outside the range their law was fitted on (trends: outside the trends' load range)".into(),
-    });
-    v.push(Variable {
-        name: "speed_outside".into(),
-        vr: VR_SPEED_OUTSIDE,
-        causality: Output,
-        kind: Kind::Real {
-            unit: "1",
-            start: None,
-        },
-        description: "1 when the speed lies outside the trends' speed range (laws at the nearest end), else 0".into(),
-    });
+    v.push(count(
+        "overloaded_contacts",
+        VR_OVERLOADED,
+        "Number of contacts whose approach exceeds 2 percent of the ball diameter (no bearing survives; numbers returned as computed)",
+    ));
+    v.push(count(
+        "outside_range_contacts",
+        VR_OUTSIDE_RANGE,
+        "Number of loaded contacts outside the range their law was fitted on (trends: outside the trends' load range)",
+    ));
+    v.push(count(
+        "speed_outside",
+        VR_SPEED_OUTSIDE,
+        "1 when the speed lies outside the trends' speed range (laws at the nearest end), else 0",
+    ));
+}
+
+/// The Boolean parameter (warm starts) and the Integer calculated parameters (element kind,
+/// ball count).
+fn parameters(v: &mut Vec<Variable>) {
     v.push(Variable {
         name: "warm_start".into(),
         vr: VR_WARM_START,
-        causality: Parameter,
+        causality: Causality::Parameter,
         kind: Kind::Boolean { start: true },
         description: "Warm-start each call from the previous one (results differ only within the solvers' tolerances); false: every call from scratch, reproducible bit for bit".into(),
     });
     v.push(Variable {
         name: "element_kind".into(),
         vr: VR_ELEMENT_KIND,
-        causality: CalculatedParameter,
+        causality: Causality::CalculatedParameter,
         kind: Kind::Integer,
         description: "The element the resources define: 0 dry Hertz (case.toml), 1 fitted laws (case.toml + characterization.json), 2 trends (trends.json)".into(),
     });
     v.push(Variable {
         name: "ball_count".into(),
         vr: VR_BALL_COUNT,
-        causality: CalculatedParameter,
+        causality: Causality::CalculatedParameter,
         kind: Kind::Integer,
         description: "Number of balls Z".into(),
     });
-    v
 }
 
 /// The Real variable with value reference `vr`, if any.

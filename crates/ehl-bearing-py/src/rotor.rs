@@ -3,7 +3,7 @@
 use crate::{element_of, err, square};
 use ehl_bearing::rotor::{
     BearingSite, CageMotion, Coupling, RotorMatrices, RotorModel, RotorProgress, SpeedProfile,
-    Start, StaticSolution, TimeOptions, Unbalance,
+    Start, StaticSolution, TimeOptions, TimeResponse, Unbalance,
 };
 use numpy::{
     PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
@@ -254,6 +254,7 @@ impl PyRotorModel {
     /// `bearing_s`, `factorization_s`). Raises `EhlBearingError` if a step's Newton iteration
     /// fails or the response diverges (with the step and time).
     #[pyo3(signature = (step_s, duration_s, speed_rad_s = None, ramp = None, record_every = 1, record_dofs = None, coupling = "implicit", cage_angle_rad = None, start_displacement = None, start_velocity = None, progress = None, time_limit_s = None))]
+    // The arguments are the Python keyword interface of `RotorModel.simulate`.
     #[allow(clippy::too_many_arguments)]
     fn simulate(
         &self,
@@ -278,162 +279,198 @@ impl PyRotorModel {
                 )));
             }
         }
-        let profile = match (speed_rad_s, ramp) {
-            (Some(s), None) => SpeedProfile::Constant { speed_rad_s: s },
-            (None, Some((a, b, d))) => SpeedProfile::Ramp {
-                start_rad_s: a,
-                end_rad_s: b,
-                duration_s: d,
-            },
-            (None, None) => {
-                return Err(err(
-                    "no shaft speed given: pass speed_rad_s (constant speed, rad/s) or ramp = \
-                     (start_rad_s, end_rad_s, duration_s) (a run-up)",
-                ))
-            }
-            (Some(s), Some(r)) => {
-                return Err(err(format!(
-                    "both speed_rad_s = {s} and ramp = {r:?} given: pass one of them \
-                     (speed_rad_s for a constant speed, ramp for a run-up)"
-                )))
-            }
-        };
-        let coupling = match coupling {
-            "implicit" => Coupling::Implicit,
-            "lagged" => Coupling::Lagged,
-            other => {
-                return Err(err(format!(
-                    "coupling = {other:?}: expected \"implicit\" or \"lagged\""
-                )))
-            }
-        };
-        let cage = match cage_angle_rad {
-            None => CageMotion::Rolling,
-            Some(a) => CageMotion::Fixed { angle_rad: a },
-        };
-        let n = self.matrices.dofs;
-        let start = if start_displacement.is_some() || start_velocity.is_some() {
-            Start::Given {
-                displacement: vec_n(start_displacement, n, "start_displacement")?,
-                velocity: vec_n(start_velocity, n, "start_velocity")?,
-            }
-        } else {
-            Start::StaticEquilibrium
-        };
+        let profile = speed_profile(speed_rad_s, ramp)?;
         let options = TimeOptions {
             step_s,
             duration_s,
             record_every,
             record_dofs: record_dofs.unwrap_or_default(),
-            coupling,
-            cage,
-            start,
+            coupling: coupling_of(coupling)?,
+            cage: match cage_angle_rad {
+                None => CageMotion::Rolling,
+                Some(a) => CageMotion::Fixed { angle_rad: a },
+            },
+            start: start_of(start_displacement, start_velocity, self.matrices.dofs)?,
             ..TimeOptions::default()
         };
         let m = self.model()?;
-        // The library calls back every min(steps/100, 1000) steps: the user's callback sees
-        // about a hundred of them; every one checks Ctrl-C and the time limit. A Python exception
-        // (the callback's, or KeyboardInterrupt) stops the run and is raised as it is.
-        let clock = std::time::Instant::now();
-        let mut raised: Option<PyErr> = None;
-        let mut out_of_time = false;
-        let result = py.allow_threads(|| {
-            let mut cb = |p: &RotorProgress| {
-                let user_every = (p.steps / 100).max(1);
-                let stop = Python::with_gil(|py| {
-                    py.check_signals()?;
-                    if let Some(f) = &progress {
-                        if p.step % user_every == 0 || p.step == p.steps {
-                            f.call1(py, (p.step, p.steps, p.time_s))?;
-                        }
-                    }
-                    Ok::<(), PyErr>(())
-                });
-                if let Err(e) = stop {
-                    raised = Some(e);
-                    return std::ops::ControlFlow::Break(());
-                }
-                if time_limit_s.is_some_and(|t| clock.elapsed().as_secs_f64() > t) {
-                    out_of_time = true;
-                    return std::ops::ControlFlow::Break(());
-                }
-                std::ops::ControlFlow::Continue(())
-            };
-            m.simulate(&profile, &options, Some(&mut cb))
-        });
-        if let Some(e) = raised {
-            return Err(e);
-        }
-        let r = match result {
-            Err(ehl_bearing::rotor::RotorError::Cancelled {
-                step,
-                steps,
-                time_s,
-            }) if out_of_time => {
-                return Err(err(format!(
-                    "time limit of {} s reached at step {step} of {steps} (t = {time_s} s); \
-                     raise time_limit_s or shorten duration_s",
-                    time_limit_s.unwrap_or(f64::NAN)
-                )))
-            }
-            r => r.map_err(err)?,
-        };
-        let d = PyDict::new_bound(py);
-        d.set_item("time_s", PyArray1::from_slice_bound(py, &r.time_s))?;
-        d.set_item(
-            "speed_rad_s",
-            PyArray1::from_slice_bound(py, &r.speed_rad_s),
-        )?;
-        d.set_item("record_dofs", r.record_dofs.clone())?;
-        let cols = r.record_dofs.len();
-        let disp: Vec<f64> = r.displacement.iter().flatten().copied().collect();
-        d.set_item(
-            "displacement",
-            PyArray1::from_vec_bound(py, disp)
-                .reshape([r.time_s.len(), cols])
-                .map_err(err)?,
-        )?;
-        let nb = self.bearings.len();
-        let cage: Vec<f64> = r.cage_angle_rad.iter().flatten().copied().collect();
-        d.set_item(
-            "cage_angle_rad",
-            PyArray1::from_vec_bound(py, cage)
-                .reshape([r.time_s.len(), nb])
-                .map_err(err)?,
-        )?;
-        let cage_speed: Vec<f64> = r.cage_speed_rad_s.iter().flatten().copied().collect();
-        d.set_item(
-            "cage_speed_rad_s",
-            PyArray1::from_vec_bound(py, cage_speed)
-                .reshape([r.time_s.len(), nb])
-                .map_err(err)?,
-        )?;
-        let flat5 = |v: &Vec<Vec<[f64; 5]>>| -> Vec<f64> {
-            v.iter().flatten().flat_map(|x| x.iter().copied()).collect()
-        };
-        d.set_item(
-            "bearing_displacement",
-            PyArray1::from_vec_bound(py, flat5(&r.bearing_displacement))
-                .reshape([r.time_s.len(), nb, 5])
-                .map_err(err)?,
-        )?;
-        d.set_item(
-            "bearing_reaction",
-            PyArray1::from_vec_bound(py, flat5(&r.bearing_reaction))
-                .reshape([r.time_s.len(), nb, 5])
-                .map_err(err)?,
-        )?;
-        d.set_item("steps", r.steps)?;
-        d.set_item("newton_iterations", r.newton_iterations)?;
-        d.set_item("max_newton_iterations", r.max_newton_iterations)?;
-        d.set_item("steps_outside_range", r.steps_outside_range)?;
-        let b = PyDict::new_bound(py);
-        b.set_item("total_s", r.breakdown.total_s)?;
-        b.set_item("bearing_s", r.breakdown.bearing_s)?;
-        b.set_item("factorization_s", r.breakdown.factorization_s)?;
-        d.set_item("breakdown", b)?;
-        Ok(d.into_any().unbind())
+        let r = simulate_interruptible(py, &m, &profile, &options, progress, time_limit_s)?;
+        Ok(response_dict(py, &r, self.bearings.len())?
+            .into_any()
+            .unbind())
     }
+}
+
+/// The shaft speed of `simulate`: constant `speed_rad_s`, or the run-up `ramp`
+/// (start_rad_s, end_rad_s, duration_s); exactly one of them.
+fn speed_profile(
+    speed_rad_s: Option<f64>,
+    ramp: Option<(f64, f64, f64)>,
+) -> PyResult<SpeedProfile> {
+    match (speed_rad_s, ramp) {
+        (Some(s), None) => Ok(SpeedProfile::Constant { speed_rad_s: s }),
+        (None, Some((a, b, d))) => Ok(SpeedProfile::Ramp {
+            start_rad_s: a,
+            end_rad_s: b,
+            duration_s: d,
+        }),
+        (None, None) => Err(err(
+            "no shaft speed given: pass speed_rad_s (constant speed, rad/s) or ramp = \
+             (start_rad_s, end_rad_s, duration_s) (a run-up)",
+        )),
+        (Some(s), Some(r)) => Err(err(format!(
+            "both speed_rad_s = {s} and ramp = {r:?} given: pass one of them \
+             (speed_rad_s for a constant speed, ramp for a run-up)"
+        ))),
+    }
+}
+
+/// The coupling option by its name, "implicit" or "lagged".
+fn coupling_of(name: &str) -> PyResult<Coupling> {
+    match name {
+        "implicit" => Ok(Coupling::Implicit),
+        "lagged" => Ok(Coupling::Lagged),
+        other => Err(err(format!(
+            "coupling = {other:?}: expected \"implicit\" or \"lagged\""
+        ))),
+    }
+}
+
+/// The initial state: the given displacements and rates (n each, zeros for the one not
+/// given), or the static equilibrium when neither is given.
+fn start_of(
+    displacement: Option<PyReadonlyArray1<'_, f64>>,
+    velocity: Option<PyReadonlyArray1<'_, f64>>,
+    n: usize,
+) -> PyResult<Start> {
+    Ok(if displacement.is_some() || velocity.is_some() {
+        Start::Given {
+            displacement: vec_n(displacement, n, "start_displacement")?,
+            velocity: vec_n(velocity, n, "start_velocity")?,
+        }
+    } else {
+        Start::StaticEquilibrium
+    })
+}
+
+/// `m.simulate` without the GIL. The library calls back every min(steps/100, 1000) steps: the
+/// user's `progress(step, steps, time_s)` sees about a hundred of them; every one checks Ctrl-C
+/// and `time_limit_s` (s). A Python exception (the callback's, or KeyboardInterrupt) stops the
+/// run and is raised as it is; the time limit stops it with a message saying where.
+fn simulate_interruptible(
+    py: Python<'_>,
+    m: &RotorModel,
+    profile: &SpeedProfile,
+    options: &TimeOptions,
+    progress: Option<PyObject>,
+    time_limit_s: Option<f64>,
+) -> PyResult<TimeResponse> {
+    let clock = std::time::Instant::now();
+    let mut raised: Option<PyErr> = None;
+    let mut out_of_time = false;
+    let result = py.allow_threads(|| {
+        let mut cb = |p: &RotorProgress| {
+            let user_every = (p.steps / 100).max(1);
+            let stop = Python::with_gil(|py| {
+                py.check_signals()?;
+                if let Some(f) = &progress {
+                    if p.step % user_every == 0 || p.step == p.steps {
+                        f.call1(py, (p.step, p.steps, p.time_s))?;
+                    }
+                }
+                Ok::<(), PyErr>(())
+            });
+            if let Err(e) = stop {
+                raised = Some(e);
+                return std::ops::ControlFlow::Break(());
+            }
+            if time_limit_s.is_some_and(|t| clock.elapsed().as_secs_f64() > t) {
+                out_of_time = true;
+                return std::ops::ControlFlow::Break(());
+            }
+            std::ops::ControlFlow::Continue(())
+        };
+        m.simulate(profile, options, Some(&mut cb))
+    });
+    if let Some(e) = raised {
+        return Err(e);
+    }
+    match result {
+        Err(ehl_bearing::rotor::RotorError::Cancelled {
+            step,
+            steps,
+            time_s,
+        }) if out_of_time => Err(err(format!(
+            "time limit of {} s reached at step {step} of {steps} (t = {time_s} s); \
+             raise time_limit_s or shorten duration_s",
+            time_limit_s.unwrap_or(f64::NAN)
+        ))),
+        r => r.map_err(err),
+    }
+}
+
+/// The time response `r` of a rotor with `nb` bearings as the dict of numpy arrays that
+/// `simulate` returns.
+fn response_dict<'py>(
+    py: Python<'py>,
+    r: &TimeResponse,
+    nb: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new_bound(py);
+    d.set_item("time_s", PyArray1::from_slice_bound(py, &r.time_s))?;
+    d.set_item(
+        "speed_rad_s",
+        PyArray1::from_slice_bound(py, &r.speed_rad_s),
+    )?;
+    d.set_item("record_dofs", r.record_dofs.clone())?;
+    let rows = r.time_s.len();
+    let cols = r.record_dofs.len();
+    let disp: Vec<f64> = r.displacement.iter().flatten().copied().collect();
+    d.set_item(
+        "displacement",
+        PyArray1::from_vec_bound(py, disp)
+            .reshape([rows, cols])
+            .map_err(err)?,
+    )?;
+    let cage: Vec<f64> = r.cage_angle_rad.iter().flatten().copied().collect();
+    d.set_item(
+        "cage_angle_rad",
+        PyArray1::from_vec_bound(py, cage)
+            .reshape([rows, nb])
+            .map_err(err)?,
+    )?;
+    let cage_speed: Vec<f64> = r.cage_speed_rad_s.iter().flatten().copied().collect();
+    d.set_item(
+        "cage_speed_rad_s",
+        PyArray1::from_vec_bound(py, cage_speed)
+            .reshape([rows, nb])
+            .map_err(err)?,
+    )?;
+    let flat5 = |v: &Vec<Vec<[f64; 5]>>| -> Vec<f64> {
+        v.iter().flatten().flat_map(|x| x.iter().copied()).collect()
+    };
+    d.set_item(
+        "bearing_displacement",
+        PyArray1::from_vec_bound(py, flat5(&r.bearing_displacement))
+            .reshape([rows, nb, 5])
+            .map_err(err)?,
+    )?;
+    d.set_item(
+        "bearing_reaction",
+        PyArray1::from_vec_bound(py, flat5(&r.bearing_reaction))
+            .reshape([rows, nb, 5])
+            .map_err(err)?,
+    )?;
+    d.set_item("steps", r.steps)?;
+    d.set_item("newton_iterations", r.newton_iterations)?;
+    d.set_item("max_newton_iterations", r.max_newton_iterations)?;
+    d.set_item("steps_outside_range", r.steps_outside_range)?;
+    let b = PyDict::new_bound(py);
+    b.set_item("total_s", r.breakdown.total_s)?;
+    b.set_item("bearing_s", r.breakdown.bearing_s)?;
+    b.set_item("factorization_s", r.breakdown.factorization_s)?;
+    d.set_item("breakdown", b)?;
+    Ok(d)
 }
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

@@ -674,69 +674,146 @@ pub fn characterize_bearing_with_control(
         (None, None)
     };
     cancelled.check(0, 0, t0)?;
-    // The cache lives for one call: method, settings, E′ and ball mass (the exact part of the
-    // key) are the same for every entry, so (M, L, Ry/Rx) are compared, and the lubricant (one
-    // per raceway with ring temperatures) must be equal.
-    let mut cache: Vec<CacheEntry> = Vec::new();
-    let mut eq = start.unwrap_or_else(|| dry.clone());
-    let mut history = Vec::new();
+    let run = LoopRun {
+        case,
+        ch,
+        settings,
+        deadline,
+        progress,
+        cancelled,
+        t0,
+    };
+    let mut state = LoopState {
+        cache: Vec::new(),
+        eq: start.unwrap_or_else(|| dry.clone()),
+        history: Vec::new(),
+        contacts: Vec::new(),
+        change: f64::INFINITY,
+    };
     let mut converged = false;
-    let mut change = f64::INFINITY;
-    let mut contacts: Vec<LoopContact> = Vec::new();
     for iteration in 1..=settings.max_iterations {
-        cancelled.check(iteration, history.len(), t0)?;
-        if let Some(d) = deadline.filter(|d| d.expired()) {
-            return Err(CharacterizeError::TimeLimit {
-                limit_s: d.limit_seconds(),
-                seconds: d.elapsed_seconds(),
-                iterations: history.len(),
-                load_change_history: history
-                    .iter()
-                    .map(|h: &IterationRecord| h.max_load_change)
-                    .collect(),
-            });
+        run.cancelled.check(iteration, state.history.len(), t0)?;
+        check_deadline(deadline, &state.history)?;
+        run.iterate(iteration, &mut state)?;
+        if state.change < settings.tolerance {
+            converged = true;
+            break;
         }
+    }
+    if !converged && settings.error_if_not_converged {
+        return Err(CharacterizeError::NotConverged {
+            iterations: state.history.len(),
+            change: state.change,
+            tolerance: settings.tolerance,
+        });
+    }
+    Ok(run.result(state, converged, dry, prediction))
+}
+
+/// The wall-time budget's check before an iteration: past `deadline`, the error that carries
+/// the iterations done and their load changes.
+fn check_deadline(
+    deadline: Option<Deadline>,
+    history: &[IterationRecord],
+) -> Result<(), CharacterizeError> {
+    if let Some(d) = deadline.filter(|d| d.expired()) {
+        return Err(CharacterizeError::TimeLimit {
+            limit_s: d.limit_seconds(),
+            seconds: d.elapsed_seconds(),
+            iterations: history.len(),
+            load_change_history: history.iter().map(|h| h.max_load_change).collect(),
+        });
+    }
+    Ok(())
+}
+
+/// The fixed inputs of one run of the coupled loop: the case, the characterization method and
+/// the loop settings, the wall-time budget, the caller's progress callback and stop flag, and
+/// the run's start time.
+struct LoopRun<'a> {
+    case: &'a Case,
+    ch: &'a dyn ContactCharacterizer,
+    settings: &'a CharacterizeSettings,
+    deadline: Option<Deadline>,
+    progress: &'a (dyn Fn(Progress) + Sync),
+    cancelled: Cancel<'a>,
+    t0: Instant,
+}
+
+/// What the coupled loop carries from one iteration to the next.
+struct LoopState {
+    /// The laws characterized so far in this call. The cache lives for one call: method,
+    /// settings, E′ and ball mass (the exact part of the key) are the same for every entry, so
+    /// (M, L, Ry/Rx) are compared, and the lubricant (one per raceway with ring temperatures)
+    /// must be equal.
+    cache: Vec<CacheEntry>,
+    /// The latest equilibrium (before the first iteration: the predicted or dry start).
+    eq: Equilibrium,
+    /// One record per iteration done.
+    history: Vec<IterationRecord>,
+    /// The contacts' laws of the latest iteration.
+    contacts: Vec<LoopContact>,
+    /// The latest iteration's largest relative load change (∞ before the first).
+    change: f64,
+}
+
+impl LoopRun<'_> {
+    /// Iteration `iteration`: characterize every contact at the loads of `state.eq` (reusing
+    /// the cache), solve the equilibrium with the laws, record the iteration; `state` moves on
+    /// to the new equilibrium, its contacts and load change, the cache grows by the contacts
+    /// characterized.
+    fn iterate(&self, iteration: usize, state: &mut LoopState) -> Result<(), CharacterizeError> {
+        let settings = self.settings;
         let ti = Instant::now();
-        let conds = conditions_of(case, &eq, settings.min_load_fraction);
+        let conds = conditions_of(self.case, &state.eq, settings.min_load_fraction);
         let keys: Vec<[f64; 3]> = conds.iter().map(|(c, _)| contact_key(c)).collect();
-        let (plan, runs) = plan_iteration(&conds, &keys, &cache, settings);
-        progress(Progress::IterationStarted {
+        let (plan, runs) = plan_iteration(&conds, &keys, &state.cache, settings);
+        (self.progress)(Progress::IterationStarted {
             iteration,
             contacts: runs.len(),
         });
         let floor = LoadFloor {
             fraction: settings.min_load_fraction,
-            largest: contact_loads(&eq).into_iter().fold(0.0_f64, f64::max),
+            largest: contact_loads(&state.eq).into_iter().fold(0.0_f64, f64::max),
         };
         let fresh = characterize_runs(
-            ch,
+            self.ch,
             &conds,
             &runs,
             (iteration, floor),
-            progress,
-            &stop,
-            deadline,
+            self.progress,
+            self.cancelled.stop,
+            self.deadline,
         );
-        cancelled.check(iteration, history.len(), t0)?;
+        self.cancelled
+            .check(iteration, state.history.len(), self.t0)?;
         let mut fresh = fresh.into_iter().collect::<Result<Vec<_>, _>>()?;
-        let assembled = assemble_laws(&plan, &fresh, &cache, &conds, &keys, iteration, floor)?;
+        let assembled =
+            assemble_laws(&plan, &fresh, &state.cache, &conds, &keys, iteration, floor)?;
         for &i in &runs {
             let result = fresh[i]
                 .take()
                 .ok_or(CharacterizeError::NotCharacterized { contact: i })?;
-            cache.push(CacheEntry::new(keys[i], conds[i].0, result));
+            state
+                .cache
+                .push(CacheEntry::new(keys[i], conds[i].0, result));
         }
         let laws = laws_of(&assembled.contacts);
-        let next = solve_equilibrium(&case.bearing, &laws, &case.operating, &case.settings)
-            .map_err(|cause| CharacterizeError::Equilibrium { iteration, cause })?;
-        change = max_relative_load_change(
-            &contact_loads(&eq),
+        let next = solve_equilibrium(
+            &self.case.bearing,
+            &laws,
+            &self.case.operating,
+            &self.case.settings,
+        )
+        .map_err(|cause| CharacterizeError::Equilibrium { iteration, cause })?;
+        state.change = max_relative_load_change(
+            &contact_loads(&state.eq),
             &contact_loads(&next),
             settings.min_load_fraction,
         );
         let record = IterationRecord {
             iteration,
-            max_load_change: change,
+            max_load_change: state.change,
             characterized: runs.len(),
             reused: conds.len() - runs.len(),
             max_key_distance: assembled.max_key_distance,
@@ -745,45 +822,53 @@ pub fn characterize_bearing_with_control(
             equilibrium_iterations: next.iterations,
             seconds: ti.elapsed().as_secs_f64(),
         };
-        history.push(record);
-        progress(Progress::IterationDone(record));
-        eq = next;
-        contacts = assembled.contacts;
-        if change < settings.tolerance {
-            converged = true;
-            break;
+        state.history.push(record);
+        (self.progress)(Progress::IterationDone(record));
+        state.eq = next;
+        state.contacts = assembled.contacts;
+        Ok(())
+    }
+
+    /// The run's result from the loop's final `state`: the contacts at the last equilibrium,
+    /// the lubrication figures when the case asks for them, the records.
+    fn result(
+        &self,
+        state: LoopState,
+        converged: bool,
+        dry: Equilibrium,
+        prediction: Option<PredictionRecord>,
+    ) -> BearingCharacterization {
+        let LoopState {
+            eq,
+            history,
+            contacts,
+            change,
+            ..
+        } = state;
+        let max_key_distance = history.last().map_or(0.0, |h| h.max_key_distance);
+        let (results, max_load_offset, max_relative_residual) = final_contacts(&eq, contacts);
+        let lubrication = crate::lubrication::wanted(self.case).then(|| {
+            let states: Vec<_> = results.iter().map(|r| (r.ball, r.race, r.state)).collect();
+            crate::lubrication::assess(self.case, &states)
+        });
+        BearingCharacterization {
+            converged,
+            iterations: history.len(),
+            max_load_change: change,
+            history,
+            dry,
+            equilibrium: eq,
+            contacts: results,
+            method: self.ch.method(),
+            settings: *self.settings,
+            max_key_distance,
+            max_load_offset,
+            max_relative_residual,
+            prediction,
+            lubrication,
+            seconds: self.t0.elapsed().as_secs_f64(),
         }
     }
-    if !converged && settings.error_if_not_converged {
-        return Err(CharacterizeError::NotConverged {
-            iterations: history.len(),
-            change,
-            tolerance: settings.tolerance,
-        });
-    }
-    let max_key_distance = history.last().map_or(0.0, |h| h.max_key_distance);
-    let (results, max_load_offset, max_relative_residual) = final_contacts(&eq, contacts);
-    let lubrication = crate::lubrication::wanted(case).then(|| {
-        let states: Vec<_> = results.iter().map(|r| (r.ball, r.race, r.state)).collect();
-        crate::lubrication::assess(case, &states)
-    });
-    Ok(BearingCharacterization {
-        converged,
-        iterations: history.len(),
-        max_load_change: change,
-        history,
-        dry,
-        equilibrium: eq,
-        contacts: results,
-        method: ch.method(),
-        settings: *settings,
-        max_key_distance,
-        max_load_offset,
-        max_relative_residual,
-        prediction,
-        lubrication,
-        seconds: t0.elapsed().as_secs_f64(),
-    })
 }
 
 /// A contact's law in an iteration: the characterized contact, whether its load was floored,

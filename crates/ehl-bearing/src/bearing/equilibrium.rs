@@ -396,6 +396,70 @@ struct Terms {
     fo: f64,
 }
 
+impl Terms {
+    /// The ball's residual |R|, N.
+    fn residual(&self) -> f64 {
+        self.r[0].v.hypot(self.r[1].v)
+    }
+
+    /// The force scale the residual is measured against, N: |Q_i| + |Q_o| + |F_c| + 1e-6.
+    fn scale(&self) -> f64 {
+        self.qi.abs() + self.qo.abs() + self.fc.abs() + 1e-6
+    }
+
+    /// Whether the ball is in equilibrium: |R| ≤ 1e-9 × the force scale.
+    fn converged(&self) -> bool {
+        self.residual() <= 1e-9 * self.scale()
+    }
+}
+
+/// What one ball's equilibrium is solved for: ball `j` at inner groove-centre offsets `a`
+/// (axial, radial; m), with the inner contact taken into account or ignored (the separated-ball
+/// start of `solve_ball`), and the kinematics model the ball's speeds follow.
+#[derive(Debug, Clone, Copy)]
+struct BallProblem {
+    j: usize,
+    a: [f64; 2],
+    ignore_inner: bool,
+    kin: Kinematics,
+}
+
+/// One contact of a ball as dual numbers: the direction (sin α, cos α) from the groove centre
+/// to the ball centre and the approach δ, m.
+#[derive(Clone, Copy)]
+struct ContactLine {
+    sin: D4,
+    cos: D4,
+    delta: D4,
+}
+
+/// Sine and cosine of the angles at which the ball's speeds are evaluated, at the inner and
+/// the outer contact.
+#[derive(Clone, Copy)]
+struct KinematicAngles {
+    sin_i: D4,
+    cos_i: D4,
+    sin_o: D4,
+    cos_o: D4,
+}
+
+/// The ball's motion as dual numbers: rolling axis (cos β, sin β), orbital speed ω_m and signed
+/// roll speed ω_R (rad/s), centrifugal force F_c (N) and gyroscopic moment G (N·m).
+struct BallMotion {
+    cos_b: D4,
+    sin_b: D4,
+    om_m: D4,
+    om_r: D4,
+    fc: D4,
+    gyro: D4,
+}
+
+/// The ball centre X = ρ·(sin φ, cos φ) from its polar coordinates about the outer groove
+/// centre (m, rad).
+fn cart(rho: f64, phi: f64) -> [f64; 2] {
+    [rho * phi.sin(), rho * phi.cos()]
+}
+
 /// The bearing model at one operating speed and set of contact laws. Owns its data (the laws are
 /// shared through `Arc`), so it can live in a rotor model or another thread.
 #[derive(Debug, Clone)]
@@ -430,6 +494,45 @@ struct BallSolution {
     ddelta: [[f64; 2]; 2],
     /// Orbital speed ω_m of the ball at its equilibrium, rad/s.
     orbital_speed: f64,
+}
+
+impl BallSolution {
+    /// The solution at the ball's equilibrium `x` with terms `t`, with its derivatives by the
+    /// implicit function theorem: dX/dA = −R_X⁻¹·R_A, dg/dA = g_A + g_X·dX/dA and likewise
+    /// d(δ_i, δ_o)/dA.
+    fn at(x: [f64; 2], t: &Terms) -> Self {
+        let rx = [[t.r[0].d[0], t.r[0].d[1]], [t.r[1].d[0], t.r[1].d[1]]];
+        let det = rx[0][0] * rx[1][1] - rx[0][1] * rx[1][0];
+        let mut dx_da = [[0.0; 2]; 2];
+        if det.abs() > 0.0 {
+            for k in 0..2 {
+                let ra = [t.r[0].d[2 + k], t.r[1].d[2 + k]];
+                dx_da[0][k] = -(rx[1][1] * ra[0] - rx[0][1] * ra[1]) / det;
+                dx_da[1][k] = -(-rx[1][0] * ra[0] + rx[0][0] * ra[1]) / det;
+            }
+        }
+        let mut dg = [[0.0; 2]; 3];
+        for (m, row) in dg.iter_mut().enumerate() {
+            for (k, v) in row.iter_mut().enumerate() {
+                *v = t.g[m].d[2 + k] + t.g[m].d[0] * dx_da[0][k] + t.g[m].d[1] * dx_da[1][k];
+            }
+        }
+        let mut ddelta = [[0.0; 2]; 2];
+        for (row, dd) in ddelta.iter_mut().zip([&t.ddi, &t.ddo]) {
+            for (k, v) in row.iter_mut().enumerate() {
+                *v = dd[2 + k] + dd[0] * dx_da[0][k] + dd[1] * dx_da[1][k];
+            }
+        }
+        BallSolution {
+            x,
+            g: [t.g[0].v, t.g[1].v, t.g[2].v],
+            dg,
+            q: [t.qi, t.qo],
+            delta: [t.di, t.dout],
+            ddelta,
+            orbital_speed: t.om_m,
+        }
+    }
 }
 
 /// Reactions, stiffness, damping and contact states of the bearing at a ring displacement and
@@ -600,54 +703,70 @@ impl BearingModel {
         ]
     }
 
-    fn terms(
-        &self,
-        j: usize,
-        x: [D4; 2],
-        a: [D4; 2],
-        ignore_inner: bool,
-        kin: Kinematics,
-    ) -> Terms {
-        let geo = &self.bearing.geometry;
-        let d = geo.ball_diameter;
-        let dm = geo.pitch_diameter;
-        let gamma = d / dm;
+    /// Ball `j`'s problem at groove-centre offsets `a` with both contacts and the model's
+    /// kinematics.
+    fn ball_problem(&self, j: usize, a: [f64; 2]) -> BallProblem {
+        BallProblem {
+            j,
+            a,
+            ignore_inner: false,
+            kin: self.kinematics,
+        }
+    }
+
+    /// The inner and outer contacts of a ball centred at `x` with the inner groove centre at
+    /// `a` (both relative to the outer groove centre, axial and radial, m, as dual numbers).
+    fn contact_lines(&self, x: [D4; 2], a: [D4; 2]) -> [ContactLine; 2] {
         // Inner contact.
         let dxi = a[0] - x[0];
         let dri = a[1] - x[1];
         let li = (dxi * dxi + dri * dri).sqrt();
-        let sin_ai = dxi / li;
-        let cos_ai = dri / li;
-        let di = li - self.ri;
+        let inner = ContactLine {
+            sin: dxi / li,
+            cos: dri / li,
+            delta: li - self.ri,
+        };
         // Outer contact.
         let lo = (x[0] * x[0] + x[1] * x[1]).sqrt();
-        let sin_ao = x[0] / lo;
-        let cos_ao = x[1] / lo;
-        let dout = lo - self.ro;
-        let (fi, dfi) = if ignore_inner {
-            (0.0, 0.0)
-        } else {
-            self.laws.inner[j].force(di.v)
+        let outer = ContactLine {
+            sin: x[0] / lo,
+            cos: x[1] / lo,
+            delta: lo - self.ro,
         };
-        let (fo, dfo) = self.laws.outer[j].force(dout.v);
-        let mut qi = di.chain(fi, dfi);
-        let mut qo = dout.chain(fo, dfo);
+        [inner, outer]
+    }
+
+    /// The angles at which ball `p.j`'s speeds are evaluated (by the kinematics model `p.kin`),
+    /// and the contact loads `q` (inner, outer; N) with the Hertz constants of laws that follow
+    /// the angle taken at the operating contact angles (textbook model).
+    fn kinematic_angles(
+        &self,
+        p: &BallProblem,
+        [inner, outer]: &[ContactLine; 2],
+        a: [D4; 2],
+        [mut qi, mut qo]: [D4; 2],
+    ) -> (KinematicAngles, [D4; 2]) {
         // Angle of the line of groove-curvature centres, atan(A1/A2): equal to both contact
         // angles at rest; it depends on the ring displacement only.
         let la = (a[0] * a[0] + a[1] * a[1]).sqrt();
         let (gsin, gcos) = (a[0] / la, a[1] / la);
-        let (ksin_i, kcos_i, ksin_o, kcos_o) = match kin {
+        let k = match p.kin {
             // Groove-line model: the ball's speeds (ω_m, ω_R, β) are evaluated with both contact
             // angles taken as the groove-line angle (README, "Modelling choices").
-            Kinematics::GrooveLine => (gsin, gcos, gsin, gcos),
+            Kinematics::GrooveLine => KinematicAngles {
+                sin_i: gsin,
+                cos_i: gcos,
+                sin_o: gsin,
+                cos_o: gcos,
+            },
             Kinematics::OperatingAngles => {
-                let alpha_i = angle_of(sin_ai, cos_ai);
-                let alpha_o = angle_of(sin_ao, cos_ao);
+                let alpha_i = angle_of(inner.sin, inner.cos);
+                let alpha_o = angle_of(outer.sin, outer.cos);
                 // Hertz constants at the operating contact angles (laws that follow the angle).
-                if let Some((c, dc)) = self.laws.inner[j].angle_factor(alpha_i.v) {
+                if let Some((c, dc)) = self.laws.inner[p.j].angle_factor(alpha_i.v) {
                     qi = qi * alpha_i.chain(c, dc);
                 }
-                if let Some((c, dc)) = self.laws.outer[j].angle_factor(alpha_o.v) {
+                if let Some((c, dc)) = self.laws.outer[p.j].angle_factor(alpha_o.v) {
                     qo = qo * alpha_o.chain(c, dc);
                 }
                 // Kinematics at each contact's operating angle. A separated contact has no
@@ -658,33 +777,38 @@ impl BearingModel {
                 let theta = angle_of(gsin, gcos);
                 // With the inner contact ignored (the separated-ball start of `solve_ball`) the
                 // inner contact is taken as separated.
-                let ki = if ignore_inner {
+                let ki = if p.ignore_inner {
                     theta
                 } else {
-                    blend(alpha_i, theta, di, SEPARATION_BAND * self.ri)
+                    blend(alpha_i, theta, inner.delta, SEPARATION_BAND * self.ri)
                 };
-                let ko = blend(alpha_o, theta, dout, SEPARATION_BAND * self.ro);
-                (
-                    ki.chain(ki.v.sin(), ki.v.cos()),
-                    ki.chain(ki.v.cos(), -ki.v.sin()),
-                    ko.chain(ko.v.sin(), ko.v.cos()),
-                    ko.chain(ko.v.cos(), -ko.v.sin()),
-                )
+                let ko = blend(alpha_o, theta, outer.delta, SEPARATION_BAND * self.ro);
+                KinematicAngles {
+                    sin_i: ki.chain(ki.v.sin(), ki.v.cos()),
+                    cos_i: ki.chain(ki.v.cos(), -ki.v.sin()),
+                    sin_o: ko.chain(ko.v.sin(), ko.v.cos()),
+                    cos_o: ko.chain(ko.v.cos(), -ko.v.sin()),
+                }
             }
         };
-        // Rolling axis ê = (cos β, −sin β): outer control tan β = sin α_o/(cos α_o + γ),
-        // inner control tan β = sin α_i/(cos α_i − γ).
+        (k, [qi, qo])
+    }
+
+    /// The ball's rolling axis ê = (cos β, −sin β) by the race-control hypothesis, as
+    /// (cos β, sin β): outer control tan β = sin α_o/(cos α_o + γ), inner control
+    /// tan β = sin α_i/(cos α_i − γ) (γ = D/d_m), neither the bisector of the two.
+    fn rolling_axis(&self, k: &KinematicAngles, gamma: f64) -> (D4, D4) {
         let axis_outer = || {
-            let cx = kcos_o + gamma;
-            let n = (cx * cx + ksin_o * ksin_o).sqrt();
-            (cx / n, ksin_o / n)
+            let cx = k.cos_o + gamma;
+            let n = (cx * cx + k.sin_o * k.sin_o).sqrt();
+            (cx / n, k.sin_o / n)
         };
         let axis_inner = || {
-            let cx = kcos_i - gamma;
-            let n = (cx * cx + ksin_i * ksin_i).sqrt();
-            (cx / n, ksin_i / n)
+            let cx = k.cos_i - gamma;
+            let n = (cx * cx + k.sin_i * k.sin_i).sqrt();
+            (cx / n, k.sin_i / n)
         };
-        let (cos_b, sin_b) = match self.race_control {
+        match self.race_control {
             RaceControl::Outer | RaceControl::NoGyroscopic => axis_outer(),
             RaceControl::Inner => axis_inner(),
             RaceControl::None => {
@@ -694,13 +818,23 @@ impl BearingModel {
                 let n = (c * c + s * s).sqrt();
                 (c / n, s / n)
             }
-        };
+        }
+    }
+
+    /// The ball's motion at kinematic angles `k`: its rolling axis, orbital speed ω_m and roll
+    /// speed ω_R (rad/s) from pure rolling at both contact centres, centrifugal force (N) and
+    /// gyroscopic moment (N·m).
+    fn ball_motion(&self, k: &KinematicAngles) -> BallMotion {
+        let geo = &self.bearing.geometry;
+        let d = geo.ball_diameter;
+        let dm = geo.pitch_diameter;
+        let (cos_b, sin_b) = self.rolling_axis(k, d / dm);
         // Pure rolling at both contact centres (cage frame):
         //  −(D/2)·ω_R·cos(α_i − β) = (ω_i − ω_m)·r_i,   (D/2)·ω_R·cos(α_o − β) = (ω_o − ω_m)·r_o
-        let ci = (kcos_i * cos_b + ksin_i * sin_b) * (0.5 * d);
-        let co = (kcos_o * cos_b + ksin_o * sin_b) * (0.5 * d);
-        let rpi = D4::cst(0.5 * dm) - kcos_i * (0.5 * d);
-        let rpo = D4::cst(0.5 * dm) + kcos_o * (0.5 * d);
+        let ci = (k.cos_i * cos_b + k.sin_i * sin_b) * (0.5 * d);
+        let co = (k.cos_o * cos_b + k.sin_o * sin_b) * (0.5 * d);
+        let rpi = D4::cst(0.5 * dm) - k.cos_i * (0.5 * d);
+        let rpo = D4::cst(0.5 * dm) + k.cos_o * (0.5 * d);
         let om_m =
             (rpi * co * self.inner_speed + rpo * ci * self.outer_speed) / (rpi * co + rpo * ci);
         let om_r = (D4::cst(self.outer_speed) - om_m) * rpo / co;
@@ -710,16 +844,46 @@ impl BearingModel {
         } else {
             -(om_m * om_r * sin_b) * self.inertia
         };
+        BallMotion {
+            cos_b,
+            sin_b,
+            om_m,
+            om_r,
+            fc,
+            gyro,
+        }
+    }
+
+    /// Ball `p.j`'s equations at centre `x` (relative to the outer groove centre, axial and
+    /// radial, m): residual, ring loads and contact figures as dual numbers seeded in
+    /// (X1, X2, A1, A2).
+    fn terms(&self, p: &BallProblem, x: [f64; 2]) -> Terms {
+        let x = [D4::var(x[0], 0), D4::var(x[1], 1)];
+        let a = [D4::var(p.a[0], 2), D4::var(p.a[1], 3)];
+        let geo = &self.bearing.geometry;
+        let d = geo.ball_diameter;
+        let lines = self.contact_lines(x, a);
+        let [inner, outer] = lines;
+        let (fi, dfi) = if p.ignore_inner {
+            (0.0, 0.0)
+        } else {
+            self.laws.inner[p.j].force(inner.delta.v)
+        };
+        let (fo, dfo) = self.laws.outer[p.j].force(outer.delta.v);
+        let loads = [inner.delta.chain(fi, dfi), outer.delta.chain(fo, dfo)];
+        let (k, [qi, qo]) = self.kinematic_angles(p, &lines, a, loads);
+        let m = self.ball_motion(&k);
         // Friction forces that carry the gyroscopic moment: F_i = λ_i·G/D at the inner contact and
         // F_o = −λ_o·G/D at the outer (along τ̂ = (cos α, −sin α)), each limited smoothly to
         // μ_max·Q: where a contact cannot hold its share the ball pivots (Harris) and the moment is
         // not fully resisted. The limit is inactive (F = F^H exactly) wherever |F^H| is at most
         // FRICTION_FULL_CONTROL·μ_max·Q.
         let (lam_i, lam_o) = self.race_control.lambdas();
-        let fi = saturate(gyro * (lam_i / d), qi * MU_MAX);
-        let fo = saturate(gyro * (-lam_o / d), qo * MU_MAX);
+        let fi = saturate(m.gyro * (lam_i / d), qi * MU_MAX);
+        let fo = saturate(m.gyro * (-lam_o / d), qo * MU_MAX);
+        let (sin_ai, cos_ai, sin_ao, cos_ao) = (inner.sin, inner.cos, outer.sin, outer.cos);
         let r1 = qi * sin_ai - qo * sin_ao + fi * cos_ai + fo * cos_ao;
-        let r2 = qi * cos_ai - qo * cos_ao - fi * sin_ai - fo * sin_ao + fc;
+        let r2 = qi * cos_ai - qo * cos_ao - fi * sin_ai - fo * sin_ao + m.fc;
         let vx = qi * sin_ai + fi * cos_ai;
         let vr = qi * cos_ai - fi * sin_ai;
         // Moment of the inner friction about the inner groove centre: f_i·D·F_i along t̂.
@@ -729,43 +893,28 @@ impl BearingModel {
             g: [vx, vr, gf],
             qi: qi.v,
             qo: qo.v,
-            di: di.v,
-            dout: dout.v,
-            ddi: di.d,
-            ddo: dout.d,
+            di: inner.delta.v,
+            dout: outer.delta.v,
+            ddi: inner.delta.d,
+            ddo: outer.delta.d,
             sin_ai: sin_ai.v,
             cos_ai: cos_ai.v,
             sin_ao: sin_ao.v,
             cos_ao: cos_ao.v,
-            om_m: om_m.v,
-            om_r: om_r.v,
-            beta: sin_b.v.atan2(cos_b.v),
-            fc: fc.v,
-            gyro: gyro.v,
+            om_m: m.om_m.v,
+            om_r: m.om_r.v,
+            beta: m.sin_b.v.atan2(m.cos_b.v),
+            fc: m.fc.v,
+            gyro: m.gyro.v,
             fi: fi.v,
             fo: fo.v,
         }
     }
 
+    /// [`Self::terms`] of ball `j` at centre `x` and groove-centre offsets `a`, both contacts,
+    /// the model's kinematics.
     fn terms_at(&self, j: usize, x: [f64; 2], a: [f64; 2]) -> Terms {
-        self.terms_opt(j, x, a, false, self.kinematics)
-    }
-
-    fn terms_opt(
-        &self,
-        j: usize,
-        x: [f64; 2],
-        a: [f64; 2],
-        ignore_inner: bool,
-        kin: Kinematics,
-    ) -> Terms {
-        self.terms(
-            j,
-            [D4::var(x[0], 0), D4::var(x[1], 1)],
-            [D4::var(a[0], 2), D4::var(a[1], 3)],
-            ignore_inner,
-            kin,
-        )
+        self.terms(&self.ball_problem(j, a), x)
     }
 
     /// Rough orbital speed for starting values, rad/s.
@@ -786,6 +935,20 @@ impl BearingModel {
         self.solve_ball_from(j, a, warm, true)
     }
 
+    /// A cold start of ball `j` on the line of groove centres (unit vector `u`, total approach
+    /// `s` along it, m): half the approach at the outer race when the contacts overlap, else
+    /// pressed into the outer race by the centrifugal force of the no-load orbital speed.
+    fn cold_start(&self, j: usize, u: [f64; 2], s: f64) -> [f64; 2] {
+        let om = self.orbital_guess();
+        let fc = 0.5 * self.mass * self.bearing.geometry.pitch_diameter * om * om;
+        let d_o = if s > 0.0 {
+            0.5 * s
+        } else {
+            self.laws.outer[j].approach_at(fc).unwrap_or(0.0).max(0.0)
+        };
+        [u[0] * (self.ro + d_o), u[1] * (self.ro + d_o)]
+    }
+
     /// `solve_ball`; `continuation`: when every start fails, solve the ball cold at slightly
     /// scaled offsets a·(1 ± ε) and restart from there (not nested).
     fn solve_ball_from(
@@ -795,31 +958,22 @@ impl BearingModel {
         warm: Option<[f64; 2]>,
         continuation: bool,
     ) -> Result<BallSolution, BearingError> {
+        let p = self.ball_problem(j, a);
         let la = (a[0] * a[0] + a[1] * a[1]).sqrt();
         let u = [a[0] / la, a[1] / la];
         let s = la - self.ri - self.ro; // total approach along the line of centres
-        let x0 = match warm {
+        let mut x = match warm {
             Some(w) => w,
-            None => {
-                let om = self.orbital_guess();
-                let fc = 0.5 * self.mass * self.bearing.geometry.pitch_diameter * om * om;
-                let d_o = if s > 0.0 {
-                    0.5 * s
-                } else {
-                    self.laws.outer[j].approach_at(fc).unwrap_or(0.0).max(0.0)
-                };
-                [u[0] * (self.ro + d_o), u[1] * (self.ro + d_o)]
-            }
+            None => self.cold_start(j, u, s),
         };
-        let mut x = x0;
-        let mut t = self.terms_at(j, x, a);
+        let mut t = self.terms(&p, x);
         // A ball that touches nothing and feels no body force carries nothing: its position is
         // undetermined; take the midpoint of the gap.
         let unloaded = |t: &Terms| t.qi == 0.0 && t.qo == 0.0 && t.fc == 0.0 && t.gyro == 0.0;
         if unloaded(&t) {
             let mid = self.ro + 0.5 * s;
             let xm = [u[0] * mid, u[1] * mid];
-            let tm = self.terms_at(j, xm, a);
+            let tm = self.terms(&p, xm);
             if unloaded(&tm) {
                 return Ok(BallSolution {
                     x: xm,
@@ -834,140 +988,133 @@ impl BearingModel {
             x = xm;
             t = tm;
         }
-        let scale = |t: &Terms| t.qi.abs() + t.qo.abs() + t.fc.abs() + 1e-6;
-        let converged = |t: &Terms| t.r[0].v.hypot(t.r[1].v) <= 1e-9 * scale(t);
-        let kin = self.kinematics;
-        if warm.is_none() && kin == Kinematics::OperatingAngles && t.fc > 0.0 {
-            // Cold start at speed: the groove-line kinematics first (robust from the groove-line
-            // start: the ball's speeds then do not depend on its position), then the textbook
-            // model from there.
-            let tg = self.terms_opt(j, x, a, false, Kinematics::GrooveLine);
-            let (xg, _) = self.ball_newton(j, a, x, tg, false, Kinematics::GrooveLine, CREEP_STOP);
-            x = xg;
-            t = self.terms_at(j, x, a);
-        }
-        let (mut xs, mut ts) = self.ball_newton(j, a, x, t, false, kin, CREEP_STOP);
-        if !converged(&ts) {
-            // Stalled at the onset of the inner contact, where a nearly unloaded but stiff inner
-            // contact makes the Jacobian singular: solve the ball in the outer groove alone. If the
-            // inner contact is open there, that is the solution; otherwise restart from it.
-            let t0 = self.terms_opt(j, x, a, true, kin);
-            let (xo, _) = self.ball_newton(j, a, x, t0, true, kin, CREEP_STOP);
-            let tf = self.terms_at(j, xo, a);
-            (xs, ts) = if converged(&tf) {
-                (xo, tf)
-            } else {
-                self.ball_newton(j, a, xo, tf, false, kin, CREEP_STOP)
-            };
-            if !converged(&ts) && kin == Kinematics::OperatingAngles {
-                // Last resort (textbook kinematics near the inner contact's onset, where both
-                // starts can stop creeping on a knife edge — found by the high-speed Jacobian
-                // property test): the same Newton without the creeping stop, from the
-                // separated-ball solution and from where the first attempt stopped.
-                for start in [xo, xs] {
-                    let t1 = self.terms_at(j, start, a);
-                    let (x1, t1) = self.ball_newton(j, a, start, t1, false, kin, usize::MAX);
-                    if converged(&t1) {
-                        (xs, ts) = (x1, t1);
-                        break;
-                    }
-                }
-            }
-            if !converged(&ts) && continuation {
-                // Continuation: every start can end on a knife edge of the Newton path (found by
-                // the Jacobian property test: 7006 at 7760 rpm, outer race control, a cold start
-                // 10 µm from the solution stalled with a residual of 3.2 N while the offsets
-                // scaled by 1 ± 1e-4 solved at once). Solve a neighbouring problem cold and
-                // restart from its solution, which lies next to this one.
-                for eps in [1e-6, -1e-6, 1e-5, -1e-5, 1e-4, -1e-4] {
-                    let an = [a[0] * (1.0 + eps), a[1] * (1.0 + eps)];
-                    let Ok(nb) = self.solve_ball_from(j, an, None, false) else {
-                        continue;
-                    };
-                    let t1 = self.terms_at(j, nb.x, a);
-                    let (x1, t1) = self.ball_newton(j, a, nb.x, t1, false, kin, usize::MAX);
-                    if converged(&t1) {
-                        (xs, ts) = (x1, t1);
-                        break;
-                    }
-                }
-            }
-        }
-        let (x, t) = (xs, ts);
-        let res = t.r[0].v.hypot(t.r[1].v);
-        if res.is_nan() || res > 1e-9 * scale(&t) {
+        let (x, t) = self.converge_ball(&p, x, t, warm.is_none(), continuation);
+        let res = t.residual();
+        if res.is_nan() || res > 1e-9 * t.scale() {
             return Err(BearingError::BallNotConverged {
                 ball: j,
                 residual: res,
             });
         }
-        // Implicit function theorem: dX/dA = −R_X⁻¹·R_A; dg/dA = g_A + g_X·dX/dA.
-        let rx = [[t.r[0].d[0], t.r[0].d[1]], [t.r[1].d[0], t.r[1].d[1]]];
-        let det = rx[0][0] * rx[1][1] - rx[0][1] * rx[1][0];
-        let mut dx_da = [[0.0; 2]; 2];
-        if det.abs() > 0.0 {
-            for k in 0..2 {
-                let ra = [t.r[0].d[2 + k], t.r[1].d[2 + k]];
-                dx_da[0][k] = -(rx[1][1] * ra[0] - rx[0][1] * ra[1]) / det;
-                dx_da[1][k] = -(-rx[1][0] * ra[0] + rx[0][0] * ra[1]) / det;
-            }
-        }
-        let mut dg = [[0.0; 2]; 3];
-        for (m, row) in dg.iter_mut().enumerate() {
-            for (k, v) in row.iter_mut().enumerate() {
-                *v = t.g[m].d[2 + k] + t.g[m].d[0] * dx_da[0][k] + t.g[m].d[1] * dx_da[1][k];
-            }
-        }
-        let mut ddelta = [[0.0; 2]; 2];
-        for (row, dd) in ddelta.iter_mut().zip([&t.ddi, &t.ddo]) {
-            for (k, v) in row.iter_mut().enumerate() {
-                *v = dd[2 + k] + dd[0] * dx_da[0][k] + dd[1] * dx_da[1][k];
-            }
-        }
-        Ok(BallSolution {
-            x,
-            g: [t.g[0].v, t.g[1].v, t.g[2].v],
-            dg,
-            q: [t.qi, t.qo],
-            delta: [t.di, t.dout],
-            ddelta,
-            orbital_speed: t.om_m,
-        })
+        Ok(BallSolution::at(x, &t))
     }
 
-    /// Damped Newton (with a Levenberg–Marquardt fallback) for one ball in polar coordinates
-    /// about the outer groove centre; returns the last iterate.
-    #[allow(clippy::too_many_arguments)]
-    fn ball_newton(
+    /// Newton for ball `p` from centre `x` (terms `t`); a `cold` start at speed in the textbook
+    /// model first converges the groove-line kinematics (robust from the groove-line start: the
+    /// ball's speeds then do not depend on its position). Stalled attempts go on with
+    /// [`Self::restart_ball`]. Returns the last iterate, converged or not.
+    fn converge_ball(
         &self,
-        j: usize,
-        a: [f64; 2],
+        p: &BallProblem,
         x: [f64; 2],
         t: Terms,
-        ignore_inner: bool,
-        kin: Kinematics,
+        cold: bool,
+        continuation: bool,
+    ) -> ([f64; 2], Terms) {
+        let (mut x, mut t) = (x, t);
+        if cold && p.kin == Kinematics::OperatingAngles && t.fc > 0.0 {
+            // Cold start at speed: the groove-line kinematics first, then the textbook model
+            // from there.
+            let groove = BallProblem {
+                kin: Kinematics::GrooveLine,
+                ..*p
+            };
+            let tg = self.terms(&groove, x);
+            let (xg, _) = self.ball_newton(&groove, x, tg, CREEP_STOP);
+            x = xg;
+            t = self.terms(p, x);
+        }
+        let first = self.ball_newton(p, x, t, CREEP_STOP);
+        if first.1.converged() {
+            return first;
+        }
+        self.restart_ball(p, x, continuation)
+    }
+
+    /// The restarts of a ball whose Newton iteration from `x` stalled: from the ball solved in
+    /// the outer groove alone, then (textbook kinematics) without the creeping stop, then
+    /// (`continuation`) from the solutions of neighbouring problems. Returns the first converged
+    /// iterate, or the last one of the restart from the outer groove.
+    fn restart_ball(&self, p: &BallProblem, x: [f64; 2], continuation: bool) -> ([f64; 2], Terms) {
+        // Stalled at the onset of the inner contact, where a nearly unloaded but stiff inner
+        // contact makes the Jacobian singular: solve the ball in the outer groove alone. If the
+        // inner contact is open there, that is the solution; otherwise restart from it.
+        let separated = BallProblem {
+            ignore_inner: true,
+            ..*p
+        };
+        let t0 = self.terms(&separated, x);
+        let (xo, _) = self.ball_newton(&separated, x, t0, CREEP_STOP);
+        let tf = self.terms(p, xo);
+        let (mut xs, mut ts) = if tf.converged() {
+            (xo, tf)
+        } else {
+            self.ball_newton(p, xo, tf, CREEP_STOP)
+        };
+        if !ts.converged() && p.kin == Kinematics::OperatingAngles {
+            // Last resort (textbook kinematics near the inner contact's onset, where both
+            // starts can stop creeping on a knife edge — found by the high-speed Jacobian
+            // property test): the same Newton without the creeping stop, from the
+            // separated-ball solution and from where the Newton restarted there stopped.
+            for start in [xo, xs] {
+                let t1 = self.terms(p, start);
+                let (x1, t1) = self.ball_newton(p, start, t1, usize::MAX);
+                if t1.converged() {
+                    (xs, ts) = (x1, t1);
+                    break;
+                }
+            }
+        }
+        if !ts.converged() && continuation {
+            // Continuation: every start can end on a knife edge of the Newton path (found by
+            // the Jacobian property test: 7006 at 7760 rpm, outer race control, a cold start
+            // 10 µm from the solution stalled with a residual of 3.2 N while the offsets
+            // scaled by 1 ± 1e-4 solved at once). Solve a neighbouring problem cold and
+            // restart from its solution, which lies next to this one.
+            let a = p.a;
+            for eps in [1e-6, -1e-6, 1e-5, -1e-5, 1e-4, -1e-4] {
+                let an = [a[0] * (1.0 + eps), a[1] * (1.0 + eps)];
+                let Ok(nb) = self.solve_ball_from(p.j, an, None, false) else {
+                    continue;
+                };
+                let t1 = self.terms(p, nb.x);
+                let (x1, t1) = self.ball_newton(p, nb.x, t1, usize::MAX);
+                if t1.converged() {
+                    (xs, ts) = (x1, t1);
+                    break;
+                }
+            }
+        }
+        (xs, ts)
+    }
+
+    /// Damped Newton (with a Levenberg–Marquardt fallback, [`Self::ball_lm_step`]) for ball `p`
+    /// in polar coordinates about the outer groove centre, from centre `x` with terms `t`;
+    /// `creep_stop` consecutive creeping steps end it (textbook kinematics). Returns the last
+    /// iterate.
+    fn ball_newton(
+        &self,
+        p: &BallProblem,
+        x: [f64; 2],
+        t: Terms,
         creep_stop: usize,
     ) -> ([f64; 2], Terms) {
         let mut t = t;
-        let scale = |t: &Terms| t.qi.abs() + t.qo.abs() + t.fc.abs() + 1e-6;
-        let norm = |t: &Terms| t.r[0].v.hypot(t.r[1].v);
         // Newton in polar coordinates about the outer groove centre, X = ρ·(sin φ, cos φ): a ball
         // that slides along the outer groove keeps its outer approach, which a Cartesian step
         // would not (the radial Hertz stiffness is orders of magnitude above the tangential one).
-        let polar = |x: [f64; 2]| (x[0].hypot(x[1]), x[0].atan2(x[1]));
-        let cart = |rho: f64, phi: f64| [rho * phi.sin(), rho * phi.cos()];
-        let (mut rho, mut phi) = polar(x);
+        let (mut rho, mut phi) = (x[0].hypot(x[1]), x[0].atan2(x[1]));
         // Consecutive creeping steps (textbook model): accepted, but not a capped full step and
         // reducing the residual by less than 10 %. Five in a row (near a fold of the per-ball
         // equations, far from the solution) stop the iteration so that `solve_ball` can restart
         // from the separated-ball solution instead of creeping for 100 iterations.
         let mut creeping = 0;
         for _ in 0..100 {
-            let res = norm(&t);
-            if res <= 1e-13 * scale(&t) {
+            let res = t.residual();
+            if res <= 1e-13 * t.scale() {
                 break;
             }
-            if kin == Kinematics::OperatingAngles && creeping >= creep_stop {
+            if p.kin == Kinematics::OperatingAngles && creeping >= creep_stop {
                 break;
             }
             let (sp, cp) = phi.sin_cos();
@@ -991,10 +1138,10 @@ impl BearingModel {
             let mut lam = lim;
             for k in 0..8 {
                 let (rn, pn) = (rho + lam * step[0], phi + lam * step[1]);
-                let tn = self.terms_opt(j, cart(rn, pn), a, ignore_inner, kin);
-                if norm(&tn) < res {
+                let tn = self.terms(p, cart(rn, pn));
+                if tn.residual() < res {
                     let capped = k == 0 && lim < 1.0;
-                    creeping = if !capped && norm(&tn) > 0.9 * res {
+                    creeping = if !capped && tn.residual() > 0.9 * res {
                         creeping + 1
                     } else {
                         0
@@ -1006,40 +1153,15 @@ impl BearingModel {
                 lam *= 0.5;
             }
             if !accepted {
-                // Levenberg–Marquardt on ½|R|² with diagonal scaling: always a descent direction,
-                // robust where the Jacobian is nearly singular (balls close to losing contact).
-                let jt = [[j0[0], j1[0]], [j0[1], j1[1]]]; // Jᵀ
                 let r = [t.r[0].v, t.r[1].v];
-                let g = [
-                    -(jt[0][0] * r[0] + jt[0][1] * r[1]),
-                    -(jt[1][0] * r[0] + jt[1][1] * r[1]),
-                ];
-                let a11 = j0[0] * j0[0] + j1[0] * j1[0];
-                let a22 = j0[1] * j0[1] + j1[1] * j1[1];
-                let a12 = j0[0] * j0[1] + j1[0] * j1[1];
-                let mut mu = 1e-6;
-                for _ in 0..40 {
-                    let (b11, b22) = (a11 * (1.0 + mu), a22 * (1.0 + mu));
-                    let det = b11 * b22 - a12 * a12;
-                    if det > 0.0 {
-                        let s0 = (b22 * g[0] - a12 * g[1]) / det;
-                        let s1 = (b11 * g[1] - a12 * g[0]) / det;
-                        let (rn, pn) = (rho + s0, phi + s1);
-                        if rn > 0.0 {
-                            let tn = self.terms_opt(j, cart(rn, pn), a, ignore_inner, kin);
-                            if norm(&tn) < res {
-                                creeping = if norm(&tn) > 0.9 * res {
-                                    creeping + 1
-                                } else {
-                                    0
-                                };
-                                (rho, phi, t) = (rn, pn, tn);
-                                accepted = true;
-                                break;
-                            }
-                        }
-                    }
-                    mu *= 10.0;
+                if let Some((rn, pn, tn)) = self.ball_lm_step(p, (rho, phi), [j0, j1], r, res) {
+                    creeping = if tn.residual() > 0.9 * res {
+                        creeping + 1
+                    } else {
+                        0
+                    };
+                    (rho, phi, t) = (rn, pn, tn);
+                    accepted = true;
                 }
             }
             if !accepted {
@@ -1047,6 +1169,47 @@ impl BearingModel {
             }
         }
         (cart(rho, phi), t)
+    }
+
+    /// Levenberg–Marquardt on ½|R|² with diagonal scaling from (ρ, φ) (m, rad), with the rows
+    /// `j0`, `j1` of the polar Jacobian and the residual `r` (N) of norm `res`: always a descent
+    /// direction, robust where the Jacobian is nearly singular (balls close to losing contact).
+    /// Returns the first step (μ from 1e-6, ×10 up to 40 times) that lowers the residual below
+    /// `res`: the new (ρ, φ) and terms.
+    fn ball_lm_step(
+        &self,
+        p: &BallProblem,
+        (rho, phi): (f64, f64),
+        [j0, j1]: [[f64; 2]; 2],
+        r: [f64; 2],
+        res: f64,
+    ) -> Option<(f64, f64, Terms)> {
+        let jt = [[j0[0], j1[0]], [j0[1], j1[1]]]; // Jᵀ
+        let g = [
+            -(jt[0][0] * r[0] + jt[0][1] * r[1]),
+            -(jt[1][0] * r[0] + jt[1][1] * r[1]),
+        ];
+        let a11 = j0[0] * j0[0] + j1[0] * j1[0];
+        let a22 = j0[1] * j0[1] + j1[1] * j1[1];
+        let a12 = j0[0] * j0[1] + j1[0] * j1[1];
+        let mut mu = 1e-6;
+        for _ in 0..40 {
+            let (b11, b22) = (a11 * (1.0 + mu), a22 * (1.0 + mu));
+            let det = b11 * b22 - a12 * a12;
+            if det > 0.0 {
+                let s0 = (b22 * g[0] - a12 * g[1]) / det;
+                let s1 = (b11 * g[1] - a12 * g[0]) / det;
+                let (rn, pn) = (rho + s0, phi + s1);
+                if rn > 0.0 {
+                    let tn = self.terms(p, cart(rn, pn));
+                    if tn.residual() < res {
+                        return Some((rn, pn, tn));
+                    }
+                }
+            }
+            mu *= 10.0;
+        }
+        None
     }
 
     /// Reactions and Jacobian at displacement `q`, using and updating warm starts `warm`.
@@ -1331,7 +1494,61 @@ pub fn solve_equilibrium(
     )?
     .with_kinematics(settings.kinematics);
     let geo = &bearing.geometry;
-    let lever = 0.5 * geo.pitch_diameter;
+    let DofControls {
+        displacement: mut q,
+        load: target,
+        free,
+    } = dof_controls(op)?;
+    let problem = LoadProblem {
+        model: &model,
+        free,
+        target,
+        lever: 0.5 * geo.pitch_diameter,
+    };
+    let tol = settings.tolerance * problem.load_scale();
+    initial_guess(bearing, laws, &problem.free, &problem.target, &mut q)?;
+    let start = problem.iterate_at(q, vec![None; geo.ball_count])?;
+    let (end, iterations, history) = problem.solve(start, settings.max_iterations, tol);
+    if end.rn > tol {
+        return Err(BearingError::NotConverged {
+            iterations,
+            residual: end.rn,
+            tolerance: tol,
+        });
+    }
+    let LoadIterate {
+        q, mut warm, rn, ..
+    } = end;
+    let balls = model.ball_states(&q, &mut warm)?;
+    check_carried(bearing, &balls, settings)?;
+    check_ring_held(&problem.free, &balls)?;
+    let warnings = warnings(&balls, settings.kinematics);
+    let full = model.evaluate_with(&q, &mut warm)?;
+    Ok(Equilibrium {
+        converged: true,
+        iterations,
+        residual: rn,
+        residual_history: history,
+        displacement: q,
+        reaction: full.reaction,
+        stiffness: full.jacobian,
+        balls,
+        warnings,
+    })
+}
+
+/// The DOF controls of an operating point, split by kind.
+struct DofControls {
+    /// Imposed displacements (m, rad); zero for the load-controlled DOFs.
+    displacement: [f64; 5],
+    /// Applied loads (N, N·m); zero for the displacement-controlled DOFs.
+    load: [f64; 5],
+    /// The load-controlled DOFs, in order.
+    free: Vec<usize>,
+}
+
+/// The DOF controls of `op`; a value that is not finite is an error naming its DOF.
+fn dof_controls(op: &OperatingPoint) -> Result<DofControls, BearingError> {
     let mut q = [0.0; 5];
     let mut target = [0.0; 5];
     let mut free = Vec::new();
@@ -1360,116 +1577,187 @@ pub fn solve_equilibrium(
             }
         }
     }
-    let unit = |k: usize| if k >= 3 { 1.0 / lever } else { 1.0 };
-    let load_scale = free
-        .iter()
-        .map(|&k| (target[k] * unit(k)).abs())
-        .fold(1.0_f64, f64::max);
-    let tol = settings.tolerance * load_scale;
-    initial_guess(bearing, laws, &free, &target, &mut q)?;
+    Ok(DofControls {
+        displacement: q,
+        load: target,
+        free,
+    })
+}
 
-    let z = geo.ball_count;
-    let mut warm: Vec<Option<[f64; 2]>> = vec![None; z];
-    let residual_of = |fr: &ForceResult| -> (Vec<f64>, f64) {
-        let r: Vec<f64> = free
+/// The load-controlled part of an equilibrium solve: the model, the load-controlled DOFs
+/// `free` and the applied loads `target` (N, N·m), and the pitch radius `lever` (m) that
+/// scales moments to forces in the residual.
+struct LoadProblem<'a> {
+    model: &'a BearingModel,
+    free: Vec<usize>,
+    target: [f64; 5],
+    lever: f64,
+}
+
+/// An iterate of the equilibrium's Newton iteration: the ring displacements (m, rad), the
+/// balls' warm starts, the reactions there, and the scaled residual of the load-controlled DOFs
+/// (N) with its largest magnitude.
+struct LoadIterate {
+    q: [f64; 5],
+    warm: Vec<Option<[f64; 2]>>,
+    fr: ForceResult,
+    r: Vec<f64>,
+    rn: f64,
+}
+
+impl LoadProblem<'_> {
+    /// The residual scale of DOF `k`: 1 for forces, 1/lever for moments (1/m).
+    fn unit(&self, k: usize) -> f64 {
+        if k >= 3 {
+            1.0 / self.lever
+        } else {
+            1.0
+        }
+    }
+
+    /// Largest applied load (moments divided by the lever), at least 1 N: the residual
+    /// tolerance is relative to it.
+    fn load_scale(&self) -> f64 {
+        self.free
             .iter()
-            .map(|&k| (fr.reaction[k] - target[k]) * unit(k))
+            .map(|&k| (self.target[k] * self.unit(k)).abs())
+            .fold(1.0_f64, f64::max)
+    }
+
+    /// The scaled residual of the load-controlled DOFs at reactions `fr` (N) and its largest
+    /// magnitude.
+    fn residual(&self, fr: &ForceResult) -> (Vec<f64>, f64) {
+        let r: Vec<f64> = self
+            .free
+            .iter()
+            .map(|&k| (fr.reaction[k] - self.target[k]) * self.unit(k))
             .collect();
         let n = r.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
         (r, n)
-    };
-    let mut fr = model.evaluate_with(&q, &mut warm)?;
-    let (mut r, mut rn) = residual_of(&fr);
-    let mut history = vec![rn];
-    let mut iterations = 0;
-    let mut mu = 0.0_f64;
-    while rn > tol && iterations < settings.max_iterations {
-        iterations += 1;
-        let n = free.len();
-        // Scaled Jacobian: rows scaled like r, columns in m or rad.
-        let mut jac = vec![0.0; n * n];
-        for (a, &ka) in free.iter().enumerate() {
-            for (b, &kb) in free.iter().enumerate() {
-                jac[a * n + b] = fr.jacobian[ka][kb] * unit(ka);
+    }
+
+    /// The iterate at displacements `q`, the balls solved from warm starts `warm`.
+    fn iterate_at(
+        &self,
+        q: [f64; 5],
+        mut warm: Vec<Option<[f64; 2]>>,
+    ) -> Result<LoadIterate, BearingError> {
+        let fr = self.model.evaluate_with(&q, &mut warm)?;
+        let (r, rn) = self.residual(&fr);
+        Ok(LoadIterate { q, warm, fr, r, rn })
+    }
+
+    /// Newton–Raphson on the load-controlled DOFs from `it` with the exact Jacobian and a
+    /// backtracking line search, Levenberg–Marquardt steps when the Jacobian is singular, until
+    /// the residual is at most `tol` (N) or after `max_iterations`. Returns the last iterate,
+    /// the iterations and the residual history (N).
+    fn solve(
+        &self,
+        mut it: LoadIterate,
+        max_iterations: usize,
+        tol: f64,
+    ) -> (LoadIterate, usize, Vec<f64>) {
+        let mut history = vec![it.rn];
+        let mut iterations = 0;
+        let mut mu = 0.0_f64;
+        while it.rn > tol && iterations < max_iterations {
+            iterations += 1;
+            let n = self.free.len();
+            let jac = self.scaled_jacobian(&it.fr);
+            let mut step: Vec<f64> = it.r.iter().map(|x| -x).collect();
+            let newton_ok = mu == 0.0 && linalg::solve(&mut jac.clone(), &mut step, n).is_some();
+            if !newton_ok {
+                mu = if mu == 0.0 { 1e-3 } else { mu };
+                step = self.lm_step(&jac, &it, mu);
             }
-        }
-        let mut step: Vec<f64> = r.iter().map(|x| -x).collect();
-        let newton_ok = mu == 0.0 && linalg::solve(&mut jac.clone(), &mut step, n).is_some();
-        if !newton_ok {
-            // Levenberg–Marquardt: (JᵀJ + μ·diag(JᵀJ) + ε)·s = −Jᵀr
-            let mut jtj = vec![0.0; n * n];
-            let mut g = vec![0.0; n];
-            for a in 0..n {
-                for b in 0..n {
-                    jtj[a * n + b] = (0..n).map(|m| jac[m * n + a] * jac[m * n + b]).sum();
+            match self.line_search(&it, &step, tol) {
+                Some(next) => {
+                    it = next;
+                    mu = if newton_ok {
+                        0.0
+                    } else {
+                        (mu * 0.3).max(1e-12)
+                    };
+                    if mu < 1e-9 {
+                        mu = 0.0;
+                    }
                 }
-                g[a] = -(0..n).map(|m| jac[m * n + a] * r[m]).sum::<f64>();
+                None if mu > 1e12 => break,
+                None => mu = if mu == 0.0 { 1e-3 } else { mu * 10.0 },
             }
-            let dmax = (0..n).map(|a| jtj[a * n + a]).fold(0.0_f64, f64::max);
-            mu = if mu == 0.0 { 1e-3 } else { mu };
-            for a in 0..n {
-                jtj[a * n + a] += mu * jtj[a * n + a] + 1e-12 * dmax.max(1e-30);
-            }
-            if linalg::solve(&mut jtj, &mut g, n).is_none() {
-                // Jacobian identically zero: push every free DOF toward its load.
-                g = free
-                    .iter()
-                    .map(|&k| 1e-7 * (target[k] - fr.reaction[k]).signum())
-                    .collect();
-            }
-            step = g;
+            history.push(it.rn);
         }
-        // Backtracking line search on the residual; limit a step to 10 % of D.
-        let smax = step.iter().fold(0.0_f64, |m, x| m.max(x.abs())) * lever.max(1.0);
-        let mut lam: f64 = (0.1 * geo.ball_diameter / smax.max(1e-300)).min(1.0);
-        let mut accepted = false;
+        (it, iterations, history)
+    }
+
+    /// The Jacobian of the scaled residual, row-major n × n: rows scaled like the residual,
+    /// columns in m or rad.
+    fn scaled_jacobian(&self, fr: &ForceResult) -> Vec<f64> {
+        let n = self.free.len();
+        let mut jac = vec![0.0; n * n];
+        for (a, &ka) in self.free.iter().enumerate() {
+            for (b, &kb) in self.free.iter().enumerate() {
+                jac[a * n + b] = fr.jacobian[ka][kb] * self.unit(ka);
+            }
+        }
+        jac
+    }
+
+    /// The Levenberg–Marquardt step (JᵀJ + μ·diag(JᵀJ) + ε)·s = −Jᵀr at iterate `it` with the
+    /// scaled Jacobian `jac`; where J is identically zero, a small push (1e-7 m or rad) of every
+    /// free DOF toward its load.
+    fn lm_step(&self, jac: &[f64], it: &LoadIterate, mu: f64) -> Vec<f64> {
+        let n = self.free.len();
+        let r = &it.r;
+        let mut jtj = vec![0.0; n * n];
+        let mut g = vec![0.0; n];
+        for a in 0..n {
+            for b in 0..n {
+                jtj[a * n + b] = (0..n).map(|m| jac[m * n + a] * jac[m * n + b]).sum();
+            }
+            g[a] = -(0..n).map(|m| jac[m * n + a] * r[m]).sum::<f64>();
+        }
+        let dmax = (0..n).map(|a| jtj[a * n + a]).fold(0.0_f64, f64::max);
+        for a in 0..n {
+            jtj[a * n + a] += mu * jtj[a * n + a] + 1e-12 * dmax.max(1e-30);
+        }
+        if linalg::solve(&mut jtj, &mut g, n).is_none() {
+            // Jacobian identically zero: push every free DOF toward its load.
+            g = self
+                .free
+                .iter()
+                .map(|&k| 1e-7 * (self.target[k] - it.fr.reaction[k]).signum())
+                .collect();
+        }
+        g
+    }
+
+    /// Backtracking line search along `step` from `it`: the first of up to 50 halvings, from a
+    /// step limited to 10 % of the ball diameter, that lowers the residual or meets `tol` (N);
+    /// None if none does.
+    fn line_search(&self, it: &LoadIterate, step: &[f64], tol: f64) -> Option<LoadIterate> {
+        let ball_diameter = self.model.bearing.geometry.ball_diameter;
+        let smax = step.iter().fold(0.0_f64, |m, x| m.max(x.abs())) * self.lever.max(1.0);
+        let mut lam: f64 = (0.1 * ball_diameter / smax.max(1e-300)).min(1.0);
         for _ in 0..50 {
-            let mut qn = q;
-            for (a, &k) in free.iter().enumerate() {
+            let mut qn = it.q;
+            for (a, &k) in self.free.iter().enumerate() {
                 qn[k] += lam * step[a];
             }
-            let mut wn = warm.clone();
-            if let Ok(frn) = model.evaluate_with(&qn, &mut wn) {
-                let (rnv, rnn) = residual_of(&frn);
-                if rnn < rn || rnn <= tol {
-                    q = qn;
-                    warm = wn;
-                    fr = frn;
-                    r = rnv;
-                    rn = rnn;
-                    accepted = true;
-                    break;
+            if let Ok(next) = self.iterate_at(qn, it.warm.clone()) {
+                if next.rn < it.rn || next.rn <= tol {
+                    return Some(next);
                 }
             }
             lam *= 0.5;
         }
-        if accepted {
-            mu = if newton_ok {
-                0.0
-            } else {
-                (mu * 0.3).max(1e-12)
-            };
-            if mu < 1e-9 {
-                mu = 0.0;
-            }
-        } else if mu > 1e12 {
-            break;
-        } else {
-            mu = if mu == 0.0 { 1e-3 } else { mu * 10.0 };
-        }
-        history.push(rn);
+        None
     }
-    if rn > tol {
-        return Err(BearingError::NotConverged {
-            iterations,
-            residual: rn,
-            tolerance: tol,
-        });
-    }
-    let balls = model.ball_states(&q, &mut warm)?;
-    check_carried(bearing, &balls, settings)?;
-    // A free DOF with no ball touching the inner race (zero load at speed: the balls ride on the
-    // outer race) leaves the ring position undetermined.
+}
+
+/// A free DOF with no ball touching the inner race (zero load at speed: the balls ride on the
+/// outer race) leaves the ring position undetermined: an error.
+fn check_ring_held(free: &[usize], balls: &[BallState]) -> Result<(), BearingError> {
     let outer_total: f64 = balls.iter().map(|b| b.outer.load).sum();
     if !free.is_empty()
         && balls.iter().all(|b| b.inner.load <= 1e-9 * outer_total)
@@ -1479,19 +1767,7 @@ pub fn solve_equilibrium(
             reason: "no ball touches the inner race (the loads are zero and centrifugal force holds the balls on the outer race): the ring position is undetermined; apply a load or impose the displacements".into(),
         });
     }
-    let warnings = warnings(&balls, settings.kinematics);
-    let full = model.evaluate_with(&q, &mut warm)?;
-    Ok(Equilibrium {
-        converged: true,
-        iterations,
-        residual: rn,
-        residual_history: history,
-        displacement: q,
-        reaction: full.reaction,
-        stiffness: full.jacobian,
-        balls,
-        warnings,
-    })
+    Ok(())
 }
 
 /// Largest deviation of the kinematic angle from a loaded ball's contact angles before a warning,

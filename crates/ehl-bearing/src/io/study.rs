@@ -2,7 +2,7 @@
 //! read into a validated [`Study`].
 
 use super::case::{method_input_error, parse_case, read_case};
-use crate::case::InputError;
+use crate::case::{Case, InputError};
 use crate::characterize::{CharacterizeError, CharacterizeSettings};
 use crate::method::Method;
 use crate::study::Study;
@@ -61,87 +61,111 @@ pub fn read_study(path: &Path) -> Result<Study, InputError> {
 /// ```
 pub fn parse_study(text: &str, origin: &str, base_dir: &Path) -> Result<Study, InputError> {
     let raw: RawStudy = super::from_toml(text, origin)?;
-    let (case, case_origin) = match raw.case {
-        None => {
-            return Err(InputError::Missing {
-                field: "case".into(),
-                hint: "a case file path relative to the study file, or an inline [case] table"
-                    .into(),
-            })
-        }
-        Some(toml::Value::String(p)) => {
-            let path = base_dir.join(&p);
-            (read_case(&path)?, p)
-        }
-        Some(toml::Value::Table(t)) => {
-            let text = toml::to_string(&t).map_err(|e| InputError::Syntax {
-                path: format!("{origin} [case]"),
-                message: e.to_string(),
-            })?;
-            (
-                parse_case(&text, &format!("{origin} [case]"))?,
-                "inline".into(),
-            )
-        }
-        Some(other) => {
-            return Err(InputError::field(
-                "case",
-                other.to_string(),
-                "a file path (string) or an inline [case] table",
-            ))
-        }
-    };
+    let (case, case_origin) = study_case(raw.case, origin, base_dir)?;
     let name = raw.method.unwrap_or_else(|| Method::NAMES[0].into());
     let method = Method::parse(&name, raw.method_options.as_ref()).map_err(method_input_error)?;
     let method_options = raw.method_options;
-    let list = |v: Option<Vec<f64>>,
-                key: &str,
-                default: Vec<f64>,
-                max: f64,
-                what: &str|
-     -> Result<Vec<f64>, InputError> {
-        let v = v.unwrap_or(default);
-        if v.is_empty() || v.len() > 1000 {
-            return Err(InputError::field(
-                key,
-                format!("{} values", v.len()),
-                "a list of 1 to 1000 values",
-            ));
-        }
-        for (i, &x) in v.iter().enumerate() {
-            if !(x.is_finite() && x > 0.0 && x <= max) {
-                return Err(InputError::field(
-                    &format!("{key}[{i}]"),
-                    x,
-                    format!("{what} greater than 0 and at most {max}"),
-                ));
-            }
-            if v[..i].contains(&x) {
-                return Err(InputError::field(
-                    &format!("{key}[{i}]"),
-                    x,
-                    "distinct values (this one is repeated)",
-                ));
-            }
-        }
-        Ok(v)
-    };
-    let inner_speeds_rpm = list(
+    let inner_speeds_rpm = positive_list(
         raw.inner_speeds_rpm,
         "inner_speeds_rpm",
         vec![case.operating.inner_speed * 30.0 / PI],
         1e6,
         "a speed in rpm",
     )?;
-    let load_scales = list(
+    let load_scales = positive_list(
         raw.load_scales,
         "load_scales",
         vec![1.0],
         100.0,
         "a load factor",
     )?;
+    let settings = characterize_settings(raw.characterize)?;
+    Ok(Study {
+        case,
+        case_origin,
+        method,
+        method_options,
+        inner_speeds_rpm,
+        load_scales,
+        settings,
+    })
+}
+
+/// The study's case and where it came from (the path as written, or "inline"): a case file
+/// path relative to `base_dir`, or an inline `[case]` table.
+fn study_case(
+    raw: Option<toml::Value>,
+    origin: &str,
+    base_dir: &Path,
+) -> Result<(Case, String), InputError> {
+    match raw {
+        None => Err(InputError::Missing {
+            field: "case".into(),
+            hint: "a case file path relative to the study file, or an inline [case] table".into(),
+        }),
+        Some(toml::Value::String(p)) => {
+            let path = base_dir.join(&p);
+            Ok((read_case(&path)?, p))
+        }
+        Some(toml::Value::Table(t)) => {
+            let text = toml::to_string(&t).map_err(|e| InputError::Syntax {
+                path: format!("{origin} [case]"),
+                message: e.to_string(),
+            })?;
+            Ok((
+                parse_case(&text, &format!("{origin} [case]"))?,
+                "inline".into(),
+            ))
+        }
+        Some(other) => Err(InputError::field(
+            "case",
+            other.to_string(),
+            "a file path (string) or an inline [case] table",
+        )),
+    }
+}
+
+/// The list under `key` (`default` when absent): 1 to 1000 distinct values, each greater than
+/// 0 and at most `max` (`what` names a value in messages).
+fn positive_list(
+    v: Option<Vec<f64>>,
+    key: &str,
+    default: Vec<f64>,
+    max: f64,
+    what: &str,
+) -> Result<Vec<f64>, InputError> {
+    let v = v.unwrap_or(default);
+    if v.is_empty() || v.len() > 1000 {
+        return Err(InputError::field(
+            key,
+            format!("{} values", v.len()),
+            "a list of 1 to 1000 values",
+        ));
+    }
+    for (i, &x) in v.iter().enumerate() {
+        if !(x.is_finite() && x > 0.0 && x <= max) {
+            return Err(InputError::field(
+                &format!("{key}[{i}]"),
+                x,
+                format!("{what} greater than 0 and at most {max}"),
+            ));
+        }
+        if v[..i].contains(&x) {
+            return Err(InputError::field(
+                &format!("{key}[{i}]"),
+                x,
+                "distinct values (this one is repeated)",
+            ));
+        }
+    }
+    Ok(v)
+}
+
+/// The loop settings: the defaults of [`CharacterizeSettings`] overridden by the `[characterize]`
+/// table, validated (a message names the key as `characterize.<key>`).
+fn characterize_settings(raw: Option<RawCharacterize>) -> Result<CharacterizeSettings, InputError> {
     let mut settings = CharacterizeSettings::default();
-    if let Some(c) = raw.characterize {
+    if let Some(c) = raw {
         if let Some(v) = c.tolerance {
             settings.tolerance = v;
         }
@@ -180,13 +204,5 @@ pub fn parse_study(text: &str, origin: &str, base_dir: &Path) -> Result<Study, I
             expected,
         });
     }
-    Ok(Study {
-        case,
-        case_origin,
-        method,
-        method_options,
-        inner_speeds_rpm,
-        load_scales,
-        settings,
-    })
+    Ok(settings)
 }

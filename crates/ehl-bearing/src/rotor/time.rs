@@ -420,228 +420,40 @@ impl RotorModel {
         profile.validate()?;
         let n = self.dofs();
         let steps = options.validate(n)?;
-        let h = options.step_s;
-        let c0 = 1.0 / (BETA * h * h);
-        let c1 = GAMMA / (BETA * h);
-        let c2 = 1.0 / (BETA * h);
-        let c3 = 1.0 / (2.0 * BETA) - 1.0;
-        let c4 = 1.0 - GAMMA / BETA;
-        let c5 = h * (1.0 - GAMMA / (2.0 * BETA));
-        let dofs = BearingDofs::of(self);
-        let nb = self.bearings.len();
-        // Cage angles: each rolling cage turns at its bearing's operating cage speed, the
-        // load-weighted mean orbital speed of its balls from the bearing model
-        // (`ElementOutput::cage_speed`), taken from the last converged evaluation as a ratio to the
-        // shaft speed and applied to the exact shaft rotation of the step:
-        // θ(t + h) = θ(t) + (ω_c/Ω)(t)·(φ(t + h) − φ(t)). It follows the operating point (loads,
-        // run-ups) with a lag of one step; at constant speed and load it is the equilibrium's
-        // cage speed to within its ripple over a ball pass. Before any evaluation, or at Ω = 0,
-        // the no-load ratio at the free contact angle (`ForceElement::cage_speed`).
-        let free_ratio: Vec<f64> = self
-            .bearings
-            .iter()
-            .map(|s| s.element.cage_speed(1.0, 0.0))
-            .collect();
-        let cage_ratios = |outs: &[ElementOutput], speed: f64| -> Vec<f64> {
-            outs.iter()
-                .zip(&free_ratio)
-                .map(|(o, &free)| {
-                    let r = o.cage_speed / speed;
-                    if speed != 0.0 && r.is_finite() {
-                        r
-                    } else {
-                        free
-                    }
-                })
-                .collect()
+        let run = Integrator {
+            model: self,
+            profile,
+            options,
+            newmark: Newmark::new(options.step_s),
+            dofs: BearingDofs::of(self),
+            cages: Cages::new(self, options.cage, profile),
         };
-        let advance = |angles: &[f64], ratios: &[f64], t0: f64, t1: f64| -> Vec<f64> {
-            match options.cage {
-                CageMotion::Rolling => {
-                    let dphi = profile.angle(t1) - profile.angle(t0);
-                    angles
-                        .iter()
-                        .zip(ratios)
-                        .map(|(a, r)| a + r * dphi)
-                        .collect()
-                }
-                CageMotion::Fixed { angle_rad } => vec![angle_rad; nb],
-            }
-        };
-        let mut breakdown = TimeBreakdown::default();
-        let mut states = vec![ElementState::default(); nb];
-
-        // Initial state.
-        let speed0 = profile.speed(0.0);
-        let (mut q, mut v) = match &options.start {
-            Start::StaticEquilibrium => {
-                let eq = self.static_equilibrium(speed0)?;
-                (DVector::from_vec(eq.displacement), DVector::zeros(n))
-            }
-            Start::Given {
-                displacement,
-                velocity,
-            } => (
-                DVector::from_column_slice(displacement),
-                DVector::from_column_slice(velocity),
-            ),
-        };
-        let mut angles = match options.cage {
-            CageMotion::Rolling => vec![0.0; nb],
-            CageMotion::Fixed { angle_rad } => vec![angle_rad; nb],
-        };
-        let mut outs = self.evaluate_all(&q, &v, speed0, &angles, &mut states, 0.0)?;
-        let force0 = self.external_force(profile, 0.0);
-        let mut rhs =
-            force0 - (&self.damping + &self.gyroscopic * speed0) * &v - &self.stiffness * &q;
-        for (b, o) in outs.iter().enumerate() {
-            self.scatter_force(b, &o.reaction.map(|r| -r), &mut rhs);
-        }
-        let mut a = self
-            .mass
-            .clone()
-            .lu()
-            .solve(&rhs)
-            .ok_or(RotorError::Singular {
-                what: "mass",
-                time_s: 0.0,
-            })?;
-
-        let record_dofs: Vec<usize> = if options.record_dofs.is_empty() {
-            (0..n).collect()
-        } else {
-            options.record_dofs.clone()
-        };
+        let mut state = run.initial_state()?;
         let mut response = TimeResponse {
-            record_dofs: record_dofs.clone(),
+            record_dofs: if options.record_dofs.is_empty() {
+                (0..n).collect()
+            } else {
+                options.record_dofs.clone()
+            },
             ..TimeResponse::default()
         };
-        let record = |response: &mut TimeResponse,
-                      t: f64,
-                      q: &DVector<f64>,
-                      angles: &[f64],
-                      outs: &[ElementOutput]| {
-            response.time_s.push(t);
-            response.speed_rad_s.push(profile.speed(t));
-            response
-                .displacement
-                .push(record_dofs.iter().map(|&i| q[i]).collect());
-            response.cage_angle_rad.push(angles.to_vec());
-            response
-                .cage_speed_rad_s
-                .push(outs.iter().map(|o| o.cage_speed).collect());
-            response
-                .bearing_displacement
-                .push(self.bearings.iter().map(|s| s.displacement(q)).collect());
-            response
-                .bearing_reaction
-                .push(outs.iter().map(|o| o.reaction).collect());
-        };
-        record(&mut response, 0.0, &q, &angles, &outs);
+        run.record(&mut response, 0.0, &state);
 
         let mut condensed: Option<Condensed> = None;
         let progress_every = (steps / 100).clamp(1, 1000);
         for step in 1..=steps {
-            let t = step as f64 * h;
+            let t = step as f64 * options.step_s;
             let speed = profile.speed(t);
             if !matches!(&condensed, Some(c) if c.speed == speed) {
                 let t0 = Instant::now();
-                condensed = Some(self.condense(&dofs, speed, c0, c1, t)?);
-                breakdown.factorization_s += t0.elapsed().as_secs_f64();
+                let (c0, c1) = (run.newmark.c0, run.newmark.c1);
+                condensed = Some(self.condense(&run.dofs, speed, c0, c1, t)?);
+                response.breakdown.factorization_s += t0.elapsed().as_secs_f64();
             }
             let cond = condensed.as_ref().expect("condensed just set");
-            let t_prev = (step - 1) as f64 * h;
-            angles = advance(
-                &angles,
-                &cage_ratios(&outs, profile.speed(t_prev)),
-                t_prev,
-                t,
-            );
-            // q1 = u0 − W·R, a1 = c0·q1 + e_a, v1 = c1·q1 + e_v.
-            let e_a = -(&q * c0) - &v * c2 - &a * c3;
-            let e_v = -(&q * c1) + &v * c4 + &a * c5;
-            let r = self.external_force(profile, t) - &self.mass * &e_a - &cond.damping * &e_v;
-            let u0 = cond.lu.solve(&r).ok_or(RotorError::Singular {
-                what: "effective",
-                time_s: t,
-            })?;
-            let q1 = match options.coupling {
-                Coupling::Lagged => {
-                    let reaction = dofs.reactions(&outs);
-                    let q1 = &u0 - &cond.w * &reaction;
-                    self.check_divergence(&dofs, &dofs.gather(&q1), options, step, t)?;
-                    let v1 = &q1 * c1 + &e_v;
-                    let t0 = Instant::now();
-                    outs = self.evaluate_all(&q1, &v1, speed, &angles, &mut states, t)?;
-                    breakdown.bearing_s += t0.elapsed().as_secs_f64();
-                    response.newton_iterations += 1;
-                    response.max_newton_iterations = response.max_newton_iterations.max(1);
-                    q1
-                }
-                Coupling::Implicit => {
-                    let b = dofs.gather(&u0);
-                    let lv = dofs.gather(&e_v);
-                    // Predictor: y ≈ L·(q + h·v + h²/2·a).
-                    let mut y = dofs.gather(&(&q + &v * h + &a * (0.5 * h * h)));
-                    let mut history = Vec::new();
-                    let mut converged = false;
-                    for iteration in 1..=options.max_newton_iterations {
-                        self.check_divergence(&dofs, &y, options, step, t)?;
-                        let (qy, vy) = self.rotor_state_from_bearing(&dofs, &y, &lv, c1, n);
-                        let t0 = Instant::now();
-                        outs = self.evaluate_all(&qy, &vy, speed, &angles, &mut states, t)?;
-                        breakdown.bearing_s += t0.elapsed().as_secs_f64();
-                        let reaction = dofs.reactions(&outs);
-                        let g = &y - &b + &cond.a * &reaction;
-                        let g_max = g.amax();
-                        history.push(g_max);
-                        response.newton_iterations += 1;
-                        response.max_newton_iterations =
-                            response.max_newton_iterations.max(iteration);
-                        if g_max <= options.newton_tolerance_m {
-                            converged = true;
-                            break;
-                        }
-                        let jac = DMatrix::identity(dofs.len(), dofs.len())
-                            + &cond.a * dofs.tangent(&outs, c1);
-                        let dy = jac.lu().solve(&g).ok_or(RotorError::Singular {
-                            what: "bearing Newton",
-                            time_s: t,
-                        })?;
-                        y -= dy;
-                    }
-                    if !converged {
-                        return Err(RotorError::StepNotConverged {
-                            step,
-                            time_s: t,
-                            iterations: options.max_newton_iterations,
-                            update_history: history,
-                        });
-                    }
-                    &u0 - &cond.w * dofs.reactions(&outs)
-                }
-            };
-            if outs
-                .iter()
-                .any(|o| !o.outside_range.is_empty() || o.speed_outside)
-            {
-                response.steps_outside_range += 1;
-            }
-            let a1 = &q1 * c0 + &e_a;
-            let v1 = &q1 * c1 + &e_v;
-            q = q1;
-            v = v1;
-            a = a1;
-            if q.iter().any(|x| !x.is_finite()) {
-                return Err(RotorError::Diverged {
-                    step,
-                    time_s: t,
-                    displacement_m: f64::NAN,
-                    limit_m: options.divergence_limit_m,
-                });
-            }
+            run.step(step, cond, &mut state, &mut response)?;
             if step % options.record_every == 0 {
-                record(&mut response, t, &q, &angles, &outs);
+                run.record(&mut response, t, &state);
             }
             if let Some(p) = progress.as_deref_mut() {
                 if step % progress_every == 0 || step == steps {
@@ -661,8 +473,7 @@ impl RotorModel {
             }
         }
         response.steps = steps;
-        breakdown.total_s = clock.elapsed().as_secs_f64();
-        response.breakdown = breakdown;
+        response.breakdown.total_s = clock.elapsed().as_secs_f64();
         Ok(response)
     }
 
@@ -774,5 +585,363 @@ impl RotorModel {
             }
         }
         Ok(())
+    }
+}
+
+/// The coefficients of Newmark's average-acceleration rule for a step h (s): with the new
+/// displacements q1, a1 = c0·q1 + e_a and v1 = c1·q1 + e_v, where
+/// e_a = −c0·q − c2·v − c3·a and e_v = −c1·q + c4·v + c5·a.
+#[derive(Debug, Clone, Copy)]
+struct Newmark {
+    /// Step h, s.
+    h: f64,
+    /// 1/(β·h²), 1/s².
+    c0: f64,
+    /// γ/(β·h), 1/s.
+    c1: f64,
+    /// 1/(β·h), 1/s.
+    c2: f64,
+    /// 1/(2β) − 1.
+    c3: f64,
+    /// 1 − γ/β.
+    c4: f64,
+    /// h·(1 − γ/(2β)), s.
+    c5: f64,
+}
+
+impl Newmark {
+    fn new(h: f64) -> Self {
+        Newmark {
+            h,
+            c0: 1.0 / (BETA * h * h),
+            c1: GAMMA / (BETA * h),
+            c2: 1.0 / (BETA * h),
+            c3: 1.0 / (2.0 * BETA) - 1.0,
+            c4: 1.0 - GAMMA / BETA,
+            c5: h * (1.0 - GAMMA / (2.0 * BETA)),
+        }
+    }
+}
+
+/// How the cage angles move. Each rolling cage turns at its bearing's operating cage speed,
+/// the load-weighted mean orbital speed of its balls from the bearing model
+/// (`ElementOutput::cage_speed`), taken from the last converged evaluation as a ratio to the
+/// shaft speed and applied to the exact shaft rotation of the step:
+/// θ(t + h) = θ(t) + (ω_c/Ω)(t)·(φ(t + h) − φ(t)). It follows the operating point (loads,
+/// run-ups) with a lag of one step; at constant speed and load it is the equilibrium's cage
+/// speed to within its ripple over a ball pass. Before any evaluation, or at Ω = 0, the no-load
+/// ratio at the free contact angle (`ForceElement::cage_speed`).
+struct Cages<'a> {
+    motion: CageMotion,
+    profile: &'a SpeedProfile,
+    /// Per bearing, the no-load ratio of cage to shaft speed.
+    free_ratio: Vec<f64>,
+}
+
+impl<'a> Cages<'a> {
+    fn new(model: &RotorModel, motion: CageMotion, profile: &'a SpeedProfile) -> Self {
+        let free_ratio = model
+            .bearings
+            .iter()
+            .map(|s| s.element.cage_speed(1.0, 0.0))
+            .collect();
+        Cages {
+            motion,
+            profile,
+            free_ratio,
+        }
+    }
+
+    /// The cage angles at t = 0, rad.
+    fn initial(&self) -> Vec<f64> {
+        let nb = self.free_ratio.len();
+        match self.motion {
+            CageMotion::Rolling => vec![0.0; nb],
+            CageMotion::Fixed { angle_rad } => vec![angle_rad; nb],
+        }
+    }
+
+    /// Per bearing, the ratio of the cage speed in `outs` to the shaft speed `speed` (rad/s),
+    /// or the no-load ratio where it is undefined.
+    fn ratios(&self, outs: &[ElementOutput], speed: f64) -> Vec<f64> {
+        outs.iter()
+            .zip(&self.free_ratio)
+            .map(|(o, &free)| {
+                let r = o.cage_speed / speed;
+                if speed != 0.0 && r.is_finite() {
+                    r
+                } else {
+                    free
+                }
+            })
+            .collect()
+    }
+
+    /// The cage angles (rad) at `t1` from `angles` at `t0` (s), the cages turning at the
+    /// ratios of `outs` to the shaft speed at `t0`.
+    fn advance(&self, angles: &[f64], outs: &[ElementOutput], t0: f64, t1: f64) -> Vec<f64> {
+        let ratios = self.ratios(outs, self.profile.speed(t0));
+        match self.motion {
+            CageMotion::Rolling => {
+                let dphi = self.profile.angle(t1) - self.profile.angle(t0);
+                angles
+                    .iter()
+                    .zip(&ratios)
+                    .map(|(a, r)| a + r * dphi)
+                    .collect()
+            }
+            CageMotion::Fixed { angle_rad } => vec![angle_rad; self.free_ratio.len()],
+        }
+    }
+}
+
+/// The fixed parts of one time integration: the rotor, the speed profile and options, the
+/// Newmark coefficients, the bearing DOFs and the cage motion.
+struct Integrator<'a> {
+    model: &'a RotorModel,
+    profile: &'a SpeedProfile,
+    options: &'a TimeOptions,
+    newmark: Newmark,
+    dofs: BearingDofs,
+    cages: Cages<'a>,
+}
+
+/// The rotor's state after a step: displacements q (SI), rates v and accelerations a, the cage
+/// angles (rad), the bearings' outputs at (q, v) and their warm-start states.
+struct RotorState {
+    q: DVector<f64>,
+    v: DVector<f64>,
+    a: DVector<f64>,
+    angles: Vec<f64>,
+    outs: Vec<ElementOutput>,
+    elements: Vec<ElementState>,
+}
+
+/// What a step's bearing solve starts from: the step, its time t (s) and shaft speed (rad/s),
+/// the condensed effective matrix, u0 = S⁻¹·r (the new displacements without the bearing
+/// forces) and e_v (the part of the new rates that does not depend on the new displacements).
+struct StepStart<'a> {
+    step: usize,
+    t: f64,
+    speed: f64,
+    cond: &'a Condensed,
+    u0: DVector<f64>,
+    e_v: DVector<f64>,
+}
+
+impl Integrator<'_> {
+    /// The initial state by `options.start`, with the accelerations from
+    /// M·a = f(0) − (C + Ω·G)·v − K·q − Σ (bearing reactions).
+    fn initial_state(&self) -> Result<RotorState, RotorError> {
+        let m = self.model;
+        let n = m.dofs();
+        let mut elements = vec![ElementState::default(); m.bearings.len()];
+        let speed0 = self.profile.speed(0.0);
+        let (q, v) = match &self.options.start {
+            Start::StaticEquilibrium => {
+                let eq = m.static_equilibrium(speed0)?;
+                (DVector::from_vec(eq.displacement), DVector::zeros(n))
+            }
+            Start::Given {
+                displacement,
+                velocity,
+            } => (
+                DVector::from_column_slice(displacement),
+                DVector::from_column_slice(velocity),
+            ),
+        };
+        let angles = self.cages.initial();
+        let outs = m.evaluate_all(&q, &v, speed0, &angles, &mut elements, 0.0)?;
+        let force0 = m.external_force(self.profile, 0.0);
+        let mut rhs = force0 - (&m.damping + &m.gyroscopic * speed0) * &v - &m.stiffness * &q;
+        for (b, o) in outs.iter().enumerate() {
+            m.scatter_force(b, &o.reaction.map(|r| -r), &mut rhs);
+        }
+        let a = m
+            .mass
+            .clone()
+            .lu()
+            .solve(&rhs)
+            .ok_or(RotorError::Singular {
+                what: "mass",
+                time_s: 0.0,
+            })?;
+        Ok(RotorState {
+            q,
+            v,
+            a,
+            angles,
+            outs,
+            elements,
+        })
+    }
+
+    /// Append the state `s` at time `t` (s) to `response`.
+    fn record(&self, response: &mut TimeResponse, t: f64, s: &RotorState) {
+        response.time_s.push(t);
+        response.speed_rad_s.push(self.profile.speed(t));
+        response
+            .displacement
+            .push(response.record_dofs.iter().map(|&i| s.q[i]).collect());
+        response.cage_angle_rad.push(s.angles.to_vec());
+        response
+            .cage_speed_rad_s
+            .push(s.outs.iter().map(|o| o.cage_speed).collect());
+        response.bearing_displacement.push(
+            self.model
+                .bearings
+                .iter()
+                .map(|b| b.displacement(&s.q))
+                .collect(),
+        );
+        response
+            .bearing_reaction
+            .push(s.outs.iter().map(|o| o.reaction).collect());
+    }
+
+    /// Step `step` (from t − h to t = step·h) with the condensed effective matrix `cond`:
+    /// advance the cages, solve for the new displacements with the bearing forces as the
+    /// coupling option says, then the new rates and accelerations. Counts the Newton
+    /// iterations, the steps outside a law's range and the bearing time in `response`.
+    fn step(
+        &self,
+        step: usize,
+        cond: &Condensed,
+        s: &mut RotorState,
+        response: &mut TimeResponse,
+    ) -> Result<(), RotorError> {
+        let Newmark {
+            h,
+            c0,
+            c1,
+            c2,
+            c3,
+            c4,
+            c5,
+        } = self.newmark;
+        let m = self.model;
+        let t = step as f64 * h;
+        let t_prev = (step - 1) as f64 * h;
+        s.angles = self.cages.advance(&s.angles, &s.outs, t_prev, t);
+        // q1 = u0 − W·R, a1 = c0·q1 + e_a, v1 = c1·q1 + e_v.
+        let e_a = -(&s.q * c0) - &s.v * c2 - &s.a * c3;
+        let e_v = -(&s.q * c1) + &s.v * c4 + &s.a * c5;
+        let r = m.external_force(self.profile, t) - &m.mass * &e_a - &cond.damping * &e_v;
+        let u0 = cond.lu.solve(&r).ok_or(RotorError::Singular {
+            what: "effective",
+            time_s: t,
+        })?;
+        let start = StepStart {
+            step,
+            t,
+            speed: self.profile.speed(t),
+            cond,
+            u0,
+            e_v,
+        };
+        let q1 = match self.options.coupling {
+            Coupling::Lagged => self.lagged(&start, s, response)?,
+            Coupling::Implicit => self.implicit(&start, s, response)?,
+        };
+        if s.outs
+            .iter()
+            .any(|o| !o.outside_range.is_empty() || o.speed_outside)
+        {
+            response.steps_outside_range += 1;
+        }
+        let a1 = &q1 * c0 + &e_a;
+        let v1 = &q1 * c1 + &start.e_v;
+        s.q = q1;
+        s.v = v1;
+        s.a = a1;
+        if s.q.iter().any(|x| !x.is_finite()) {
+            return Err(RotorError::Diverged {
+                step,
+                time_s: t,
+                displacement_m: f64::NAN,
+                limit_m: self.options.divergence_limit_m,
+            });
+        }
+        Ok(())
+    }
+
+    /// The new displacements with the previous step's bearing forces as an explicit load; the
+    /// bearings are then evaluated there (one evaluation, counted as one Newton iteration).
+    fn lagged(
+        &self,
+        k: &StepStart<'_>,
+        s: &mut RotorState,
+        response: &mut TimeResponse,
+    ) -> Result<DVector<f64>, RotorError> {
+        let m = self.model;
+        let reaction = self.dofs.reactions(&s.outs);
+        let q1 = &k.u0 - &k.cond.w * &reaction;
+        m.check_divergence(
+            &self.dofs,
+            &self.dofs.gather(&q1),
+            self.options,
+            k.step,
+            k.t,
+        )?;
+        let v1 = &q1 * self.newmark.c1 + &k.e_v;
+        let t0 = Instant::now();
+        s.outs = m.evaluate_all(&q1, &v1, k.speed, &s.angles, &mut s.elements, k.t)?;
+        response.breakdown.bearing_s += t0.elapsed().as_secs_f64();
+        response.newton_iterations += 1;
+        response.max_newton_iterations = response.max_newton_iterations.max(1);
+        Ok(q1)
+    }
+
+    /// The new displacements with the bearing forces at the new time: Newton on the bearing
+    /// DOFs y of g(y) = y − L·u0 + A·R(y) = 0 from the predictor L·(q + h·v + h²/2·a), to
+    /// |g|∞ ≤ `newton_tolerance_m`; an error with the update history if it does not get there.
+    fn implicit(
+        &self,
+        k: &StepStart<'_>,
+        s: &mut RotorState,
+        response: &mut TimeResponse,
+    ) -> Result<DVector<f64>, RotorError> {
+        let (m, dofs, options) = (self.model, &self.dofs, self.options);
+        let (h, c1) = (self.newmark.h, self.newmark.c1);
+        let n = m.dofs();
+        let b = dofs.gather(&k.u0);
+        let lv = dofs.gather(&k.e_v);
+        // Predictor: y ≈ L·(q + h·v + h²/2·a).
+        let mut y = dofs.gather(&(&s.q + &s.v * h + &s.a * (0.5 * h * h)));
+        let mut history = Vec::new();
+        let mut converged = false;
+        for iteration in 1..=options.max_newton_iterations {
+            m.check_divergence(dofs, &y, options, k.step, k.t)?;
+            let (qy, vy) = m.rotor_state_from_bearing(dofs, &y, &lv, c1, n);
+            let t0 = Instant::now();
+            s.outs = m.evaluate_all(&qy, &vy, k.speed, &s.angles, &mut s.elements, k.t)?;
+            response.breakdown.bearing_s += t0.elapsed().as_secs_f64();
+            let reaction = dofs.reactions(&s.outs);
+            let g = &y - &b + &k.cond.a * &reaction;
+            let g_max = g.amax();
+            history.push(g_max);
+            response.newton_iterations += 1;
+            response.max_newton_iterations = response.max_newton_iterations.max(iteration);
+            if g_max <= options.newton_tolerance_m {
+                converged = true;
+                break;
+            }
+            let jac =
+                DMatrix::identity(dofs.len(), dofs.len()) + &k.cond.a * dofs.tangent(&s.outs, c1);
+            let dy = jac.lu().solve(&g).ok_or(RotorError::Singular {
+                what: "bearing Newton",
+                time_s: k.t,
+            })?;
+            y -= dy;
+        }
+        if !converged {
+            return Err(RotorError::StepNotConverged {
+                step: k.step,
+                time_s: k.t,
+                iterations: options.max_newton_iterations,
+                update_history: history,
+            });
+        }
+        Ok(&k.u0 - &k.cond.w * dofs.reactions(&s.outs))
     }
 }
