@@ -278,7 +278,15 @@ fn sbatch_runs_the_shards_as_array_tasks_and_resubmits_only_what_is_left() {
     let m =
         ehl_bearing::law_map::LawMap::from_json(&std::fs::read_to_string(&map).unwrap()).unwrap();
     assert_eq!(m.laws.len(), 27);
-    // Invalid options name the option, the value and the range.
+    sbatch_refuses_invalid_options(&spec, &out, &map);
+}
+
+/// `law-map sbatch` with invalid options: refused naming the option, the value and the range.
+fn sbatch_refuses_invalid_options(
+    spec: &std::path::Path,
+    out: &std::path::Path,
+    map: &std::path::Path,
+) {
     for (args, want) in [
         (
             vec!["--shards", "0"],
@@ -296,11 +304,11 @@ fn sbatch_runs_the_shards_as_array_tasks_and_resubmits_only_what_is_left() {
     ] {
         let o = bin()
             .args(["law-map", "sbatch"])
-            .arg(&spec)
+            .arg(spec)
             .arg("-o")
-            .arg(&out)
+            .arg(out)
             .arg("--map")
-            .arg(&map)
+            .arg(map)
             .args(&args)
             .output()
             .unwrap();
@@ -309,11 +317,11 @@ fn sbatch_runs_the_shards_as_array_tasks_and_resubmits_only_what_is_left() {
     }
     let o = bin()
         .args(["law-map", "sbatch"])
-        .arg(&spec)
+        .arg(spec)
         .arg("-o")
-        .arg(&out)
+        .arg(out)
         .arg("--map")
-        .arg(dir.path().join("absent/map.json"))
+        .arg(out.join("absent/map.json"))
         .output()
         .unwrap();
     let e = String::from_utf8_lossy(&o.stderr);

@@ -677,6 +677,7 @@ impl ElementCore {
         }
     }
 
+    // The arguments are the Python keyword interface.
     #[allow(clippy::too_many_arguments)]
     fn evaluate<'py>(
         &self,
@@ -778,6 +779,7 @@ macro_rules! element_methods {
             /// The object keeps warm starts between calls (results do not depend on them beyond
             /// the solvers' tolerances). Raises `EhlBearingError` if a ball's equilibrium fails.
             #[pyo3(signature = (displacement, velocity = None, inner_speed_rad_s = 0.0, outer_speed_rad_s = 0.0, cage_angle_rad = 0.0, full = false))]
+            // The arguments are the Python keyword interface.
             #[allow(clippy::too_many_arguments)]
             fn evaluate(
                 &self,

@@ -145,22 +145,32 @@ fn run_ehl(n: u32) {
     report(0);
 }
 
-/// A random bearing case in case-file form (geometry valid by construction, loads and speeds
-/// random).
-#[allow(clippy::too_many_arguments)]
-fn bearing_text(
+/// A random bearing in the generator's terms: balls, ball diameter (mm), relative gap between
+/// the balls, conformities, contact angle (deg), speed (rpm), loads x, y, z (N), race control.
+struct RandomBearing {
     z: u32,
     d: f64,
     gap: f64,
-    fi: f64,
-    fo: f64,
+    conformity: [f64; 2],
     alpha: f64,
     rpm: f64,
-    fx: f64,
-    fy: f64,
-    fz: f64,
+    force: [f64; 3],
     control: usize,
-) -> String {
+}
+
+/// A random bearing case in case-file form (geometry valid by construction, loads and speeds
+/// random).
+fn bearing_text(b: &RandomBearing) -> String {
+    let RandomBearing {
+        z,
+        d,
+        gap,
+        conformity: [fi, fo],
+        alpha,
+        rpm,
+        force: [fx, fy, fz],
+        control,
+    } = *b;
     // Pitch diameter with the balls just fitting, times 1 + gap.
     let dm = d / (std::f64::consts::PI / z as f64).sin() * (1.0 + gap);
     let rc = ["outer", "inner", "none", "no-gyroscopic"][control];
@@ -195,7 +205,16 @@ fn run_equilibrium(n: u32) {
             ),
             |((z, d, gap, fi, fo), (alpha, rpm, lx, ly, lz, rc))| {
                 let f = |e: f64| if e < 0.0 { 0.0 } else { 10f64.powf(e) };
-                let text = bearing_text(z, d, gap, fi, fo, alpha, rpm, f(lx), f(ly), f(lz), rc);
+                let text = bearing_text(&RandomBearing {
+                    z,
+                    d,
+                    gap,
+                    conformity: [fi, fo],
+                    alpha,
+                    rpm,
+                    force: [f(lx), f(ly), f(lz)],
+                    control: rc,
+                });
                 let Ok(case) = parse_case(&text, "edge") else {
                     count(1, 3);
                     return Ok(());
