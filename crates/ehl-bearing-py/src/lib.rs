@@ -1085,6 +1085,21 @@ pub(crate) fn square(a: &PyReadonlyArray2<'_, f64>, n: usize, what: &str) -> PyR
 }
 
 /// The native module.
+/// The keys of a result record, in order, for results Python builds as dicts of numpy arrays:
+/// `"rotor_run"` (`RotorModel.simulate`) and `"rotor_static"` (`RotorModel.static_equilibrium`);
+/// the other results reach Python from their records directly (docs/results.md).
+#[pyfunction]
+fn result_keys(kind: &str) -> PyResult<Vec<String>> {
+    use ehl_bearing::report::{record_keys, RotorRunReport, RotorStaticReport};
+    match kind {
+        "rotor_run" => Ok(record_keys(&RotorRunReport::default())),
+        "rotor_static" => Ok(record_keys(&RotorStaticReport::default())),
+        other => Err(err(format!(
+            "result_keys({other:?}): expected \"rotor_run\" or \"rotor_static\""
+        ))),
+    }
+}
+
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add(
@@ -1102,6 +1117,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study, m)?)?;
     m.add_function(wrap_pyfunction!(coefficients, m)?)?;
     m.add_function(wrap_pyfunction!(ross_table_csv, m)?)?;
+    m.add_function(wrap_pyfunction!(result_keys, m)?)?;
     rotor::register(m)?;
     Ok(())
 }

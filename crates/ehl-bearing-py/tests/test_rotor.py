@@ -157,6 +157,11 @@ def test_run_up_follows_the_ramp(case3000):
     out = model.simulate(step_s=5e-5, duration_s=0.02, ramp=(0.5 * w, w, 0.02), record_every=4)
     np.testing.assert_allclose(out["speed_rad_s"], 0.5 * w + 0.5 * w * out["time_s"] / 0.02)
     assert out["breakdown"]["total_s"] >= out["breakdown"]["bearing_s"] > 0
+    # The dicts of numpy arrays have the keys of the library's records, in their order.
+    assert list(out) == eb.result_keys("rotor_run")
+    assert list(model.static_equilibrium(w)) == eb.result_keys("rotor_static")
+    with pytest.raises(eb.EhlBearingError, match="rotor_run"):
+        eb.result_keys("rotor")
 
 
 def test_rotor_model_errors_name_the_input(case3000):

@@ -39,6 +39,7 @@ from ._native import (
     contact,
     ehl,
     equilibrium,
+    result_keys,
     ross_table_csv,
     study,
 )
@@ -58,6 +59,7 @@ __all__ = [
     "equilibrium",
     "print_progress",
     "read_case",
+    "result_keys",
     "ross_table_csv",
     "study",
 ]

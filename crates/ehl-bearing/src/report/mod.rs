@@ -24,6 +24,7 @@ pub use crate::characterize::{CharacterizationReport, ContactRow, Displacements,
 pub use crate::coefficients::SpeedCoefficients as CoefficientsReport;
 pub use crate::contact::ContactFit as ContactReport;
 pub use crate::csv::csv;
+pub use crate::rotor::{StaticSolution as RotorStaticReport, TimeResponse as RotorRunReport};
 pub use crate::study::PointRecord as StudyPointReport;
 
 /// A report as pretty-printed JSON (two-space indent, keys in the report's field order).
@@ -245,5 +246,15 @@ impl EquilibriumReport {
             b.outer.film = f.next();
         }
         self
+    }
+}
+
+/// The top-level keys of `record`'s serialized form, in order: the key set a result's consumers
+/// (Python dicts of numpy arrays, which are built field by field) must give. Empty if the record
+/// does not serialize to a map.
+pub fn record_keys<T: Serialize + ?Sized>(record: &T) -> Vec<String> {
+    match serde_json::to_value(record) {
+        Ok(serde_json::Value::Object(m)) => m.keys().cloned().collect(),
+        _ => Vec::new(),
     }
 }

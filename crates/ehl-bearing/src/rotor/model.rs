@@ -179,8 +179,9 @@ impl Unbalance {
     }
 }
 
-/// The static equilibrium of the rotor on its bearings.
-#[derive(Debug, Clone, PartialEq)]
+/// The static equilibrium of the rotor on its bearings (its record:
+/// `report::RotorStaticReport`).
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize)]
 pub struct StaticSolution {
     /// Rotor displacements q (n), SI.
     pub displacement: Vec<f64>,

@@ -275,7 +275,7 @@ impl TimeOptions {
 }
 
 /// Where the wall time of a run went, s.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
 pub struct TimeBreakdown {
     /// Whole run.
     pub total_s: f64,
@@ -304,8 +304,8 @@ pub struct RotorProgress {
     pub time_s: f64,
 }
 
-/// A time response.
-#[derive(Debug, Clone, PartialEq, Default)]
+/// A time response (its record: `report::RotorRunReport`).
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize)]
 pub struct TimeResponse {
     /// Recorded times, s.
     pub time_s: Vec<f64>,
