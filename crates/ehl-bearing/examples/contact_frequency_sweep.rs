@@ -188,63 +188,113 @@ type Panel<'a> = (
     Vec<Option<f64>>,
 );
 
-/// SVG of four panels against log Ω/ω_n from the CSV text: k'/k_qs, c_eq (lines) and the law's
-/// c (dots), d, ΔF. The quasi-static values are drawn as dashed horizontal lines in the same
-/// colour. The rotor band (100–400 Hz over the contacts' ω_n) is shaded.
-fn plot(csv: &str) -> String {
-    let mut lines = csv.lines();
-    let head: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
-    let col = |name: &str| head.iter().position(|h| *h == name).expect("column");
-    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-    let num = |r: &Vec<&str>, name: &str| r[col(name)].parse::<f64>().ok();
-    let mut keys: Vec<String> = Vec::new();
-    for r in &rows {
-        let k = format!("{} rpm, ball {} {}", r[0], r[1], r[2]);
-        if !keys.contains(&k) {
-            keys.push(k);
+/// Colours of the contacts' series, in order.
+const COLOURS: [&str; 9] = [
+    "#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf", "#7f7f7f",
+    "#bcbd22",
+];
+
+/// Panel size and margins, px: width, height, left margin, top margin.
+const PANEL: (f64, f64, f64, f64) = (460.0, 300.0, 70.0, 40.0);
+
+/// The sweep's CSV: its columns, its rows and the contacts' keys in order of appearance.
+struct Sweep<'a> {
+    head: Vec<&'a str>,
+    rows: Vec<Vec<&'a str>>,
+    keys: Vec<String>,
+}
+
+impl<'a> Sweep<'a> {
+    fn parse(csv: &'a str) -> Self {
+        let mut lines = csv.lines();
+        let head: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+        let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+        let mut keys: Vec<String> = Vec::new();
+        for r in &rows {
+            let k = Self::key(r);
+            if !keys.contains(&k) {
+                keys.push(k);
+            }
         }
+        Sweep { head, rows, keys }
     }
-    let key = |r: &Vec<&str>| format!("{} rpm, ball {} {}", r[0], r[1], r[2]);
-    let qs = |k: &str, name: &str| {
-        rows.iter()
-            .find(|r| key(r) == k && r[col("method")] == "quasi-static")
-            .and_then(|r| num(r, name))
-    };
-    let series = |f: &dyn Fn(&Vec<&str>, &str) -> Option<f64>| -> Vec<Series> {
-        keys.iter()
+
+    /// A row's contact: speed, ball and raceway.
+    fn key(r: &[&str]) -> String {
+        format!("{} rpm, ball {} {}", r[0], r[1], r[2])
+    }
+
+    fn col(&self, name: &str) -> usize {
+        self.head.iter().position(|h| *h == name).expect("column")
+    }
+
+    fn num(&self, r: &[&str], name: &str) -> Option<f64> {
+        r[self.col(name)].parse::<f64>().ok()
+    }
+
+    /// Column `name` of contact `k`'s quasi-static row.
+    fn qs(&self, k: &str, name: &str) -> Option<f64> {
+        self.rows
+            .iter()
+            .find(|r| Self::key(r) == k && r[self.col("method")] == "quasi-static")
+            .and_then(|r| self.num(r, name))
+    }
+
+    /// Per contact, the settled harmonic runs' (Ω/ω_n, f(row, contact)).
+    fn series(&self, f: &dyn Fn(&[&str], &str) -> Option<f64>) -> Vec<Series> {
+        self.keys
+            .iter()
             .map(|k| {
-                let pts = rows
+                let pts = self
+                    .rows
                     .iter()
-                    .filter(|r| key(r) == *k && r[col("method")] == "harmonic")
-                    .filter(|r| num(r, "periodicity").is_some_and(|p| p <= MAX_PLOTTED_PERIODICITY))
-                    .filter_map(|r| Some((num(r, "ratio")?, f(r, k)?)))
+                    .filter(|r| Self::key(r) == *k && r[self.col("method")] == "harmonic")
+                    .filter(|r| {
+                        self.num(r, "periodicity")
+                            .is_some_and(|p| p <= MAX_PLOTTED_PERIODICITY)
+                    })
+                    .filter_map(|r| Some((self.num(r, "ratio")?, f(r, k)?)))
                     .filter(|p| p.1.is_finite())
                     .collect();
                 (k.clone(), pts)
             })
             .collect()
-    };
-    let k_rel = series(&|r, k| Some(num(r, "k_dyn_n_m")? / qs(k, "k_law_n_m")?));
-    let c_eq = series(&|r, _| num(r, "c_eq_n_s_m"));
-    let c_law = series(&|r, _| num(r, "c_n_s_m"));
-    let d = series(&|r, _| num(r, "d"));
-    let df = series(&|r, _| num(r, "delta_f_n"));
-    let qs_line = |name: &str| -> Vec<Option<f64>> { keys.iter().map(|k| qs(k, name)).collect() };
-    let wn: Vec<f64> = rows
-        .iter()
-        .filter_map(|r| num(r, "omega_n_rad_s"))
-        .filter(|w| *w > 0.0)
-        .collect();
-    let tau = 2.0 * std::f64::consts::PI;
-    let band = (
-        tau * ROTOR_BAND_HZ[0] / wn.iter().cloned().fold(f64::NEG_INFINITY, f64::max),
-        tau * ROTOR_BAND_HZ[1] / wn.iter().cloned().fold(f64::INFINITY, f64::min),
-    );
-    let colours = [
-        "#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf", "#7f7f7f",
-        "#bcbd22",
-    ];
-    let (pw, ph, ml, mt) = (460.0, 300.0, 70.0, 40.0);
+    }
+
+    /// Per contact, its quasi-static value of column `name`.
+    fn qs_line(&self, name: &str) -> Vec<Option<f64>> {
+        self.keys.iter().map(|k| self.qs(k, name)).collect()
+    }
+
+    /// The rotor band in Ω/ω_n over the contacts' ω_n: (lowest band frequency over the
+    /// largest ω_n, highest over the smallest).
+    fn band(&self) -> (f64, f64) {
+        let wn: Vec<f64> = self
+            .rows
+            .iter()
+            .filter_map(|r| self.num(r, "omega_n_rad_s"))
+            .filter(|w| *w > 0.0)
+            .collect();
+        let tau = 2.0 * std::f64::consts::PI;
+        (
+            tau * ROTOR_BAND_HZ[0] / wn.iter().cloned().fold(f64::NEG_INFINITY, f64::max),
+            tau * ROTOR_BAND_HZ[1] / wn.iter().cloned().fold(f64::INFINITY, f64::min),
+        )
+    }
+}
+
+/// SVG of four panels against log Ω/ω_n from the CSV text: k'/k_qs, c_eq (lines) and the law's
+/// c (dots), d, ΔF. The quasi-static values are drawn as dashed horizontal lines in the same
+/// colour. The rotor band (100–400 Hz over the contacts' ω_n) is shaded.
+fn plot(csv: &str) -> String {
+    let sw = Sweep::parse(csv);
+    let k_rel = sw.series(&|r, k| Some(sw.num(r, "k_dyn_n_m")? / sw.qs(k, "k_law_n_m")?));
+    let c_eq = sw.series(&|r, _| sw.num(r, "c_eq_n_s_m"));
+    let c_law = sw.series(&|r, _| sw.num(r, "c_n_s_m"));
+    let d = sw.series(&|r, _| sw.num(r, "d"));
+    let df = sw.series(&|r, _| sw.num(r, "delta_f_n"));
+    let band = sw.band();
+    let (pw, ph, ml, mt) = PANEL;
     let (width, height) = (2.0 * (pw + ml + 20.0), 2.0 * (ph + mt + 50.0) + 30.0 * 3.0);
     let mut svg = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" \
@@ -256,62 +306,110 @@ fn plot(csv: &str) -> String {
             "dynamic stiffness k'/k_qs (k_qs: quasi-static tangent)",
             &k_rel,
             None,
-            keys.iter().map(|_| Some(1.0)).collect(),
+            sw.keys.iter().map(|_| Some(1.0)).collect(),
         ),
         (
             "damping: c_eq = Im k*/Ω (lines), fitted c (dots), N·s/m",
             &c_eq,
             Some(&c_law),
-            keys.iter().map(|_| None).collect(),
+            sw.keys.iter().map(|_| None).collect(),
         ),
-        ("index d (dashed: quasi-static)", &d, None, qs_line("d")),
+        ("index d (dashed: quasi-static)", &d, None, sw.qs_line("d")),
         (
             "offset ΔF, N (dashed: quasi-static)",
             &df,
             None,
-            qs_line("delta_f_n"),
+            sw.qs_line("delta_f_n"),
         ),
     ];
-    for (i, (title, main, dots, refs)) in panels.iter().enumerate() {
-        let x0 = ml + (i % 2) as f64 * (pw + ml + 20.0);
-        let y0 = mt + (i / 2) as f64 * (ph + mt + 50.0);
-        let all: Vec<(f64, f64)> = main
-            .iter()
-            .chain(dots.iter().flat_map(|d| d.iter()))
-            .flat_map(|s| s.1.iter().cloned())
-            .chain(
-                refs.iter()
-                    .flatten()
-                    .map(|&v| (band.0.max(1e-9), v))
-                    .collect::<Vec<_>>(),
-            )
-            .collect();
-        if all.is_empty() {
-            continue;
-        }
-        let (xmin, xmax) = all.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
-            (a.0.min(p.0), a.1.max(p.0))
-        });
-        let (xmin, xmax) = (xmin.min(band.0).log10(), xmax.log10());
-        let (ymin, ymax) = all.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
-            (a.0.min(p.1), a.1.max(p.1))
-        });
-        let pad = 0.05 * (ymax - ymin).max(1e-12);
-        let (ymin, ymax) = (ymin - pad, ymax + pad);
-        let sx = |x: f64| x0 + (x.log10() - xmin) / (xmax - xmin) * pw;
-        let sy = |y: f64| y0 + ph - (y - ymin) / (ymax - ymin) * ph;
-        let _ = writeln!(
+    for (i, panel) in panels.iter().enumerate() {
+        draw_panel(&mut svg, i, panel, band);
+    }
+    legend(&mut svg, &sw.keys);
+    svg.push_str("</svg>\n");
+    svg
+}
+
+/// Panel `i` (left to right, top to bottom): its scales, the shaded band, the frame and title,
+/// the axes and the series.
+fn draw_panel(svg: &mut String, i: usize, (title, main, dots, refs): &Panel, band: (f64, f64)) {
+    let (pw, ph, ml, mt) = PANEL;
+    let x0 = ml + (i % 2) as f64 * (pw + ml + 20.0);
+    let y0 = mt + (i / 2) as f64 * (ph + mt + 50.0);
+    let all: Vec<(f64, f64)> = main
+        .iter()
+        .chain(dots.iter().flat_map(|d| d.iter()))
+        .flat_map(|s| s.1.iter().cloned())
+        .chain(
+            refs.iter()
+                .flatten()
+                .map(|&v| (band.0.max(1e-9), v))
+                .collect::<Vec<_>>(),
+        )
+        .collect();
+    if all.is_empty() {
+        return;
+    }
+    let (xmin, xmax) = all.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
+        (a.0.min(p.0), a.1.max(p.0))
+    });
+    let (xmin, xmax) = (xmin.min(band.0).log10(), xmax.log10());
+    let (ymin, ymax) = all.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
+        (a.0.min(p.1), a.1.max(p.1))
+    });
+    let pad = 0.05 * (ymax - ymin).max(1e-12);
+    let (ymin, ymax) = (ymin - pad, ymax + pad);
+    let frame = Frame {
+        x0,
+        y0,
+        x: (xmin, xmax),
+        y: (ymin, ymax),
+    };
+    let _ = writeln!(
+        svg,
+        "<rect x=\"{:.1}\" y=\"{y0}\" width=\"{:.1}\" height=\"{ph}\" fill=\"#eeeeee\"/>",
+        frame.sx(band.0),
+        frame.sx(band.1) - frame.sx(band.0)
+    );
+    let _ = writeln!(
+        svg,
+        "<rect x=\"{x0}\" y=\"{y0}\" width=\"{pw}\" height=\"{ph}\" fill=\"none\" \
+         stroke=\"black\"/>\n<text x=\"{x0}\" y=\"{:.1}\">{title}</text>",
+        y0 - 8.0
+    );
+    frame.axes(svg);
+    for (k, (_, pts)) in main.iter().enumerate() {
+        frame.series(
             svg,
-            "<rect x=\"{:.1}\" y=\"{y0}\" width=\"{:.1}\" height=\"{ph}\" fill=\"#eeeeee\"/>",
-            sx(band.0),
-            sx(band.1) - sx(band.0)
+            COLOURS[k % COLOURS.len()],
+            pts,
+            dots.map(|d| &d[k].1),
+            refs[k],
         );
-        let _ = writeln!(
-            svg,
-            "<rect x=\"{x0}\" y=\"{y0}\" width=\"{pw}\" height=\"{ph}\" fill=\"none\" \
-             stroke=\"black\"/>\n<text x=\"{x0}\" y=\"{:.1}\">{title}</text>",
-            y0 - 8.0
-        );
+    }
+}
+
+/// A panel's position (top left, px) and its ranges: log10 Ω/ω_n and the value.
+struct Frame {
+    x0: f64,
+    y0: f64,
+    x: (f64, f64),
+    y: (f64, f64),
+}
+
+impl Frame {
+    fn sx(&self, x: f64) -> f64 {
+        self.x0 + (x.log10() - self.x.0) / (self.x.1 - self.x.0) * PANEL.0
+    }
+
+    fn sy(&self, y: f64) -> f64 {
+        self.y0 + PANEL.1 - (y - self.y.0) / (self.y.1 - self.y.0) * PANEL.1
+    }
+
+    /// Logarithmic x ticks (labels at 1, 2, 5), the x label, five y ticks.
+    fn axes(&self, svg: &mut String) {
+        let (pw, ph, x0, y0) = (PANEL.0, PANEL.1, self.x0, self.y0);
+        let (xmin, xmax) = self.x;
         for e in (xmin.floor() as i32)..=(xmax.ceil() as i32) {
             for m in 1..10 {
                 let x = m as f64 * 10f64.powi(e);
@@ -321,7 +419,7 @@ fn plot(csv: &str) -> String {
                 let _ = writeln!(
                     svg,
                     "<line x1=\"{0:.1}\" y1=\"{1:.1}\" x2=\"{0:.1}\" y2=\"{2:.1}\" stroke=\"black\"/>",
-                    sx(x),
+                    self.sx(x),
                     y0 + ph,
                     y0 + ph + if m == 1 { 6.0 } else { 3.0 }
                 );
@@ -329,7 +427,7 @@ fn plot(csv: &str) -> String {
                     let _ = writeln!(
                         svg,
                         "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>",
-                        sx(x),
+                        self.sx(x),
                         y0 + ph + 18.0,
                         x
                     );
@@ -342,6 +440,7 @@ fn plot(csv: &str) -> String {
             x0 + pw / 2.0,
             y0 + ph + 34.0
         );
+        let (ymin, ymax) = self.y;
         for j in 0..=4 {
             let y = ymin + (ymax - ymin) * j as f64 / 4.0;
             let _ = writeln!(
@@ -349,54 +448,67 @@ fn plot(csv: &str) -> String {
                 "<line x1=\"{a:.1}\" y1=\"{b:.1}\" x2=\"{x0}\" y2=\"{b:.1}\" stroke=\"black\"/>\
                  <text x=\"{c:.1}\" y=\"{e:.1}\" text-anchor=\"end\">{y:.4}</text>",
                 a = x0 - 5.0,
-                b = sy(y),
+                b = self.sy(y),
                 c = x0 - 7.0,
-                e = sy(y) + 4.0,
+                e = self.sy(y) + 4.0,
             );
-        }
-        for (k, (_, pts)) in main.iter().enumerate() {
-            let colour = colours[k % colours.len()];
-            let path: Vec<String> = pts
-                .iter()
-                .map(|&(x, y)| format!("{:.1},{:.1}", sx(x), sy(y)))
-                .collect();
-            let _ = writeln!(
-                svg,
-                "<polyline points=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1.5\"/>",
-                path.join(" ")
-            );
-            for &(x, y) in pts {
-                let _ = writeln!(
-                    svg,
-                    "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"5\" height=\"5\" fill=\"{colour}\"/>",
-                    sx(x) - 2.5,
-                    sy(y) - 2.5
-                );
-            }
-            if let Some(dots) = dots {
-                for &(x, y) in &dots[k].1 {
-                    if y >= ymin && y <= ymax {
-                        let _ = writeln!(
-                            svg,
-                            "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"3\" fill=\"none\" \
-                             stroke=\"{colour}\"/>",
-                            sx(x),
-                            sy(y)
-                        );
-                    }
-                }
-            }
-            if let Some(v) = refs[k] {
-                let _ = writeln!(
-                    svg,
-                    "<line x1=\"{x0}\" y1=\"{0:.1}\" x2=\"{1:.1}\" y2=\"{0:.1}\" \
-                     stroke=\"{colour}\" stroke-dasharray=\"5,4\"/>",
-                    sy(v),
-                    x0 + pw
-                );
-            }
         }
     }
+
+    /// One contact's line with square markers, its dots (those inside the range) and its
+    /// dashed reference value.
+    fn series(
+        &self,
+        svg: &mut String,
+        colour: &str,
+        pts: &[(f64, f64)],
+        dots: Option<&Vec<(f64, f64)>>,
+        reference: Option<f64>,
+    ) {
+        let path: Vec<String> = pts
+            .iter()
+            .map(|&(x, y)| format!("{:.1},{:.1}", self.sx(x), self.sy(y)))
+            .collect();
+        let _ = writeln!(
+            svg,
+            "<polyline points=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1.5\"/>",
+            path.join(" ")
+        );
+        for &(x, y) in pts {
+            let _ = writeln!(
+                svg,
+                "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"5\" height=\"5\" fill=\"{colour}\"/>",
+                self.sx(x) - 2.5,
+                self.sy(y) - 2.5
+            );
+        }
+        for &(x, y) in dots.into_iter().flatten() {
+            if y >= self.y.0 && y <= self.y.1 {
+                let _ = writeln!(
+                    svg,
+                    "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"3\" fill=\"none\" \
+                     stroke=\"{colour}\"/>",
+                    self.sx(x),
+                    self.sy(y)
+                );
+            }
+        }
+        if let Some(v) = reference {
+            let x0 = self.x0;
+            let _ = writeln!(
+                svg,
+                "<line x1=\"{x0}\" y1=\"{0:.1}\" x2=\"{1:.1}\" y2=\"{0:.1}\" \
+                 stroke=\"{colour}\" stroke-dasharray=\"5,4\"/>",
+                self.sy(v),
+                x0 + PANEL.0,
+            );
+        }
+    }
+}
+
+/// The contacts' colours under the panels and the note on the band and the omitted runs.
+fn legend(svg: &mut String, keys: &[String]) {
+    let (_, ph, ml, mt) = PANEL;
     let ly = 2.0 * (ph + mt + 50.0) + 5.0;
     for (k, name) in keys.iter().enumerate() {
         let (lx, lyy) = (
@@ -408,7 +520,7 @@ fn plot(csv: &str) -> String {
             "<line x1=\"{lx}\" y1=\"{lyy}\" x2=\"{:.1}\" y2=\"{lyy}\" stroke=\"{}\" \
              stroke-width=\"2\"/><text x=\"{:.1}\" y=\"{:.1}\">{name}</text>",
             lx + 25.0,
-            colours[k % colours.len()],
+            COLOURS[k % COLOURS.len()],
             lx + 30.0,
             lyy + 4.0
         );
@@ -421,6 +533,4 @@ fn plot(csv: &str) -> String {
         ROTOR_BAND_HZ[0],
         ROTOR_BAND_HZ[1]
     );
-    svg.push_str("</svg>\n");
-    svg
 }

@@ -12,91 +12,52 @@
 //! same grid; 64 steps per period of Ω₂.
 use ehl_bearing::contact::{
     ball_mass, characterize_harmonic, characterize_quasi_static, ContactFit, Excitation,
-    ExcitationFrequency, HarmonicSettings, QuasiStaticSettings,
+    ExcitationFrequency, HarmonicExcitation, HarmonicSettings, QuasiStaticSettings,
 };
-use ehl_bearing::ehl::{solve_steady, EhlSettings, TransientSolver};
+use ehl_bearing::ehl::{solve_steady, EhlContact, EhlSettings, TransientSolver, TransientStep};
 use ehl_bearing::material::Solid;
 
 #[path = "../benches/common/seed_contacts.rs"]
 mod seed_contacts;
 
+/// The run's inputs: speed and contact id, grid, Ω₁/ω_n, Ω₂/Ω₁ and ε.
+struct Check {
+    rpm: String,
+    which: String,
+    grid: usize,
+    r1: f64,
+    n: usize,
+    eps: f64,
+}
+
 fn main() -> Result<(), ehl_bearing::Error> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let get = |i: usize, d: &str| args.get(i).cloned().unwrap_or_else(|| d.to_string());
-    let rpm = get(0, "3000");
-    let which = get(1, "1i");
-    let grid: usize = get(2, "129").parse().expect("grid");
-    let r1: f64 = get(3, "0.002").parse().expect("Ω₁/ω_n");
-    let n: usize = get(4, "5").parse().expect("Ω₂/Ω₁, an integer");
-    let eps: f64 = get(5, "0.1").parse().expect("ε");
+    let run = Check {
+        rpm: get(0, "3000"),
+        which: get(1, "1i"),
+        grid: get(2, "129").parse().expect("grid"),
+        r1: get(3, "0.002").parse().expect("Ω₁/ω_n"),
+        n: get(4, "5").parse().expect("Ω₂/Ω₁, an integer"),
+        eps: get(5, "0.1").parse().expect("ε"),
+    };
     let c = seed_contacts::seed_contacts()
         .into_iter()
-        .find(|r| r.rpm == rpm && r.id() == which)
+        .find(|r| r.rpm == run.rpm && r.id() == run.which)
         .expect("a contact of seed_contacts.csv")
         .contact;
     let m = ball_mass(7e-3, Solid::AISI_52100.density);
     let ehl = EhlSettings {
-        grid,
+        grid: run.grid,
         discretization_fraction: 0.0,
         ..EhlSettings::default()
     };
-    let harmonic = |r: f64| {
-        characterize_harmonic(
-            &c,
-            m,
-            &HarmonicSettings {
-                frequency: ExcitationFrequency::FractionOfNatural(r),
-                settling_periods: 4,
-                ehl,
-                ..HarmonicSettings::default()
-            },
-        )
-    };
-    let mut laws: Vec<(String, ContactFit)> = vec![(
-        "quasi-static".into(),
-        characterize_quasi_static(
-            &c,
-            &QuasiStaticSettings {
-                ehl,
-                ..QuasiStaticSettings::default()
-            },
-        )?,
-    )];
-    for r in [0.005, r1, n as f64 * r1, 0.1] {
-        if laws
-            .iter()
-            .any(|(name, _)| *name == format!("harmonic {r}"))
-        {
-            continue;
-        }
-        laws.push((format!("harmonic {r}"), harmonic(r)?));
-    }
+    let laws = fit_laws(&c, m, ehl, &run)?;
     let Excitation::Harmonic(x) = laws[1].1.excitation else {
         unreachable!("a harmonic result")
     };
-    let omega_n = x.natural_frequency_rad_s;
-    let (w1, w2) = (r1 * omega_n, n as f64 * r1 * omega_n);
-    let per2 = 64;
-    let per1 = per2 * n;
-    let dt = 2.0 * std::f64::consts::PI / w2 / per2 as f64;
-    let step_settings = EhlSettings {
-        tol_film: 7e-5,
-        coarsest: if grid >= 65 { 17 } else { ehl.coarsest },
-        coarse_sweeps: if grid >= 65 { 6 } else { ehl.coarse_sweeps },
-        ..ehl
-    };
-    let centre = solve_steady(&c, &ehl)?;
-    // Start at w0 with the quasi-static rate of the load's derivative at t = 0.
-    let v0 = eps * c.load * (w1 + w2) / x.linearized_stiffness_n_m;
-    let mut solver = TransientSolver::from_steady(&c, &step_settings, centre, m, dt, v0, 20)?;
-    let settle = per1 / 2;
     let t0 = std::time::Instant::now();
-    let mut hist = Vec::with_capacity(settle + per1);
-    for k in 1..=settle + per1 {
-        let t = k as f64 * dt;
-        let w = c.load * (1.0 + eps * (w1 * t).sin() + eps * (w2 * t).sin());
-        hist.push(solver.step(w)?);
-    }
+    let (hist, settle, per1) = two_frequency_run(&c, m, ehl, &run, &x)?;
     let rec = &hist[settle..];
     let swing_d = rec
         .iter()
@@ -117,21 +78,114 @@ fn main() -> Result<(), ehl_bearing::Error> {
         .iter()
         .map(|s| s.film_force)
         .fold(f64::INFINITY, f64::min);
+    let Check {
+        rpm,
+        which,
+        grid,
+        r1,
+        n,
+        eps,
+    } = &run;
+    let omega_n = x.natural_frequency_rad_s;
     println!(
         "{rpm} rpm ball {which}, w0 {:.1} N, grid {grid}: Ω₁ = {r1}·ω_n ({:.1} Hz), Ω₂ = {}·ω_n \
          ({:.1} Hz), ε = {eps}; {} steps ({settle} settling), {:.1} s, periodicity {:.1e}, steps not \
          converged {not_converged}; recorded ∬p dA {fmin:.2}–{fmax:.2} N",
         c.load,
-        w1 / (2.0 * std::f64::consts::PI),
-        n as f64 * r1,
-        w2 / (2.0 * std::f64::consts::PI),
+        r1 * omega_n / (2.0 * std::f64::consts::PI),
+        *n as f64 * r1,
+        *n as f64 * r1 * omega_n / (2.0 * std::f64::consts::PI),
         hist.len(),
         t0.elapsed().as_secs_f64(),
         periodicity
     );
+    print_errors(&laws, rec, fmax - fmin);
+    Ok(())
+}
+
+/// The laws compared: the quasi-static one and harmonic ones fitted at 0.005, Ω₁, Ω₂ and 0.1
+/// times ω_n (each frequency once).
+fn fit_laws(
+    c: &EhlContact,
+    m: f64,
+    ehl: EhlSettings,
+    run: &Check,
+) -> Result<Vec<(String, ContactFit)>, ehl_bearing::Error> {
+    let harmonic = |r: f64| {
+        characterize_harmonic(
+            c,
+            m,
+            &HarmonicSettings {
+                frequency: ExcitationFrequency::FractionOfNatural(r),
+                settling_periods: 4,
+                ehl,
+                ..HarmonicSettings::default()
+            },
+        )
+    };
+    let mut laws: Vec<(String, ContactFit)> = vec![(
+        "quasi-static".into(),
+        characterize_quasi_static(
+            c,
+            &QuasiStaticSettings {
+                ehl,
+                ..QuasiStaticSettings::default()
+            },
+        )?,
+    )];
+    for r in [0.005, run.r1, run.n as f64 * run.r1, 0.1] {
+        if laws
+            .iter()
+            .any(|(name, _)| *name == format!("harmonic {r}"))
+        {
+            continue;
+        }
+        laws.push((format!("harmonic {r}"), harmonic(r)?));
+    }
+    Ok(laws)
+}
+
+/// The transient run under the two-frequency load, 64 steps per period of Ω₂: its steps, the
+/// number of settling steps (half a period of Ω₁) and the steps per period of Ω₁.
+fn two_frequency_run(
+    c: &EhlContact,
+    m: f64,
+    ehl: EhlSettings,
+    run: &Check,
+    x: &HarmonicExcitation,
+) -> Result<(Vec<TransientStep>, usize, usize), ehl_bearing::Error> {
+    let (grid, r1, n, eps) = (run.grid, run.r1, run.n, run.eps);
+    let omega_n = x.natural_frequency_rad_s;
+    let (w1, w2) = (r1 * omega_n, n as f64 * r1 * omega_n);
+    let per2 = 64;
+    let per1 = per2 * n;
+    let dt = 2.0 * std::f64::consts::PI / w2 / per2 as f64;
+    let step_settings = EhlSettings {
+        tol_film: 7e-5,
+        coarsest: if grid >= 65 { 17 } else { ehl.coarsest },
+        coarse_sweeps: if grid >= 65 { 6 } else { ehl.coarse_sweeps },
+        ..ehl
+    };
+    let centre = solve_steady(c, &ehl)?;
+    // Start at w0 with the quasi-static rate of the load's derivative at t = 0.
+    let v0 = eps * c.load * (w1 + w2) / x.linearized_stiffness_n_m;
+    let mut solver = TransientSolver::from_steady(c, &step_settings, centre, m, dt, v0, 20)?;
+    let settle = per1 / 2;
+    let mut hist = Vec::with_capacity(settle + per1);
+    for k in 1..=settle + per1 {
+        let t = k as f64 * dt;
+        let w = c.load * (1.0 + eps * (w1 * t).sin() + eps * (w2 * t).sin());
+        hist.push(solver.step(w)?);
+    }
+    Ok((hist, settle, per1))
+}
+
+/// Per law, its constants and its force error against the recorded film force over the
+/// recorded steps (largest and RMS, in % of the recorded swing `swing`, N, and largest in N).
+fn print_errors(laws: &[(String, ContactFit)], rec: &[TransientStep], swing: f64) {
     println!("| law | K N/m^d | d | ΔF N | c N·s/m | largest error % of swing | RMS error % of swing | largest error N |");
     println!("|---|---|---|---|---|---|---|---|");
-    for (name, fit) in &laws {
+    for (name, fit) in laws {
         let errs: Vec<f64> = rec
             .iter()
             .map(|s| fit.law.force_with_rate(s.approach, s.velocity).0 - s.film_force)
@@ -144,10 +198,9 @@ fn main() -> Result<(), ehl_bearing::Error> {
             fit.d,
             fit.delta_f,
             fit.c.map_or("—".into(), |c| format!("{c:.1}")),
-            100.0 * max / (fmax - fmin),
-            100.0 * rms / (fmax - fmin),
+            100.0 * max / swing,
+            100.0 * rms / swing,
             max
         );
     }
-    Ok(())
 }
