@@ -6,7 +6,7 @@
 //! again), or the assemble job alone when every node is done.
 
 use crate::slurm_cmd::{
-    absolute, array_ranges, check_bin, sbatch, script_header, shell_quote, slurm_name_ok,
+    absolute, array_ranges, default_job_dir, sbatch, script_header, shell_quote, JobArgs,
     JobOptions,
 };
 use anyhow::Context;
@@ -26,40 +26,11 @@ pub struct LawMapSbatchArgs {
     /// The map file the assemble job writes (JSON); its folder must exist.
     #[arg(long)]
     pub map: PathBuf,
-    /// Number of array tasks = shards (round robin over the nodes); from 1 to the map's number
-    /// of nodes.
-    #[arg(long, default_value_t = 4)]
-    pub shards: usize,
-    /// CPUs per array task (`#SBATCH --cpus-per-task`); each task runs that many nodes at once.
-    /// From 1 to 1024.
-    #[arg(long, default_value_t = 2)]
-    pub cpus_per_task: usize,
-    /// Time limit of each array task and of the assemble job, minutes (`#SBATCH --time`); from 1
-    /// to 525600 (a year). A task stopped by it keeps its finished nodes; resubmit.
-    #[arg(long, default_value_t = 120)]
-    pub time_limit_min: u64,
-    /// Slurm partition (`#SBATCH --partition`); default: the cluster's default partition.
-    #[arg(long)]
-    pub partition: Option<String>,
-    /// Job name (default: ehl-map-<spec file stem>).
-    #[arg(long)]
-    pub job_name: Option<String>,
-    /// Folder for the scripts (`law_map.sbatch`, `assemble.sbatch`) and the Slurm logs
-    /// (`logs/`); default: `<DIR>.slurm` next to the node folder.
-    #[arg(long)]
-    pub job_dir: Option<PathBuf>,
-    /// The ehl-bearing executable the jobs run (default: this one); must be reachable from the
-    /// compute nodes.
-    #[arg(long)]
-    pub bin: Option<PathBuf>,
-    /// Submit the array (only the shards with nodes left) and the dependent assemble job with
-    /// sbatch. Tasks of an earlier submission that are still queued or running are not looked
-    /// for: resubmit once they ended (a node computed twice is only time lost).
-    #[arg(long)]
-    pub submit: bool,
-    /// The sbatch command (default: sbatch on the PATH).
-    #[arg(long, default_value = "sbatch")]
-    pub sbatch: String,
+    /// The job-array options (as `study sbatch`). With --submit, tasks of an earlier submission
+    /// still queued or running are not looked for: resubmit once they ended (a node computed
+    /// twice is only time lost).
+    #[command(flatten)]
+    pub job: JobArgs,
 }
 
 /// Everything the two scripts depend on, validated and absolute.
@@ -143,38 +114,6 @@ exec {} law-map assemble {} -o {} --map {}
     }
 }
 
-fn validate(a: &LawMapSbatchArgs, nodes: usize) -> anyhow::Result<()> {
-    let max = nodes.min(100_000);
-    anyhow::ensure!(
-        (1..=max).contains(&a.shards),
-        "--shards {}: expected an integer from 1 to {max} (the map's number of nodes)",
-        a.shards
-    );
-    anyhow::ensure!(
-        (1..=1024).contains(&a.cpus_per_task),
-        "--cpus-per-task {}: expected an integer from 1 to 1024",
-        a.cpus_per_task
-    );
-    anyhow::ensure!(
-        (1..=525_600).contains(&a.time_limit_min),
-        "--time-limit-min {}: expected minutes from 1 to 525600 (a year)",
-        a.time_limit_min
-    );
-    if let Some(p) = &a.partition {
-        anyhow::ensure!(
-            slurm_name_ok(p),
-            "--partition {p:?}: expected a partition name of 1 to 64 letters, digits, '.', '_' or '-'"
-        );
-    }
-    if let Some(j) = &a.job_name {
-        anyhow::ensure!(
-            slurm_name_ok(j),
-            "--job-name {j:?}: expected 1 to 64 letters, digits, '.', '_' or '-'"
-        );
-    }
-    Ok(())
-}
-
 /// `ehl-map-<stem>` with the characters Slurm does not take replaced by `_`, at most 64.
 fn default_job_name(spec: &Path) -> String {
     let stem = spec
@@ -220,26 +159,17 @@ fn job(a: &LawMapSbatchArgs) -> anyhow::Result<MapJob> {
     spec.validate()
         .with_context(|| format!("in {}", a.spec.display()))?;
     let nodes = spec.node_count();
-    validate(a, nodes)?;
-    let bin = match &a.bin {
-        Some(b) => {
-            let bin = absolute(b).map_err(|e| anyhow::anyhow!("--bin: {e}"))?;
-            check_bin(&bin)?;
-            bin
-        }
-        None => std::env::current_exe()?,
-    };
+    a.job.validate(nodes, "the map's number of nodes")?;
+    let bin = a.job.executable()?;
     let map = absolute_map(&a.map)?;
     std::fs::create_dir_all(a.output.join("points"))
         .map_err(|e| anyhow::anyhow!("creating {}: {e}", a.output.display()))?;
     let output = absolute(&a.output)?;
-    let job_dir = a.job_dir.clone().unwrap_or_else(|| {
-        let name = output
-            .file_name()
-            .map(|n| n.to_string_lossy().to_string())
-            .unwrap_or_else(|| "map".into());
-        output.with_file_name(format!("{name}.slurm"))
-    });
+    let job_dir = a
+        .job
+        .job_dir
+        .clone()
+        .unwrap_or_else(|| default_job_dir(&output));
     std::fs::create_dir_all(job_dir.join("logs"))
         .map_err(|e| anyhow::anyhow!("creating {}: {e}", job_dir.join("logs").display()))?;
     let job_dir = absolute(&job_dir)?;
@@ -252,6 +182,7 @@ fn job(a: &LawMapSbatchArgs) -> anyhow::Result<MapJob> {
     let spec_path = absolute(&a.spec)?;
     Ok(MapJob {
         job_name: a
+            .job
             .job_name
             .clone()
             .unwrap_or_else(|| default_job_name(&spec_path)),
@@ -261,10 +192,10 @@ fn job(a: &LawMapSbatchArgs) -> anyhow::Result<MapJob> {
         job_dir,
         bin,
         nodes,
-        shards: a.shards,
-        cpus_per_task: a.cpus_per_task,
-        time_limit_min: a.time_limit_min,
-        partition: a.partition.clone(),
+        shards: a.job.shards,
+        cpus_per_task: a.job.cpus_per_task,
+        time_limit_min: a.job.time_limit_min,
+        partition: a.job.partition.clone(),
     })
 }
 
@@ -287,7 +218,7 @@ pub fn run(a: &LawMapSbatchArgs) -> anyhow::Result<()> {
         assemble.display(),
         j.job_dir.join("logs").display()
     );
-    if !a.submit {
+    if !a.job.submit {
         println!(
             "submit:\n  id=$(sbatch --parsable {})\n  sbatch --dependency=afterok:$id --kill-on-invalid-dep=yes {}",
             MapJob::q(&array),
@@ -302,13 +233,13 @@ pub fn run(a: &LawMapSbatchArgs) -> anyhow::Result<()> {
     let assemble_s = assemble.display().to_string();
     if left.is_empty() {
         println!("  every node is done: submitting the assemble job only");
-        let id = sbatch(&a.sbatch, &["--parsable".into(), assemble_s])?;
+        let id = sbatch(&a.job.sbatch, &["--parsable".into(), assemble_s])?;
         println!("submitted assemble job {id}");
         return Ok(());
     }
     let tasks = array_ranges(&left);
     let array_id = sbatch(
-        &a.sbatch,
+        &a.job.sbatch,
         &[
             "--parsable".into(),
             format!("--array={tasks}"),
@@ -316,7 +247,7 @@ pub fn run(a: &LawMapSbatchArgs) -> anyhow::Result<()> {
         ],
     )?;
     let assemble_id = sbatch(
-        &a.sbatch,
+        &a.job.sbatch,
         &[
             "--parsable".into(),
             format!("--dependency=afterok:{array_id}"),

@@ -18,47 +18,107 @@ pub struct SbatchArgs {
     /// Shared output folder of the study (on a file system every node sees); created if needed.
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
-    /// Number of array tasks = shards (round robin over the study's points); from 1 to the
-    /// study's number of points.
+    /// The job-array options.
+    #[command(flatten)]
+    pub job: JobArgs,
+    /// Override the study file's method (quasi-static, harmonic, hertz, map), for the tasks and the merge.
+    #[arg(long)]
+    pub method: Option<String>,
+    /// With --submit: a running shard of another host whose heartbeat is older than this counts
+    /// as interrupted and is resubmitted, s; from 30 to 86400 (as `study status`).
+    #[arg(long, default_value_t = progress::DEFAULT_STALE_AFTER_S)]
+    pub stale_after_s: u64,
+}
+
+/// The options of a job array and the job after it, shared by `study sbatch` and `law-map
+/// sbatch`.
+#[derive(clap::Args, Debug)]
+pub struct JobArgs {
+    /// Number of array tasks = shards (round robin over the study's points or the map's
+    /// nodes); from 1 to their number.
     #[arg(long, default_value_t = 4)]
     pub shards: usize,
     /// CPUs per array task (`#SBATCH --cpus-per-task`); the task's threads (RAYON_NUM_THREADS)
     /// are taken from SLURM_CPUS_PER_TASK. From 1 to 1024.
     #[arg(long, default_value_t = 2)]
     pub cpus_per_task: usize,
-    /// Time limit of each array task and of the merge job, minutes (`#SBATCH --time`); from 1 to
-    /// 525600 (a year).
+    /// Time limit of each array task and of the job after them (merge or assemble), minutes
+    /// (`#SBATCH --time`); from 1 to 525600 (a year). A task stopped by it keeps its finished
+    /// points or nodes; resubmit.
     #[arg(long, default_value_t = 120)]
     pub time_limit_min: u64,
     /// Slurm partition (`#SBATCH --partition`); default: the cluster's default partition.
     #[arg(long)]
     pub partition: Option<String>,
-    /// Job name (default: ehl-<study file stem>).
+    /// Job name (default: ehl-<study file stem>, ehl-map-<map spec stem>).
     #[arg(long)]
     pub job_name: Option<String>,
-    /// Folder for the scripts (`study.sbatch`, `merge.sbatch`) and the Slurm logs (`logs/`);
-    /// default: `<DIR>.slurm` next to the output folder, so that the output folder holds results
-    /// only.
+    /// Folder for the scripts and the Slurm logs (`logs/`); default: `<DIR>.slurm` next to the
+    /// output folder, so that the output folder holds results only.
     #[arg(long)]
     pub job_dir: Option<PathBuf>,
     /// The ehl-bearing executable the jobs run (default: this one); must be reachable from the
     /// compute nodes.
     #[arg(long)]
     pub bin: Option<PathBuf>,
-    /// Override the study file's method (quasi-static, harmonic, hertz, map), for the tasks and the merge.
-    #[arg(long)]
-    pub method: Option<String>,
-    /// Submit the array and the dependent merge job with sbatch; only the shards with points
-    /// left and no live task are submitted.
+    /// Submit the array and the dependent job after it (merge or assemble) with sbatch; only
+    /// the shards with work left are submitted (for a study also: with no live task).
     #[arg(long)]
     pub submit: bool,
-    /// With --submit: a running shard of another host whose heartbeat is older than this counts
-    /// as interrupted and is resubmitted, s; from 30 to 86400 (as `study status`).
-    #[arg(long, default_value_t = progress::DEFAULT_STALE_AFTER_S)]
-    pub stale_after_s: u64,
     /// The sbatch command (default: sbatch on the PATH).
     #[arg(long, default_value = "sbatch")]
     pub sbatch: String,
+}
+
+impl JobArgs {
+    /// Check the options against their ranges; `units` bounds the shards and `what` names it in
+    /// the message (e.g. "the study's number of points").
+    pub fn validate(&self, units: usize, what: &str) -> anyhow::Result<()> {
+        if !(1..=units.min(100_000)).contains(&self.shards) {
+            anyhow::bail!(
+                "--shards {}: expected an integer from 1 to {} ({what})",
+                self.shards,
+                units.min(100_000)
+            );
+        }
+        if !(1..=1024).contains(&self.cpus_per_task) {
+            anyhow::bail!(
+                "--cpus-per-task {}: expected an integer from 1 to 1024",
+                self.cpus_per_task
+            );
+        }
+        if !(1..=525_600).contains(&self.time_limit_min) {
+            anyhow::bail!(
+                "--time-limit-min {}: expected minutes from 1 to 525600 (a year)",
+                self.time_limit_min
+            );
+        }
+        if let Some(p) = &self.partition {
+            if !slurm_name_ok(p) {
+                anyhow::bail!("--partition {p:?}: expected a partition name of 1 to 64 letters, digits, '.', '_' or '-'");
+            }
+        }
+        if let Some(j) = &self.job_name {
+            if !slurm_name_ok(j) {
+                anyhow::bail!(
+                    "--job-name {j:?}: expected 1 to 64 letters, digits, '.', '_' or '-'"
+                );
+            }
+        }
+        Ok(())
+    }
+
+    /// The executable the jobs run: `--bin` made absolute and checked, else this one.
+    pub fn executable(&self) -> anyhow::Result<PathBuf> {
+        match &self.bin {
+            Some(b) => {
+                let bin = absolute(b).map_err(|e| anyhow::anyhow!("--bin: {e}"))?;
+                check_bin(&bin)?;
+                Ok(bin)
+            }
+            None => Ok(std::env::current_exe()?),
+        }
+    }
 }
 
 /// Everything a script depends on, validated.
@@ -108,40 +168,12 @@ pub(crate) fn slurm_name_ok(s: &str) -> bool {
 
 /// Check the options against their ranges (the study's point count bounds the shards).
 pub fn validate(args: &SbatchArgs, points: usize) -> anyhow::Result<()> {
-    if !(1..=points.min(100_000)).contains(&args.shards) {
-        anyhow::bail!(
-            "--shards {}: expected an integer from 1 to {} (the study's number of points)",
-            args.shards,
-            points.min(100_000)
-        );
-    }
-    if !(1..=1024).contains(&args.cpus_per_task) {
-        anyhow::bail!(
-            "--cpus-per-task {}: expected an integer from 1 to 1024",
-            args.cpus_per_task
-        );
-    }
-    if !(1..=525_600).contains(&args.time_limit_min) {
-        anyhow::bail!(
-            "--time-limit-min {}: expected minutes from 1 to 525600 (a year)",
-            args.time_limit_min
-        );
-    }
+    args.job.validate(points, "the study's number of points")?;
     if !(30..=86_400).contains(&args.stale_after_s) {
         anyhow::bail!(
             "--stale-after-s {}: expected seconds from 30 to 86400",
             args.stale_after_s
         );
-    }
-    if let Some(p) = &args.partition {
-        if !slurm_name_ok(p) {
-            anyhow::bail!("--partition {p:?}: expected a partition name of 1 to 64 letters, digits, '.', '_' or '-'");
-        }
-    }
-    if let Some(j) = &args.job_name {
-        if !slurm_name_ok(j) {
-            anyhow::bail!("--job-name {j:?}: expected 1 to 64 letters, digits, '.', '_' or '-'");
-        }
     }
     Ok(())
 }
@@ -263,7 +295,7 @@ pub(crate) fn absolute(p: &Path) -> anyhow::Result<PathBuf> {
 }
 
 /// `<DIR>.slurm` next to DIR.
-fn default_job_dir(output: &Path) -> PathBuf {
+pub(crate) fn default_job_dir(output: &Path) -> PathBuf {
     let name = output
         .file_name()
         .map(|n| n.to_string_lossy().to_string())
@@ -428,14 +460,7 @@ pub fn run(args: &SbatchArgs) -> anyhow::Result<()> {
     let study = load(args)?;
     let points = study.points().len();
     validate(args, points)?;
-    let bin = match &args.bin {
-        Some(b) => {
-            let bin = absolute(b).map_err(|e| anyhow::anyhow!("--bin: {e}"))?;
-            check_bin(&bin)?;
-            bin
-        }
-        None => std::env::current_exe()?,
-    };
+    let bin = args.job.executable()?;
     let (output, job_dir) = job_folders(args)?;
     let study_path = absolute(&args.study)?;
     let p = ScriptParams {
@@ -444,12 +469,13 @@ pub fn run(args: &SbatchArgs) -> anyhow::Result<()> {
         job_dir: job_dir.clone(),
         bin,
         method: args.method.clone(),
-        shards: args.shards,
+        shards: args.job.shards,
         points,
-        cpus_per_task: args.cpus_per_task,
-        time_limit_min: args.time_limit_min,
-        partition: args.partition.clone(),
+        cpus_per_task: args.job.cpus_per_task,
+        time_limit_min: args.job.time_limit_min,
+        partition: args.job.partition.clone(),
         job_name: args
+            .job
             .job_name
             .clone()
             .unwrap_or_else(|| default_job_name(&study_path)),
@@ -458,20 +484,20 @@ pub fn run(args: &SbatchArgs) -> anyhow::Result<()> {
     let merge = job_dir.join("merge.sbatch");
     crate::cli_support::write_atomic(&array, array_script(&p).as_bytes())?;
     crate::cli_support::write_atomic(&merge, merge_script(&p).as_bytes())?;
-    progress::write_plan(&output, &study_path, &study, args.shards)?;
+    progress::write_plan(&output, &study_path, &study, args.job.shards)?;
     println!(
         "study {}: {} points in {} shards (array tasks 1-{}, {} CPU(s) each, {} min)\n  array script {}\n  merge script {}\n  logs in {}",
         study_path.display(),
         points,
-        args.shards,
-        args.shards,
-        args.cpus_per_task,
-        args.time_limit_min,
+        args.job.shards,
+        args.job.shards,
+        args.job.cpus_per_task,
+        args.job.time_limit_min,
         array.display(),
         merge.display(),
         job_dir.join("logs").display()
     );
-    if !args.submit {
+    if !args.job.submit {
         println!(
             "submit:\n  id=$(sbatch --parsable {})\n  sbatch --dependency=afterok:$id --kill-on-invalid-dep=yes {}\nwatch: ehl-bearing study status {}",
             shell_quote(&array.display().to_string()),
@@ -490,6 +516,7 @@ fn job_folders(args: &SbatchArgs) -> anyhow::Result<(PathBuf, PathBuf)> {
         .map_err(|e| anyhow::anyhow!("creating {}: {e}", args.output.display()))?;
     let output = absolute(&args.output)?;
     let job_dir = args
+        .job
         .job_dir
         .clone()
         .unwrap_or_else(|| default_job_dir(&output));
@@ -554,7 +581,7 @@ fn submit(args: &SbatchArgs, output: &Path, array: &Path, merge: &Path) -> anyho
             live.join(", ")
         );
     }
-    let queued = still_queued(&args.sbatch, &status);
+    let queued = still_queued(&args.job.sbatch, &status);
     let tasks: Vec<usize> = status
         .shards_to_run()
         .into_iter()
@@ -562,7 +589,7 @@ fn submit(args: &SbatchArgs, output: &Path, array: &Path, merge: &Path) -> anyho
         .collect();
     let live: Vec<String> = live
         .into_iter()
-        .chain(queued.keys().map(|t| format!("{t}/{}", args.shards)))
+        .chain(queued.keys().map(|t| format!("{t}/{}", args.job.shards)))
         .collect();
     if tasks.is_empty() && !live.is_empty() {
         anyhow::bail!(
@@ -571,7 +598,7 @@ fn submit(args: &SbatchArgs, output: &Path, array: &Path, merge: &Path) -> anyho
             output.display()
         );
     }
-    let s = submit_jobs(&args.sbatch, array, merge, &tasks, &queued)?;
+    let s = submit_jobs(&args.job.sbatch, array, merge, &tasks, &queued)?;
     progress::record_submission(output, s.array_id.as_deref(), &s.tasks, &s.merge_id)?;
     match &s.array_id {
         Some(a) => println!(

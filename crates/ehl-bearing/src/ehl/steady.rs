@@ -902,6 +902,27 @@ impl Attempts {
         None
     }
 
+    /// Start `st` converged with `r` (its cycles counted from `before`, its time from `ta`): the
+    /// attempt recorded, and the solution given the log of every attempt.
+    fn converged(
+        &mut self,
+        st: StartStrategy,
+        mut r: EhlSolution,
+        before: usize,
+        ta: Instant,
+    ) -> EhlSolution {
+        record(
+            &mut self.log,
+            st,
+            AttemptOutcome::Converged,
+            r.cycles - before,
+            r.residual,
+            ta,
+        );
+        r.attempt_log = std::mem::take(&mut self.log);
+        r
+    }
+
     /// The α-continuation `st` over the settings of `ladder`: the solution if it completes, else
     /// recorded, its lowest residual and best iterate kept.
     fn alpha(
@@ -913,18 +934,7 @@ impl Attempts {
         let ta = Instant::now();
         let before = self.cycles;
         match alpha_continuation(ctx, ladder, self.cycles) {
-            Ok(mut r) => {
-                record(
-                    &mut self.log,
-                    st,
-                    AttemptOutcome::Converged,
-                    r.cycles - before,
-                    r.residual,
-                    ta,
-                );
-                r.attempt_log = std::mem::take(&mut self.log);
-                Some(r)
-            }
+            Ok(r) => Some(self.converged(st, r, before, ta)),
             Err(AlphaFailure {
                 cycles: n,
                 lowest,
@@ -959,18 +969,7 @@ impl Attempts {
             return None;
         };
         match polish(ctx, sk, it, self.cycles) {
-            Ok(mut r) => {
-                record(
-                    &mut self.log,
-                    st,
-                    AttemptOutcome::Converged,
-                    r.cycles - before,
-                    r.residual,
-                    ta,
-                );
-                r.attempt_log = std::mem::take(&mut self.log);
-                Some(r)
-            }
+            Ok(r) => Some(self.converged(st, r, before, ta)),
             Err((n, res)) => {
                 self.cycles = n;
                 self.alpha_lowest = self.alpha_lowest.min(res);
