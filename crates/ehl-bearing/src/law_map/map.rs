@@ -536,8 +536,9 @@ impl LawMap {
     /// M 500–2700, L 12.5–23, Ry/Rx 14–45, α·p0 3.15–5.05 and ln(η0/η∞) 4.4–7.0 (ISO VG 22–68
     /// mineral oils at 40–80 °C; `examples/law_map_mineral_oils.toml`), and its light-contact
     /// neighbour: 7 × 7 × 5 × 3 × 3 nodes over M 100–500, L 12.5–23, Ry/Rx 14–45, α·p0 2.9–5.05
-    /// and ln(η0/η∞) 4.1–7.0 (`examples/law_map_mineral_oils_light.toml`). A query uses the
-    /// first that holds it.
+    /// and ln(η0/η∞) 4.1–7.0 (`examples/law_map_mineral_oils_light.toml`), and its heavy-contact
+    /// neighbour, the same axes with M 2700–10000 (`examples/law_map_mineral_oils_heavy.toml`).
+    /// A query uses the first that holds it.
     pub fn embedded_maps() -> &'static [LawMap] {
         static MAPS: std::sync::OnceLock<Vec<LawMap>> = std::sync::OnceLock::new();
         MAPS.get_or_init(|| {
@@ -548,6 +549,7 @@ impl LawMap {
                 include_str!("../../data/law_map_seed_oil_high_m_g65.json"),
                 include_str!("../../data/law_map_mineral_oils_g65.json"),
                 include_str!("../../data/law_map_mineral_oils_light_g65.json"),
+                include_str!("../../data/law_map_mineral_oils_heavy_g65.json"),
             ]
             .iter()
             .map(|t| {
