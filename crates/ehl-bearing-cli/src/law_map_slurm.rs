@@ -6,8 +6,8 @@
 //! again), or the assemble job alone when every node is done.
 
 use crate::slurm_cmd::{
-    absolute, array_ranges, default_job_dir, sbatch, script_header, shell_quote, JobArgs,
-    JobOptions,
+    absolute, array_ranges, default_job_dir, default_job_name, sbatch, script_header, shell_quote,
+    JobArgs, JobOptions,
 };
 use anyhow::Context;
 use ehl_bearing::io::FsStore;
@@ -114,25 +114,6 @@ exec {} law-map assemble {} -o {} --map {}
     }
 }
 
-/// `ehl-map-<stem>` with the characters Slurm does not take replaced by `_`, at most 64.
-fn default_job_name(spec: &Path) -> String {
-    let stem = spec
-        .file_stem()
-        .map(|s| s.to_string_lossy().to_string())
-        .unwrap_or_else(|| "map".into());
-    format!("ehl-map-{stem}")
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || "._-".contains(c) {
-                c
-            } else {
-                '_'
-            }
-        })
-        .take(64)
-        .collect()
-}
-
 /// The map file as an absolute path (its folder must exist; the file need not).
 fn absolute_map(map: &Path) -> anyhow::Result<PathBuf> {
     let name = map
@@ -185,7 +166,7 @@ fn job(a: &LawMapSbatchArgs) -> anyhow::Result<MapJob> {
             .job
             .job_name
             .clone()
-            .unwrap_or_else(|| default_job_name(&spec_path)),
+            .unwrap_or_else(|| default_job_name("ehl-map-", &spec_path, "map")),
         spec: spec_path,
         output,
         map,

@@ -478,7 +478,7 @@ pub fn run(args: &SbatchArgs) -> anyhow::Result<()> {
             .job
             .job_name
             .clone()
-            .unwrap_or_else(|| default_job_name(&study_path)),
+            .unwrap_or_else(|| default_job_name("ehl-", &study_path, "study")),
     };
     let array = job_dir.join("study.sbatch");
     let merge = job_dir.join("merge.sbatch");
@@ -533,14 +533,15 @@ fn job_folders(args: &SbatchArgs) -> anyhow::Result<(PathBuf, PathBuf)> {
     Ok((output, job_dir))
 }
 
-/// `ehl-<study file stem>`, with every character Slurm does not take in a job name replaced by
-/// `_`, at most 64 characters.
-fn default_job_name(study_path: &Path) -> String {
-    let stem = study_path
+/// `<prefix><file stem>` (`<prefix><fallback>` without one), every character Slurm does not
+/// take in a job name replaced by `_`, at most 64 characters: the default job name of `study
+/// sbatch` (`ehl-`) and `law-map sbatch` (`ehl-map-`).
+pub(crate) fn default_job_name(prefix: &str, path: &Path, fallback: &str) -> String {
+    let stem = path
         .file_stem()
         .map(|s| s.to_string_lossy().to_string())
-        .unwrap_or_else(|| "study".into());
-    format!("ehl-{stem}")
+        .unwrap_or_else(|| fallback.into());
+    format!("{prefix}{stem}")
         .chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() || "._-".contains(c) {
