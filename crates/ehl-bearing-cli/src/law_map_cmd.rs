@@ -225,15 +225,18 @@ fn check(
 }
 
 /// One CSV row per held-out point: its groups, the map's errors against the direct law and the
-/// map's own error estimates, and the direct law (dimensionless).
+/// map's own error estimates, the direct law (dimensionless), and the point's rheology groups.
 fn write_check_csv(p: &Path, r: &[HeldOutPoint]) -> anyhow::Result<()> {
     let mut out = String::from(
         "m,l,ry_over_rx,force_error,d_error,delta_f_error,delta_f_error_over_load,\
-         estimate_force,estimate_d,estimate_delta_f_over_load,k_hat,d,delta_f_hat\n",
+         estimate_force,estimate_d,estimate_delta_f_over_load,k_hat,d,delta_f_hat,\
+         alpha_p0,ln_eta0_ratio\n",
     );
+    // The rheology groups of the point (empty where the map's models do not use them).
+    let cell = |v: Option<f64>| v.map_or(String::new(), |x| x.to_string());
     for h in r {
         out.push_str(&format!(
-            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{}\n",
+            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{},{},{}\n",
             h.groups.m,
             h.groups.l,
             h.groups.ry_over_rx,
@@ -246,7 +249,9 @@ fn write_check_csv(p: &Path, r: &[HeldOutPoint]) -> anyhow::Result<()> {
             h.map.error.delta_f_hat,
             h.direct.k_hat,
             h.direct.d,
-            h.direct.delta_f_hat
+            h.direct.delta_f_hat,
+            cell(h.groups.alpha_p0),
+            cell(h.groups.ln_eta0_ratio)
         ));
     }
     ehl_bearing::io::write_atomic(p, out.as_bytes())?;

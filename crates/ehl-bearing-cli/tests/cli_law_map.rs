@@ -84,10 +84,12 @@ fn shards_assemble_and_check() {
     let m =
         ehl_bearing::law_map::LawMap::from_json(&std::fs::read_to_string(&map).unwrap()).unwrap();
     assert_eq!(m.laws.len(), 27);
+    let csv = dir.path().join("check.csv");
     let o = bin()
         .args(["law-map", "check"])
         .arg(&map)
-        .args(["--points", "2", "--threads", "1"])
+        .args(["--points", "2", "--threads", "1", "--csv"])
+        .arg(&csv)
         .output()
         .unwrap();
     let text = String::from_utf8_lossy(&o.stdout);
@@ -95,6 +97,12 @@ fn shards_assemble_and_check() {
         o.status.success() && text.contains("2 of 2 held-out points"),
         "{text}"
     );
+    // One row per point, with the rheology groups of the point (the spec's fixed values here).
+    let rows = std::fs::read_to_string(&csv).unwrap();
+    let lines: Vec<&str> = rows.lines().collect();
+    assert_eq!(lines.len(), 3, "{rows}");
+    assert!(lines[0].ends_with(",alpha_p0,ln_eta0_ratio"), "{rows}");
+    assert!(lines[1].ends_with(",4.312,6.451124175131799"), "{rows}");
 }
 
 #[test]
