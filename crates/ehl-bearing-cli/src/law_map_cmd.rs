@@ -85,7 +85,8 @@ fn pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
     Ok(b.build()?)
 }
 
-fn read_spec(p: &Path) -> anyhow::Result<LawMapSpec> {
+/// The map spec file `p`, read and validated (errors name the file).
+pub(crate) fn read_spec(p: &Path) -> anyhow::Result<LawMapSpec> {
     let text = std::fs::read_to_string(p).with_context(|| format!("reading {}", p.display()))?;
     LawMapSpec::from_toml(&text).with_context(|| format!("in {}", p.display()))
 }

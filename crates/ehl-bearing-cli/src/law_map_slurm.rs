@@ -6,8 +6,8 @@
 //! again), or the assemble job alone when every node is done.
 
 use crate::slurm_cmd::{
-    absolute, array_ranges, default_job_dir, default_job_name, sbatch, script_header, shell_quote,
-    JobArgs, JobOptions,
+    absolute, array_ranges, default_job_name, sbatch, script_header, shell_quote, JobArgs,
+    JobOptions,
 };
 use anyhow::Context;
 use ehl_bearing::io::FsStore;
@@ -35,12 +35,13 @@ pub struct LawMapSbatchArgs {
 
 /// Everything the two scripts depend on, validated and absolute.
 struct MapJob {
-    spec: PathBuf,
+    /// The spec file (absolute) and the spec it holds.
+    spec_path: PathBuf,
+    spec: LawMapSpec,
     output: PathBuf,
     map: PathBuf,
     job_dir: PathBuf,
     bin: PathBuf,
-    nodes: usize,
     shards: usize,
     cpus_per_task: usize,
     time_limit_min: u64,
@@ -82,10 +83,10 @@ exec {} law-map generate {} -o {} --shard \"${{SLURM_ARRAY_TASK_ID}}/{n}\" --thr
 ",
             env!("CARGO_PKG_NAME"),
             env!("CARGO_PKG_VERSION"),
-            self.spec.display(),
-            self.nodes,
+            self.spec_path.display(),
+            self.spec.node_count(),
             Self::q(&self.bin),
-            Self::q(&self.spec),
+            Self::q(&self.spec_path),
             Self::q(&self.output),
             n = self.shards,
         );
@@ -106,7 +107,7 @@ exec {} law-map assemble {} -o {} --map {}
             self.map.display(),
             self.output.display(),
             Self::q(&self.bin),
-            Self::q(&self.spec),
+            Self::q(&self.spec_path),
             Self::q(&self.output),
             Self::q(&self.map),
         );
@@ -134,32 +135,12 @@ fn absolute_map(map: &Path) -> anyhow::Result<PathBuf> {
 
 /// The job from the arguments: spec read and checked, folders created, paths absolute.
 fn job(a: &LawMapSbatchArgs) -> anyhow::Result<MapJob> {
-    let text = std::fs::read_to_string(&a.spec)
-        .with_context(|| format!("reading {}", a.spec.display()))?;
-    let spec = LawMapSpec::from_toml(&text).with_context(|| format!("in {}", a.spec.display()))?;
-    spec.validate()
-        .with_context(|| format!("in {}", a.spec.display()))?;
-    let nodes = spec.node_count();
-    a.job.validate(nodes, "the map's number of nodes")?;
+    let spec = crate::law_map_cmd::read_spec(&a.spec)?;
+    a.job
+        .validate(spec.node_count(), "the map's number of nodes")?;
     let bin = a.job.executable()?;
     let map = absolute_map(&a.map)?;
-    std::fs::create_dir_all(a.output.join("points"))
-        .map_err(|e| anyhow::anyhow!("creating {}: {e}", a.output.display()))?;
-    let output = absolute(&a.output)?;
-    let job_dir = a
-        .job
-        .job_dir
-        .clone()
-        .unwrap_or_else(|| default_job_dir(&output));
-    std::fs::create_dir_all(job_dir.join("logs"))
-        .map_err(|e| anyhow::anyhow!("creating {}: {e}", job_dir.join("logs").display()))?;
-    let job_dir = absolute(&job_dir)?;
-    anyhow::ensure!(
-        !job_dir.starts_with(&output),
-        "--job-dir {}: expected a folder outside the node folder {}",
-        job_dir.display(),
-        output.display()
-    );
+    let (output, job_dir) = a.job.folders(&a.output)?;
     let spec_path = absolute(&a.spec)?;
     Ok(MapJob {
         job_name: a
@@ -167,12 +148,12 @@ fn job(a: &LawMapSbatchArgs) -> anyhow::Result<MapJob> {
             .job_name
             .clone()
             .unwrap_or_else(|| default_job_name("ehl-map-", &spec_path, "map")),
-        spec: spec_path,
+        spec_path,
+        spec,
         output,
         map,
         job_dir,
         bin,
-        nodes,
         shards: a.job.shards,
         cpus_per_task: a.job.cpus_per_task,
         time_limit_min: a.job.time_limit_min,
@@ -189,8 +170,8 @@ pub fn run(a: &LawMapSbatchArgs) -> anyhow::Result<()> {
     crate::cli_support::write_atomic(&assemble, j.assemble_script().as_bytes())?;
     println!(
         "law map {}: {} nodes in {} shards (array tasks 1-{}, {} CPU(s) each, {} min)\n  array script {}\n  assemble script {}\n  logs in {}",
-        j.spec.display(),
-        j.nodes,
+        j.spec_path.display(),
+        j.spec.node_count(),
         j.shards,
         j.shards,
         j.cpus_per_task,
@@ -207,10 +188,8 @@ pub fn run(a: &LawMapSbatchArgs) -> anyhow::Result<()> {
         );
         return Ok(());
     }
-    let text = std::fs::read_to_string(&j.spec)?;
-    let spec = LawMapSpec::from_toml(&text)?;
     let store = FsStore::open(&j.output)?;
-    let left = shards_with_nodes_left(&spec, &store, j.shards)?;
+    let left = shards_with_nodes_left(&j.spec, &store, j.shards)?;
     let assemble_s = assemble.display().to_string();
     if left.is_empty() {
         println!("  every node is done: submitting the assemble job only");

@@ -108,6 +108,30 @@ impl JobArgs {
         Ok(())
     }
 
+    /// The output folder `output` (with its `points` folder) and the job folder (`--job-dir`,
+    /// else [`default_job_dir`]; with its `logs` folder), created if needed, as absolute paths;
+    /// the job folder must lie outside the output folder.
+    pub fn folders(&self, output: &Path) -> anyhow::Result<(PathBuf, PathBuf)> {
+        std::fs::create_dir_all(output.join("points"))
+            .map_err(|e| anyhow::anyhow!("creating {}: {e}", output.display()))?;
+        let output = absolute(output)?;
+        let job_dir = self
+            .job_dir
+            .clone()
+            .unwrap_or_else(|| default_job_dir(&output));
+        std::fs::create_dir_all(job_dir.join("logs"))
+            .map_err(|e| anyhow::anyhow!("creating {}: {e}", job_dir.join("logs").display()))?;
+        let job_dir = absolute(&job_dir)?;
+        if job_dir.starts_with(&output) {
+            anyhow::bail!(
+                "--job-dir {}: expected a folder outside the output folder {} (which holds results only)",
+                job_dir.display(),
+                output.display()
+            );
+        }
+        Ok((output, job_dir))
+    }
+
     /// The executable the jobs run: `--bin` made absolute and checked, else this one.
     pub fn executable(&self) -> anyhow::Result<PathBuf> {
         match &self.bin {
@@ -295,7 +319,7 @@ pub(crate) fn absolute(p: &Path) -> anyhow::Result<PathBuf> {
 }
 
 /// `<DIR>.slurm` next to DIR.
-pub(crate) fn default_job_dir(output: &Path) -> PathBuf {
+fn default_job_dir(output: &Path) -> PathBuf {
     let name = output
         .file_name()
         .map(|n| n.to_string_lossy().to_string())
@@ -461,7 +485,7 @@ pub fn run(args: &SbatchArgs) -> anyhow::Result<()> {
     let points = study.points().len();
     validate(args, points)?;
     let bin = args.job.executable()?;
-    let (output, job_dir) = job_folders(args)?;
+    let (output, job_dir) = args.job.folders(&args.output)?;
     let study_path = absolute(&args.study)?;
     let p = ScriptParams {
         study: study_path.clone(),
@@ -507,30 +531,6 @@ pub fn run(args: &SbatchArgs) -> anyhow::Result<()> {
         return Ok(());
     }
     submit(args, &output, &array, &merge)
-}
-
-/// The output folder (with its `points` folder) and the job folder (with its `logs` folder),
-/// created if needed, as absolute paths; the job folder must lie outside the output folder.
-fn job_folders(args: &SbatchArgs) -> anyhow::Result<(PathBuf, PathBuf)> {
-    std::fs::create_dir_all(args.output.join("points"))
-        .map_err(|e| anyhow::anyhow!("creating {}: {e}", args.output.display()))?;
-    let output = absolute(&args.output)?;
-    let job_dir = args
-        .job
-        .job_dir
-        .clone()
-        .unwrap_or_else(|| default_job_dir(&output));
-    std::fs::create_dir_all(job_dir.join("logs"))
-        .map_err(|e| anyhow::anyhow!("creating {}: {e}", job_dir.join("logs").display()))?;
-    let job_dir = absolute(&job_dir)?;
-    if job_dir.starts_with(&output) {
-        anyhow::bail!(
-            "--job-dir {}: expected a folder outside the output folder {} (which holds results only)",
-            job_dir.display(),
-            output.display()
-        );
-    }
-    Ok((output, job_dir))
 }
 
 /// `<prefix><file stem>` (`<prefix><fallback>` without one), every character Slurm does not
