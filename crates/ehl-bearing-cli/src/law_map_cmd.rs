@@ -6,10 +6,11 @@
 //! them; `check` compares the map with direct characterizations at random held-out points.
 
 use anyhow::Context;
+use ehl_bearing::contact::QuasiStaticSettings;
 use ehl_bearing::io::FsStore;
 use ehl_bearing::law_map::{LawMap, LawMapSpec};
 use ehl_bearing::study::{
-    assemble_map, generate_map, held_out_check, HeldOutPoint, NodeRecord, Shard,
+    assemble_map, generate_map, held_out_check_with, HeldOutPoint, NodeRecord, Shard,
 };
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -73,6 +74,11 @@ pub enum LawMapCommand {
         /// Threads (default: RAYON_NUM_THREADS or the number of cores).
         #[arg(long)]
         threads: Option<usize>,
+        /// The direct characterizations' solver tolerances (tol_residual, tol_force, tol_film)
+        /// times this factor, in (0, 1]; below 1 their cycle limit grows to 40·(1 + 2·log10(1/F))
+        /// (1: the map's own settings).
+        #[arg(long, default_value_t = 1.0)]
+        tolerance_factor: f64,
     },
 }
 
@@ -123,7 +129,15 @@ pub fn run(a: &LawMapArgs) -> anyhow::Result<()> {
             seed,
             csv,
             threads,
-        } => check(map, *points, *seed, csv.as_deref(), *threads),
+            tolerance_factor,
+        } => check(
+            map,
+            *points,
+            *seed,
+            csv.as_deref(),
+            *threads,
+            *tolerance_factor,
+        ),
     }
 }
 
@@ -197,21 +211,41 @@ fn assemble(spec: &Path, output: &Path, map: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The map's settings with the steady solver's tolerances times `factor` (in (0, 1]) and, below
+/// 1, the cycle limit raised to 40·(1 + 2·log10(1/factor)).
+fn reference_settings(m: &LawMap, factor: f64) -> anyhow::Result<QuasiStaticSettings> {
+    anyhow::ensure!(
+        factor.is_finite() && factor > 0.0 && factor <= 1.0,
+        "--tolerance-factor = {factor}: expected a number in (0, 1]"
+    );
+    let mut s = m.spec.settings();
+    s.ehl.tol_residual *= factor;
+    s.ehl.tol_force *= factor;
+    s.ehl.tol_film *= factor;
+    if factor < 1.0 {
+        let limit = 40.0 * (1.0 + 2.0 * (1.0 / factor).log10());
+        s.ehl.max_cycles = s.ehl.max_cycles.max(limit.ceil() as usize);
+    }
+    Ok(s)
+}
+
 /// `law-map check`: compare the map file `map` with direct characterizations at `points`
-/// random points (seed `seed`), write one CSV row per point to `csv` if given, and print the
-/// error quantiles.
+/// random points (seed `seed`), their tolerances times `tolerance_factor`, write one CSV row
+/// per point to `csv` if given, and print the error quantiles.
 fn check(
     map: &Path,
     points: usize,
     seed: u64,
     csv: Option<&Path>,
     threads: Option<usize>,
+    tolerance_factor: f64,
 ) -> anyhow::Result<()> {
     let text =
         std::fs::read_to_string(map).with_context(|| format!("reading {}", map.display()))?;
     let m = LawMap::from_json(&text)?;
+    let reference = reference_settings(&m, tolerance_factor)?;
     let t0 = Instant::now();
-    let r = pool(threads)?.install(|| held_out_check(&m, points, seed));
+    let r = pool(threads)?.install(|| held_out_check_with(&m, points, seed, &reference));
     anyhow::ensure!(!r.is_empty(), "no held-out point could be characterized");
     if let Some(p) = csv {
         write_check_csv(p, &r)?;
@@ -231,13 +265,13 @@ fn write_check_csv(p: &Path, r: &[HeldOutPoint]) -> anyhow::Result<()> {
     let mut out = String::from(
         "m,l,ry_over_rx,force_error,d_error,delta_f_error,delta_f_error_over_load,\
          estimate_force,estimate_d,estimate_delta_f_over_load,k_hat,d,delta_f_hat,\
-         alpha_p0,ln_eta0_ratio\n",
+         alpha_p0,ln_eta0_ratio,direct_converged\n",
     );
     // The rheology groups of the point (empty where the map's models do not use them).
     let cell = |v: Option<f64>| v.map_or(String::new(), |x| x.to_string());
     for h in r {
         out.push_str(&format!(
-            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{},{},{}\n",
+            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{},{},{},{}\n",
             h.groups.m,
             h.groups.l,
             h.groups.ry_over_rx,
@@ -252,7 +286,8 @@ fn write_check_csv(p: &Path, r: &[HeldOutPoint]) -> anyhow::Result<()> {
             h.direct.d,
             h.direct.delta_f_hat,
             cell(h.groups.alpha_p0),
-            cell(h.groups.ln_eta0_ratio)
+            cell(h.groups.ln_eta0_ratio),
+            h.direct_converged
         ));
     }
     ehl_bearing::io::write_atomic(p, out.as_bytes())?;
@@ -295,4 +330,8 @@ fn print_check_summary(r: &[HeldOutPoint]) {
         .filter(|h| h.map.force_error < h.force_error)
         .count();
     println!("  points where the estimate is below the actual force error: {under}");
+    println!(
+        "  direct characterizations with a steady solution short of its tolerances: {}",
+        r.iter().filter(|h| !h.direct_converged).count()
+    );
 }

@@ -101,8 +101,54 @@ fn shards_assemble_and_check() {
     let rows = std::fs::read_to_string(&csv).unwrap();
     let lines: Vec<&str> = rows.lines().collect();
     assert_eq!(lines.len(), 3, "{rows}");
-    assert!(lines[0].ends_with(",alpha_p0,ln_eta0_ratio"), "{rows}");
-    assert!(lines[1].ends_with(",4.312,6.451124175131799"), "{rows}");
+    assert!(
+        lines[0].ends_with(",alpha_p0,ln_eta0_ratio,direct_converged"),
+        "{rows}"
+    );
+    assert!(lines[1].contains(",4.312,6.451124175131799,"), "{rows}");
+    // The same points against references with the solver's tolerances ten times tighter: the
+    // direct laws (columns k_hat, d, delta_f_hat) move, the points do not.
+    let tight = dir.path().join("check_tight.csv");
+    let o = bin()
+        .args(["law-map", "check"])
+        .arg(&map)
+        .args([
+            "--points",
+            "2",
+            "--threads",
+            "1",
+            "--tolerance-factor",
+            "0.1",
+            "--csv",
+        ])
+        .arg(&tight)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let tight = std::fs::read_to_string(&tight).unwrap();
+    let cols = |l: &str, r: std::ops::Range<usize>| -> Vec<String> {
+        l.split(',').collect::<Vec<_>>()[r]
+            .iter()
+            .map(|c| c.to_string())
+            .collect()
+    };
+    for (a, b) in lines[1..].iter().zip(tight.lines().skip(1)) {
+        assert_eq!(cols(a, 0..3), cols(b, 0..3), "{rows}\n{tight}");
+        assert_ne!(cols(a, 10..13), cols(b, 10..13), "{rows}\n{tight}");
+    }
+    for bad in ["0", "1.5", "nan"] {
+        let o = bin()
+            .args(["law-map", "check"])
+            .arg(&map)
+            .args(["--points", "1", "--tolerance-factor", bad])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            !o.status.success() && err.contains("--tolerance-factor") && err.contains("(0, 1]"),
+            "{bad}: {err}"
+        );
+    }
 }
 
 #[test]

@@ -5,7 +5,7 @@
 //! map from the node files alone, so the map is byte for byte the same however it was run.
 
 use super::{PointStore, Shard, StoreError};
-use crate::contact::characterize_quasi_static;
+use crate::contact::{characterize_quasi_static, QuasiStaticSettings};
 use crate::law_map::{
     DimensionlessLaw, Group, LawGroups, LawMap, LawMapError, LawMapSpec, MapQuery, NodeQuality,
     FORMAT,
@@ -60,8 +60,17 @@ pub fn characterize_groups(
     g: &LawGroups,
     spec: &LawMapSpec,
 ) -> Result<(DimensionlessLaw, NodeQuality), crate::Error> {
+    characterize_groups_with(g, &spec.settings())
+}
+
+/// The dimensionless law at `g` by a direct quasi-static characterization with `settings` (on
+/// the nodes' contact), with its fit quality.
+pub fn characterize_groups_with(
+    g: &LawGroups,
+    settings: &QuasiStaticSettings,
+) -> Result<(DimensionlessLaw, NodeQuality), crate::Error> {
     let c = g.contact(NODE_RX, NODE_E)?;
-    let fit = characterize_quasi_static(&c, &spec.settings())?;
+    let fit = characterize_quasi_static(&c, settings)?;
     let law = DimensionlessLaw::of_fit(&fit, &c)?;
     Ok((
         law,
@@ -281,6 +290,8 @@ pub struct HeldOutPoint {
     pub delta_f_error: f64,
     /// |ΔF̂_map − ΔF̂_direct| (ΔF error over the load).
     pub delta_f_error_hat: f64,
+    /// Whether every steady solution of the direct characterization met its tolerances.
+    pub direct_converged: bool,
 }
 
 /// `count` points drawn uniformly in the axes' coordinates inside the map's envelope
@@ -288,6 +299,18 @@ pub struct HeldOutPoint {
 /// with the map. Points whose direct characterization fails are left out (the count returned
 /// says how many remain).
 pub fn held_out_check(map: &LawMap, count: usize, seed: u64) -> Vec<HeldOutPoint> {
+    held_out_check_with(map, count, seed, &map.spec.settings())
+}
+
+/// [`held_out_check`] with the direct characterizations at `reference` instead of the map's own
+/// settings (e.g. the map's grid with tighter solver tolerances: the fitted ΔF of heavy contacts
+/// follows the steady solutions' iteration error, docs/law_map.md §5).
+pub fn held_out_check_with(
+    map: &LawMap,
+    count: usize,
+    seed: u64,
+    reference: &QuasiStaticSettings,
+) -> Vec<HeldOutPoint> {
     let spec = &map.spec;
     let mut state = seed;
     let mut next = move || {
@@ -317,7 +340,7 @@ pub fn held_out_check(map: &LawMap, count: usize, seed: u64) -> Vec<HeldOutPoint
         .par_iter()
         .filter_map(|g| {
             let q = map.query(g).ok()?;
-            let (direct, _) = characterize_groups(g, spec).ok()?;
+            let (direct, quality) = characterize_groups_with(g, reference).ok()?;
             let a0 = direct.approach_hat;
             let qd = direct.force_hat(a0);
             Some(HeldOutPoint {
@@ -329,6 +352,7 @@ pub fn held_out_check(map: &LawMap, count: usize, seed: u64) -> Vec<HeldOutPoint
                 delta_f_error: (q.law.delta_f_hat - direct.delta_f_hat).abs()
                     / direct.delta_f_hat.abs(),
                 delta_f_error_hat: (q.law.delta_f_hat - direct.delta_f_hat).abs(),
+                direct_converged: quality.converged,
             })
         })
         .collect()
