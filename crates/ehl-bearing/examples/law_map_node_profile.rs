@@ -13,7 +13,7 @@ use ehl_bearing::ehl::{
     EhlSolution, ViscosityModel,
 };
 use ehl_bearing::law_map::{LawGroups, LawMapSpec};
-use ehl_bearing::study::characterize_groups;
+use ehl_bearing::study::{characterize_groups, node_film_resolution};
 use std::time::Instant;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -140,13 +140,14 @@ fn node(g: &LawGroups, spec: &LawMapSpec, fam: f64) -> Result<(), Box<dyn std::e
     let r = characterize_groups(g, spec);
     let node = t.elapsed().as_secs_f64();
     let head = format!(
-        "node M {} L {} Ry/Rx {} alpha_p0 {} ln_eta0_ratio {} grid {}: family {fam:.2}s, characterize_groups {node:.2}s,",
+        "node M {} L {} Ry/Rx {} alpha_p0 {} ln_eta0_ratio {} grid {} (film/ΔX² {:.2}): family {fam:.2}s, characterize_groups {node:.2}s,",
         g.m,
         g.l,
         g.ry_over_rx,
         g.alpha_p0.unwrap_or(f64::NAN),
         g.ln_eta0_ratio.unwrap_or(f64::NAN),
-        spec.grid
+        spec.grid,
+        node_film_resolution(g, spec)?
     );
     match r {
         Ok((law, q)) => println!(
