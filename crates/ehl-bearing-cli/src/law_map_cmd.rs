@@ -10,7 +10,8 @@ use ehl_bearing::contact::QuasiStaticSettings;
 use ehl_bearing::io::FsStore;
 use ehl_bearing::law_map::{LawMap, LawMapSpec};
 use ehl_bearing::study::{
-    assemble_map, generate_map, held_out_check_with, HeldOutPoint, NodeRecord, Shard,
+    assemble_map, generate_map, held_out_check_with, under_resolved_nodes, HeldOutPoint,
+    NodeRecord, Shard,
 };
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -152,6 +153,7 @@ fn generate(
     threads: Option<usize>,
 ) -> anyhow::Result<()> {
     let s = read_spec(spec)?;
+    warn_under_resolved(&s)?;
     let store = FsStore::create(output)?;
     let total = s.node_count().div_ceil(shard.count);
     let done = AtomicUsize::new(0);
@@ -185,6 +187,28 @@ fn generate(
         anyhow::bail!(
             "{} node(s) failed (their files hold the error; a rerun retries them)",
             g.failed
+        );
+    }
+    Ok(())
+}
+
+/// Warns (stderr) if the spec's grid does not resolve the film of some of its nodes
+/// (`study::under_resolved_nodes`): such nodes are slow and their films wrong (docs/ehl.md §5.9).
+fn warn_under_resolved(s: &LawMapSpec) -> anyhow::Result<()> {
+    let thin = under_resolved_nodes(s)?;
+    if let Some(&(i, r)) = thin.first() {
+        let g = s.node_groups(i);
+        eprintln!(
+            "warning: the grid ({0}²) does not resolve the film of {1} of {2} nodes (NVM's central film \
+             below {3} ΔX²; least {r:.2} at node {i}, M = {4:.4} L = {5:.4} Ry/Rx = {6:.4}): such nodes \
+             are slow and their films wrong (docs/ehl.md §5.9); a finer grid or a smaller box avoids them",
+            s.grid,
+            thin.len(),
+            s.node_count(),
+            ehl_bearing::ehl::FILM_RESOLUTION_MIN,
+            g.m,
+            g.l,
+            g.ry_over_rx
         );
     }
     Ok(())

@@ -381,3 +381,47 @@ fn sbatch_refuses_invalid_options(
     let e = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && e.contains("--map"), "{e}");
 }
+
+/// `law-map generate` warns when the spec's grid does not resolve the film of some nodes
+/// (docs/ehl.md §5.9): low L, high M on 33² (NVM's film well below 10 ΔX²), least resolved node
+/// named (whether a resolved spec stays silent is tested in the library: `under_resolved_nodes`
+/// of the low-L example spec is empty).
+#[test]
+fn generate_warns_about_under_resolved_nodes() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = dir.path().join("thin.toml");
+    std::fs::write(
+        &spec,
+        r#"
+viscosity_model = "roelands"
+density_model = "dowson-higginson"
+alpha_p0 = 2.9
+ln_eta0_ratio = 4.1
+l = 10.0
+ry_over_rx = 14.0
+amplitude = 0.2
+points = 7
+grid = 33
+
+[[axis]]
+group = "m"
+min = 5000.0
+max = 20000.0
+nodes = 3
+log = true
+"#,
+    )
+    .unwrap();
+    let o = bin()
+        .args(["law-map", "generate"])
+        .arg(&spec)
+        .arg("-o")
+        .arg(dir.path().join("thin_nodes"))
+        .output()
+        .unwrap();
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        e.contains("does not resolve the film of 3 of 3 nodes") && e.contains("node 2, M = 20000"),
+        "{e}"
+    );
+}

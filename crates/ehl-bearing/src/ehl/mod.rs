@@ -26,9 +26,9 @@ use thiserror::Error;
 pub use crate::material::{DensityModel, ViscosityModel};
 pub(crate) use steady::validate_settings;
 pub use steady::{
-    solve_moes, solve_moes_within, solve_steady, solve_steady_extrapolated,
+    film_resolution, solve_moes, solve_moes_within, solve_steady, solve_steady_extrapolated,
     solve_steady_extrapolated_within, solve_steady_from, solve_steady_from_within,
-    solve_steady_starts, solve_steady_within, start_order, MOES_L_MAX,
+    solve_steady_starts, solve_steady_within, start_order, FILM_RESOLUTION_MIN, MOES_L_MAX,
 };
 pub use transient::{TransientSolver, TransientStep};
 

@@ -241,6 +241,28 @@ pub(crate) fn setup(c: &EhlContact, s: &EhlSettings) -> Result<(Problem, Scales)
     Ok((pr, sc))
 }
 
+/// Smallest [`film_resolution`] at which the steady solver is known to resolve the film of a
+/// contact on its grid: 10. Measured on law-map nodes (docs/ehl.md §5.9): at or above it the
+/// nodal films were positive, and on 65² and 129² the thin-film nodes converged in their first
+/// start in 2–10 cycles per solution (on 257², M 10000–20000 at ratio 12–27, still starts 3–6);
+/// at 1.5–5 the nodal film went through zero at the outlet and every start ended in a limit
+/// cycle (250–450 cycles per solution), below ≈ 1.5 the solutions converged with deeply
+/// negative films; at 6.7 (129², M 10000, L 12.5) up to five starts and a fitted ΔF 5 % off the
+/// 257² value. Only the mesh along x is judged.
+pub const FILM_RESOLUTION_MIN: f64 = 10.0;
+
+/// How well the grid of `s` resolves the film of contact `c`: the Nijenbanning–Venner–Moes
+/// central film in the solver's units a_x²/Rx divided by ΔX², ΔX = (inlet + outlet)/(grid − 1)
+/// the mesh along x in a_x, on the domain `solve_steady` would use (dimensionless). The film is
+/// the difference of the gap's O(1) terms, whose discretization error is O(ΔX²): where the
+/// ratio is small the discrete film goes negative (docs/ehl.md §5.9; [`FILM_RESOLUTION_MIN`]).
+/// Cheap (no solve). Errors: those of the contact and settings checks.
+pub fn film_resolution(c: &EhlContact, s: &EhlSettings) -> Result<f64, EhlError> {
+    let (pr, sc) = setup(c, s)?;
+    let dx = (pr.x_max - pr.x_min) / (s.grid - 1) as f64;
+    Ok(h_estimate(&sc) / (dx * dx))
+}
+
 /// Result of the dimensionless iteration.
 struct Core {
     hier: Hierarchy,

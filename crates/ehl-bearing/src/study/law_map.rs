@@ -82,6 +82,33 @@ pub fn characterize_groups_with(
     ))
 }
 
+/// How well the spec's grid resolves the film at the node of groups `g`
+/// ([`crate::ehl::film_resolution`] of the node's contact at its operating load, on the domain
+/// its quasi-static family is solved on; dimensionless, compare with
+/// [`crate::ehl::FILM_RESOLUTION_MIN`]). Cheap: no solve.
+pub fn node_film_resolution(g: &LawGroups, spec: &LawMapSpec) -> Result<f64, LawMapError> {
+    let c = g.contact(NODE_RX, NODE_E)?;
+    crate::ehl::film_resolution(&c, &spec.settings().ehl).map_err(LawMapError::Ehl)
+}
+
+/// The nodes of `spec` whose film the spec's grid does not resolve
+/// ([`node_film_resolution`] below [`crate::ehl::FILM_RESOLUTION_MIN`]), as (node index, ratio),
+/// least resolved first. Such nodes are slow (their steady solutions end in limit cycles and
+/// run through the solver's fallback starts) and their films wrong (negative nodal films;
+/// docs/ehl.md §5.9): use a finer grid or a smaller box. Errors: an invalid spec or node.
+pub fn under_resolved_nodes(spec: &LawMapSpec) -> Result<Vec<(usize, f64)>, LawMapError> {
+    spec.validate()?;
+    let mut out = Vec::new();
+    for index in 0..spec.node_count() {
+        let r = node_film_resolution(&spec.node_groups(index), spec)?;
+        if r < crate::ehl::FILM_RESOLUTION_MIN {
+            out.push((index, r));
+        }
+    }
+    out.sort_by(|a, b| a.1.total_cmp(&b.1));
+    Ok(out)
+}
+
 fn compute(index: usize, spec: &LawMapSpec) -> NodeRecord {
     let t0 = Instant::now();
     let groups = spec.node_groups(index);

@@ -31,8 +31,8 @@ pub use crate::force_element::{JacobianMode, TrendEvalOptions, TrendForce, Trend
 pub use crate::trends::{RaceTrends, TrendBearing, TrendCurve, TrendModel, TREND_VERSION};
 pub use law_map::{
     assemble_map, characterize_groups, characterize_groups_with, generate_map, held_out_check,
-    held_out_check_with, shards_with_nodes_left, HeldOutPoint, MapGeneration, MapGenerationError,
-    NodeRecord,
+    held_out_check_with, node_film_resolution, shards_with_nodes_left, under_resolved_nodes,
+    HeldOutPoint, MapGeneration, MapGenerationError, NodeRecord,
 };
 pub use point::{
     points_csv, results_csv, ContactLubrication, PointRecord, PointSpec, ResultRow,
