@@ -7,6 +7,8 @@ use super::{
     MapSettings, Method, PredictedLaw, QuasiStaticCharacterizer,
 };
 use crate::budget::Deadline;
+use crate::contact::QuasiStaticSettings;
+use crate::ehl::{film_resolution, EhlContact, FILM_RESOLUTION_MIN};
 use crate::hertz::HertzGeometry;
 use crate::law_map::{hertz_deflection, LawGroups, LawMap};
 use crate::ContactLaw;
@@ -41,11 +43,14 @@ impl ContactCharacterizer for MapCharacterizer {
         let q = match LawMap::query_embedded(&groups) {
             Ok((q, _)) => q,
             Err(e) if self.settings.fallback => {
-                let mut r = QuasiStaticCharacterizer {
-                    settings: LawMap::embedded().spec.settings(),
-                }
-                .characterize(c, deadline)?;
-                r.method = format!("quasi-static (outside the map: {e})");
+                let settings = fallback_settings(&ehl);
+                let mut r = QuasiStaticCharacterizer { settings }.characterize(c, deadline)?;
+                r.method = if settings.ehl.grid == LawMap::embedded().spec.grid {
+                    format!("quasi-static (outside the map: {e})")
+                } else {
+                    let n = settings.ehl.grid;
+                    format!("quasi-static on {n} × {n} to resolve the film (outside the map: {e})")
+                };
                 return Ok(r);
             }
             Err(e) => return Err(e.into()),
@@ -120,6 +125,70 @@ impl LoadPredictor for MapCharacterizer {
                 predict_steady(c, &LawMap::embedded().spec.settings().ehl, deadline)
             }
             Err(e) => Err(e.into()),
+        }
+    }
+}
+
+/// The fallback's settings for contact `c`: the first embedded map's (grid 65²), or the same on
+/// 129² or, failing that, 257² where the coarser grid does not resolve the contact's film
+/// ([`film_resolution`] below [`FILM_RESOLUTION_MIN`]: there 65² gives limit cycles or negative
+/// films and a fitted ΔF several percent off, docs/ehl.md §5.9). 257² is kept even if it is
+/// still short of the threshold (the finest grid the fallback uses).
+pub fn fallback_settings(c: &EhlContact) -> QuasiStaticSettings {
+    let mut s = LawMap::embedded().spec.settings();
+    for grid in [129, 257] {
+        match film_resolution(c, &s.ehl) {
+            Ok(r) if r < FILM_RESOLUTION_MIN && s.ehl.grid < grid => s.ehl.grid = grid,
+            _ => break,
+        }
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::law_map::LawGroups;
+    use crate::material::{DensityModel, ViscosityModel};
+
+    fn contact(m: f64, l: f64) -> EhlContact {
+        LawGroups {
+            m,
+            l,
+            ry_over_rx: 10.0,
+            alpha_p0: Some(3.5),
+            ln_eta0_ratio: Some(5.0),
+            viscosity: ViscosityModel::Roelands,
+            density: DensityModel::DowsonHigginson,
+        }
+        .contact(5e-3, 2.286e11)
+        .unwrap()
+    }
+
+    /// The fallback keeps the maps' 65² where it resolves the film and refines where it does
+    /// not: each chosen grid is the first of 65², 129², 257² with the film at ≥ 10 ΔX² (257² the
+    /// last resort).
+    #[test]
+    fn the_fallback_refines_the_grid_where_65_does_not_resolve_the_film() {
+        let ratio = |c: &EhlContact, grid: usize| {
+            let mut s = LawMap::embedded().spec.settings().ehl;
+            s.grid = grid;
+            film_resolution(c, &s).unwrap()
+        };
+        for (m, l, grid) in [(300.0, 20.0, 65), (3000.0, 10.0, 129), (20000.0, 8.0, 257)] {
+            let c = contact(m, l);
+            let s = fallback_settings(&c);
+            assert_eq!(s.ehl.grid, grid, "M {m}, L {l}: {}", ratio(&c, s.ehl.grid));
+            if grid > 65 {
+                assert!(ratio(&c, grid / 2 + 1) < FILM_RESOLUTION_MIN);
+            }
+            if grid < 257 {
+                assert!(ratio(&c, grid) >= FILM_RESOLUTION_MIN);
+            }
+            assert_eq!(
+                s.ehl.tol_residual,
+                LawMap::embedded().spec.settings().ehl.tol_residual
+            );
         }
     }
 }
