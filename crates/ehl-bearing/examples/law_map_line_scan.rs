@@ -10,12 +10,14 @@
 //! with them as axes), each characterized with the map's settings, the steady solver's tolerances
 //! (tol_residual, tol_force, tol_film) times F (default 1; the cycle limit 40·(1 + 2·log10(1/F))
 //! below 1, as `law-map check --tolerance-factor`), on the map's grid or N × N (the map's
-//! law is then only a landmark: it is of its own grid). Printed per point: M, the direct and the map's
-//! d and ΔF̂ = ΔF/w0, the fit's RMS residual over w0, whether every steady solution met its
-//! tolerances, and each solution's approach over the Hertz approach at w0 with its final
+//! law is then only a landmark: it is of its own grid). Printed per point: M, NVM's central film
+//! over ΔX² of the grid (`ehl::film_resolution`), the direct and the map's d and ΔF̂ = ΔF/w0, the
+//! fit's RMS residual over w0, whether every steady solution met its tolerances, and each
+//! solution's approach over the Hertz approach at w0 with its final
 //! relative residual (`!` where it stopped short of its tolerances).
 
 use ehl_bearing::contact::characterize_quasi_static;
+use ehl_bearing::ehl::film_resolution;
 use ehl_bearing::law_map::{hertz_deflection, LawMap};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -70,8 +72,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let limit = (40.0 * (1.0 + 2.0 * (1.0 / factor).log10())).ceil() as usize;
         s.ehl.max_cycles = s.ehl.max_cycles.max(limit);
     }
-    println!("| M | d | d (map) | ΔF/w0 | ΔF/w0 (map) | fit RMS/w0 | converged | δ/δ_H (residual) of the solutions |");
-    println!("|---:|---:|---:|---:|---:|---:|---|---|");
+    println!("| M | film/ΔX² | d | d (map) | ΔF/w0 | ΔF/w0 (map) | fit RMS/w0 | converged | δ/δ_H (residual) of the solutions |");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---|---|");
     for i in 0..n {
         g.m = m0 * (m1 / m0).powf(i as f64 / (n - 1).max(1) as f64);
         let q = map.query(&g)?;
@@ -87,8 +89,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             })
             .collect();
         println!(
-            "| {:.1} | {:.6} | {:.6} | {:.6} | {:.6} | {:.1e} | {} | {} |",
+            "| {:.1} | {:.1} | {:.6} | {:.6} | {:.6} | {:.6} | {:.1e} | {} | {} |",
             g.m,
+            film_resolution(&c, &s.ehl)?,
             fit.d,
             q.law.d,
             fit.delta_f / c.load,
