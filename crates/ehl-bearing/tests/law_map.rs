@@ -509,6 +509,13 @@ mod embedded {
             &[1102, 2204],
             "oils, heavy contacts",
         );
+        assert_reproduces(
+            7,
+            include_str!("../../../examples/law_map_mineral_oils_low_l.toml"),
+            Some(7 * 7 * 5 * 3 * 3),
+            &[0, 1102, 2204],
+            "oils, slow large bearings (129²)",
+        );
     }
 
     /// The oils maps (the fifth and its light-contact neighbour) against direct characterizations
@@ -536,6 +543,23 @@ mod embedded {
             assert!(
                 h.force_error < 5e-3 && h.d_error < 5e-3 && h.delta_f_error_hat < 2.2e-3,
                 "heavy map: {h:?}"
+            );
+        }
+    }
+
+    /// The slow-large-bearing map (129²) against direct characterizations on its grid at
+    /// held-out points (a fresh seed, not the 200 of docs/law_map.md §5), within the acceptance
+    /// bounds (force at the nominal approach 0.5 %, d 0.005, ΔF 3 %).
+    #[test]
+    fn low_l_map_against_direct_characterizations() {
+        let map = &LawMap::embedded_maps()[7];
+        assert_eq!(map.spec.grid, 129);
+        let r = held_out_check(map, 4, 20261130);
+        assert_eq!(r.len(), 4);
+        for h in &r {
+            assert!(
+                h.force_error < 5e-3 && h.d_error < 5e-3 && h.delta_f_error < 0.03,
+                "{h:?}"
             );
         }
     }
@@ -688,6 +712,44 @@ mod bearing {
             assert!(worst_load < 2e-3, "{name}: {worst_load}");
             assert!(worst_k < 5e-3, "{name}: {worst_k}");
         }
+    }
+
+    /// A slow large bearing: the 7210 with ISO VG 22 at 80 °C at 7500 rpm instead of 12000
+    /// (its contacts at L 11.3–12.3, below the oils map's 12.5), by the 129² map alone against the
+    /// quasi-static method on 129²: contact loads within 0.2 %, stiffness diagonal within 0.5 %.
+    #[test]
+    fn slow_7210_by_the_129_map_against_quasi_static() {
+        let mut case = read_case(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../examples/7210_vg22.toml"
+        )))
+        .unwrap();
+        case.operating.inner_speed = 7500.0 * std::f64::consts::PI / 30.0;
+        let s = CharacterizeSettings::default();
+        let qs = Method::QuasiStatic(LawMap::embedded_maps()[7].spec.settings());
+        let t0 = std::time::Instant::now();
+        let a = characterize_bearing(&case, &qs, &s).unwrap();
+        let ta = t0.elapsed().as_secs_f64();
+        let t0 = std::time::Instant::now();
+        let map = Method::Map(MapSettings {
+            fallback: false,
+            ..MapSettings::default()
+        });
+        let b = characterize_bearing(&case, &map, &s).unwrap();
+        let tb = t0.elapsed().as_secs_f64();
+        let (worst_load, worst_k) = largest_differences(&a, &b);
+        let l: Vec<f64> = b.contacts.iter().map(|c| c.characterized.moes_l).collect();
+        eprintln!(
+            "7210 at 7500 rpm: {} contacts, L {:.2}–{:.2}; loads {worst_load:.3e}, stiffness \
+             diagonal {worst_k:.3e}; quasi-static {ta:.2} s, map {tb:.4} s",
+            b.contacts.len(),
+            l.iter().cloned().fold(f64::INFINITY, f64::min),
+            l.iter().cloned().fold(0.0, f64::max),
+        );
+        assert!(a.converged && b.converged);
+        assert!(b.contacts.iter().all(|c| c.characterized.method == "map"));
+        assert!(worst_load < 2e-3, "{worst_load}");
+        assert!(worst_k < 5e-3, "{worst_k}");
     }
 
     /// Without the fallback, a contact outside the envelope is an error naming the group and the
