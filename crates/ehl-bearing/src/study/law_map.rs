@@ -5,10 +5,10 @@
 //! map from the node files alone, so the map is byte for byte the same however it was run.
 
 use super::{PointStore, Shard, StoreError};
-use crate::contact::characterize_quasi_static;
+use crate::contact::{characterize_harmonic, characterize_quasi_static};
 use crate::law_map::{
-    DimensionlessLaw, Group, LawGroups, LawMap, LawMapError, LawMapSpec, MapQuery, NodeQuality,
-    FORMAT,
+    mass_for_group, DimensionlessLaw, Group, LawGroups, LawKind, LawMap, LawMapError, LawMapSpec,
+    MapQuery, NodeQuality, FORMAT,
 };
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -40,6 +40,9 @@ pub struct NodeRecord {
     pub spec: LawMapSpec,
     /// The node's groups.
     pub groups: LawGroups,
+    /// The node's mass group Ψ_H (harmonic maps).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub psi_h: Option<f64>,
     /// The dimensionless law (None if the characterization failed).
     pub law: Option<DimensionlessLaw>,
     /// The fit's quality.
@@ -55,13 +58,47 @@ fn stem(index: usize) -> String {
 }
 
 /// The dimensionless law at `g` by a direct quasi-static characterization with the spec's
-/// settings (on a contact with Rx = 5 mm and a steel pair's E′), with its fit quality.
+/// settings (on a contact with Rx = 5 mm and a steel pair's E′), with its fit quality. For a
+/// harmonic map use [`characterize_node`] (this needs the mass group too).
 pub fn characterize_groups(
     g: &LawGroups,
     spec: &LawMapSpec,
 ) -> Result<(DimensionlessLaw, NodeQuality), crate::Error> {
+    characterize_node(g, None, spec)
+}
+
+/// The dimensionless law at `g` (and, for a harmonic map, the mass group `psi_h`) by a direct
+/// characterization with the spec's settings, on a contact with Rx = 5 mm and a steel pair's
+/// E′: the quasi-static method, or the harmonic method with the mass that gives the contact
+/// `psi_h` ([`mass_for_group`]). With its fit quality.
+pub fn characterize_node(
+    g: &LawGroups,
+    psi_h: Option<f64>,
+    spec: &LawMapSpec,
+) -> Result<(DimensionlessLaw, NodeQuality), crate::Error> {
     let c = g.contact(NODE_RX, NODE_E)?;
-    let fit = characterize_quasi_static(&c, &spec.settings())?;
+    let fit = match (spec.law, psi_h) {
+        (LawKind::QuasiStatic, None) => characterize_quasi_static(&c, &spec.settings())?,
+        (LawKind::Harmonic, Some(psi)) => {
+            characterize_harmonic(&c, mass_for_group(&c, psi)?, &spec.harmonic_settings())?
+        }
+        (law, psi) => {
+            return Err(LawMapError::Invalid {
+                field: "psi_h".into(),
+                value: psi.unwrap_or(f64::NAN),
+                expected: format!(
+                    "{} for a map of the {} law",
+                    if law == LawKind::Harmonic {
+                        "a value"
+                    } else {
+                        "none"
+                    },
+                    law.name()
+                ),
+            }
+            .into())
+        }
+    };
     let law = DimensionlessLaw::of_fit(&fit, &c)?;
     Ok((
         law,
@@ -76,7 +113,8 @@ pub fn characterize_groups(
 fn compute(index: usize, spec: &LawMapSpec) -> NodeRecord {
     let t0 = Instant::now();
     let groups = spec.node_groups(index);
-    let (law, quality, error) = match characterize_groups(&groups, spec) {
+    let psi_h = spec.node_psi_h(index);
+    let (law, quality, error) = match characterize_node(&groups, psi_h, spec) {
         Ok((l, q)) => (Some(l), Some(q), None),
         Err(e) => (None, None, Some(e.to_string())),
     };
@@ -84,6 +122,7 @@ fn compute(index: usize, spec: &LawMapSpec) -> NodeRecord {
         index,
         spec: spec.clone(),
         groups,
+        psi_h,
         law,
         quality,
         error,
@@ -268,6 +307,8 @@ pub fn assemble_map(
 pub struct HeldOutPoint {
     /// The groups.
     pub groups: LawGroups,
+    /// The mass group Ψ_H (harmonic maps).
+    pub psi_h: Option<f64>,
     /// The map's law and error estimate.
     pub map: MapQuery,
     /// The direct characterization's law.
@@ -281,6 +322,8 @@ pub struct HeldOutPoint {
     pub delta_f_error: f64,
     /// |ΔF̂_map − ΔF̂_direct| (ΔF error over the load).
     pub delta_f_error_hat: f64,
+    /// |ĉ_map − ĉ_direct|/|ĉ_direct| (harmonic maps).
+    pub c_error: Option<f64>,
 }
 
 /// `count` points drawn uniformly in the axes' coordinates inside the map's envelope
@@ -297,9 +340,10 @@ pub fn held_out_check(map: &LawMap, count: usize, seed: u64) -> Vec<HeldOutPoint
         z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
         ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
     };
-    let points: Vec<LawGroups> = (0..count)
+    let points: Vec<(LawGroups, Option<f64>)> = (0..count)
         .map(|_| {
             let mut g = spec.node_groups(0);
+            let mut psi_h = None;
             for a in &spec.axes {
                 let (lo, hi) = if a.log {
                     (a.min.ln(), a.max.ln())
@@ -308,20 +352,28 @@ pub fn held_out_check(map: &LawMap, count: usize, seed: u64) -> Vec<HeldOutPoint
                 };
                 let t = lo + (hi - lo) * next();
                 let v = if a.log { t.exp() } else { t };
-                set_group(&mut g, a.group, v.clamp(a.min, a.max));
+                let v = v.clamp(a.min, a.max);
+                if a.group == Group::PsiH {
+                    psi_h = Some(v);
+                }
+                set_group(&mut g, a.group, v);
             }
-            g
+            (g, psi_h)
         })
         .collect();
     points
         .par_iter()
-        .filter_map(|g| {
-            let q = map.query(g).ok()?;
-            let (direct, _) = characterize_groups(g, spec).ok()?;
+        .filter_map(|(g, psi_h)| {
+            let q = match psi_h {
+                Some(p) => map.query_harmonic(g, *p).ok()?,
+                None => map.query(g).ok()?,
+            };
+            let (direct, _) = characterize_node(g, *psi_h, spec).ok()?;
             let a0 = direct.approach_hat;
             let qd = direct.force_hat(a0);
             Some(HeldOutPoint {
                 groups: *g,
+                psi_h: *psi_h,
                 map: q,
                 direct,
                 force_error: (q.law.force_hat(a0) - qd).abs() / qd,
@@ -329,6 +381,10 @@ pub fn held_out_check(map: &LawMap, count: usize, seed: u64) -> Vec<HeldOutPoint
                 delta_f_error: (q.law.delta_f_hat - direct.delta_f_hat).abs()
                     / direct.delta_f_hat.abs(),
                 delta_f_error_hat: (q.law.delta_f_hat - direct.delta_f_hat).abs(),
+                c_error: match (q.law.c_hat, direct.c_hat) {
+                    (Some(a), Some(b)) => Some((a - b).abs() / b.abs()),
+                    _ => None,
+                },
             })
         })
         .collect()
@@ -341,5 +397,6 @@ fn set_group(g: &mut LawGroups, grp: Group, v: f64) {
         Group::RyOverRx => g.ry_over_rx = v,
         Group::AlphaP0 => g.alpha_p0 = Some(v),
         Group::LnEta0Ratio => g.ln_eta0_ratio = Some(v),
+        Group::PsiH => {}
     }
 }

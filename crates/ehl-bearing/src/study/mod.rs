@@ -30,8 +30,8 @@ mod trends;
 pub use crate::force_element::{JacobianMode, TrendEvalOptions, TrendForce, TrendForceElement};
 pub use crate::trends::{RaceTrends, TrendBearing, TrendCurve, TrendModel, TREND_VERSION};
 pub use law_map::{
-    assemble_map, characterize_groups, generate_map, held_out_check, shards_with_nodes_left,
-    HeldOutPoint, MapGeneration, MapGenerationError, NodeRecord,
+    assemble_map, characterize_groups, characterize_node, generate_map, held_out_check,
+    shards_with_nodes_left, HeldOutPoint, MapGeneration, MapGenerationError, NodeRecord,
 };
 pub use point::{
     points_csv, results_csv, ContactLubrication, PointRecord, PointSpec, ResultRow,
