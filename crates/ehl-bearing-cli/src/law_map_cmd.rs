@@ -147,11 +147,12 @@ fn generate(
         let k = done.fetch_add(1, Ordering::Relaxed) + 1;
         if !quiet || r.law.is_none() {
             eprintln!(
-                "node {} ({k} of ≤ {total}) M = {:.4} L = {:.4} Ry/Rx = {:.4}: {} ({:.2} s)",
+                "node {} ({k} of ≤ {total}) M = {:.4} L = {:.4} Ry/Rx = {:.4}{}: {} ({:.2} s)",
                 r.index,
                 r.groups.m,
                 r.groups.l,
                 r.groups.ry_over_rx,
+                r.psi_h.map_or(String::new(), |p| format!(" Ψ_H = {p:.4}")),
                 r.error.as_deref().unwrap_or("ok"),
                 r.seconds
             );
@@ -226,18 +227,26 @@ fn check(
 }
 
 /// One CSV row per held-out point: its groups, the map's errors against the direct law and the
-/// map's own error estimates, the direct law (dimensionless), and the point's rheology groups.
+/// map's own error estimates, the direct law (dimensionless), and the point's rheology groups;
+/// for a harmonic map also its mass group Ψ_H, the relative ĉ error, the map's estimate of it
+/// (relative) and the direct ĉ.
 fn write_check_csv(p: &Path, r: &[HeldOutPoint]) -> anyhow::Result<()> {
+    let harmonic = r.iter().any(|h| h.psi_h.is_some());
     let mut out = String::from(
         "m,l,ry_over_rx,force_error,d_error,delta_f_error,delta_f_error_over_load,\
          estimate_force,estimate_d,estimate_delta_f_over_load,k_hat,d,delta_f_hat,\
-         alpha_p0,ln_eta0_ratio\n",
+         alpha_p0,ln_eta0_ratio",
     );
+    out.push_str(if harmonic {
+        ",psi_h,c_hat_error,estimate_c_hat,c_hat\n"
+    } else {
+        "\n"
+    });
     // The rheology groups of the point (empty where the map's models do not use them).
     let cell = |v: Option<f64>| v.map_or(String::new(), |x| x.to_string());
     for h in r {
         out.push_str(&format!(
-            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{},{},{}\n",
+            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{},{},{}",
             h.groups.m,
             h.groups.l,
             h.groups.ry_over_rx,
@@ -254,6 +263,17 @@ fn write_check_csv(p: &Path, r: &[HeldOutPoint]) -> anyhow::Result<()> {
             cell(h.groups.alpha_p0),
             cell(h.groups.ln_eta0_ratio)
         ));
+        if harmonic {
+            let c_hat = h.direct.c_hat.unwrap_or(f64::NAN);
+            out.push_str(&format!(
+                ",{},{:e},{:e},{}",
+                cell(h.psi_h),
+                h.c_error.unwrap_or(f64::NAN),
+                h.map.error.c_hat.unwrap_or(f64::NAN) / c_hat.abs(),
+                c_hat
+            ));
+        }
+        out.push('\n');
     }
     ehl_bearing::io::write_atomic(p, out.as_bytes())?;
     Ok(())
@@ -289,6 +309,21 @@ fn print_check_summary(r: &[HeldOutPoint]) {
     for (name, v) in rows {
         let (a, b, c) = quantiles(&v);
         println!("  {name}: {a:.2e} / {b:.2e} / {c:.2e}");
+    }
+    if r.iter().any(|h| h.c_error.is_some()) {
+        let c_rows: [(&str, Vec<f64>); 2] = [
+            ("ĉ, relative", r.iter().filter_map(|h| h.c_error).collect()),
+            (
+                "estimate: ĉ, relative",
+                r.iter()
+                    .filter_map(|h| Some(h.map.error.c_hat? / h.direct.c_hat?.abs()))
+                    .collect(),
+            ),
+        ];
+        for (name, v) in c_rows {
+            let (a, b, c) = quantiles(&v);
+            println!("  {name}: {a:.2e} / {b:.2e} / {c:.2e}");
+        }
     }
     let under = r
         .iter()
