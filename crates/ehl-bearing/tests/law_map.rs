@@ -589,6 +589,23 @@ mod harmonic_spec {
             e.contains("method_options.law") && e.contains("dynamic"),
             "{e}"
         );
+        // The case-file route the CLI's `--method map` and Python's `characterize(case,
+        // method="map")` take: the case's [method_options] for the same method name.
+        let seed = include_str!("../../../examples/7006.toml");
+        let i = seed.find("[bearing]").unwrap();
+        let text = format!(
+            "{}method = \"map\"\n\n[method_options]\nlaw = \"harmonic\"\n\n{}",
+            &seed[..i],
+            &seed[i..]
+        );
+        let case = ehl_bearing::io::parse_case(&text, "seed with the harmonic map").unwrap();
+        assert_eq!(
+            case.method_or(Some("map")).unwrap(),
+            Method::Map(MapSettings {
+                fallback: true,
+                law: LawKind::Harmonic
+            })
+        );
         // A quasi-static map's settings serialize as before (no `law` key).
         let m = serde_json::to_string(&Method::Map(MapSettings::default())).unwrap();
         assert_eq!(m, "{\"name\":\"map\",\"settings\":{\"fallback\":true}}");
@@ -749,7 +766,9 @@ mod embedded {
     /// The harmonic map against direct harmonic characterizations at held-out points (a fresh
     /// seed, not the 200 of docs/law_map.md §7): force at the nominal approach within 0.5 %, d
     /// within 0.005, ΔF within 3 % (the quasi-static maps' bounds) and ĉ within 3 % (the
-    /// target set for the harmonic map).
+    /// target set for the harmonic map). Of the 200 points of docs/law_map.md §7 three miss a
+    /// quasi-static bound (d 5.2e-3 and 5.5e-3 at Ry/Rx 16–17, ΔF 5.3 % where ΔF is 0.1 % of the
+    /// load) and none the ĉ one (at most 2.0 %); these four fresh points meet all.
     #[test]
     fn harmonic_map_against_direct_characterizations() {
         let r = held_out_check(&LawMap::embedded_maps()[7], 4, 20261130);
