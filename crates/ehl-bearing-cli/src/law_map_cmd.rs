@@ -6,11 +6,10 @@
 //! them; `check` compares the map with direct characterizations at random held-out points.
 
 use anyhow::Context;
-use ehl_bearing::contact::QuasiStaticSettings;
 use ehl_bearing::io::FsStore;
 use ehl_bearing::law_map::{LawMap, LawMapSpec};
 use ehl_bearing::study::{
-    assemble_map, generate_map, held_out_check_with, under_resolved_nodes, HeldOutPoint,
+    assemble_map, generate_map, held_out_check_with, tightened, under_resolved_nodes, HeldOutPoint,
     NodeRecord, Shard,
 };
 use std::path::{Path, PathBuf};
@@ -163,11 +162,12 @@ fn generate(
         let k = done.fetch_add(1, Ordering::Relaxed) + 1;
         if !quiet || r.law.is_none() {
             eprintln!(
-                "node {} ({k} of ≤ {total}) M = {:.4} L = {:.4} Ry/Rx = {:.4}: {} ({:.2} s)",
+                "node {} ({k} of ≤ {total}) M = {:.4} L = {:.4} Ry/Rx = {:.4}{}: {} ({:.2} s)",
                 r.index,
                 r.groups.m,
                 r.groups.l,
                 r.groups.ry_over_rx,
+                r.psi_h.map_or(String::new(), |p| format!(" Ψ_H = {p:.4}")),
                 r.error.as_deref().unwrap_or("ok"),
                 r.seconds
             );
@@ -235,24 +235,6 @@ fn assemble(spec: &Path, output: &Path, map: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The map's settings with the steady solver's tolerances times `factor` (in (0, 1]) and, below
-/// 1, the cycle limit raised to 40·(1 + 2·log10(1/factor)).
-fn reference_settings(m: &LawMap, factor: f64) -> anyhow::Result<QuasiStaticSettings> {
-    anyhow::ensure!(
-        factor.is_finite() && factor > 0.0 && factor <= 1.0,
-        "--tolerance-factor = {factor}: expected a number in (0, 1]"
-    );
-    let mut s = m.spec.settings();
-    s.ehl.tol_residual *= factor;
-    s.ehl.tol_force *= factor;
-    s.ehl.tol_film *= factor;
-    if factor < 1.0 {
-        let limit = 40.0 * (1.0 + 2.0 * (1.0 / factor).log10());
-        s.ehl.max_cycles = s.ehl.max_cycles.max(limit.ceil() as usize);
-    }
-    Ok(s)
-}
-
 /// `law-map check`: compare the map file `map` with direct characterizations at `points`
 /// random points (seed `seed`), their tolerances times `tolerance_factor`, write one CSV row
 /// per point to `csv` if given, and print the error quantiles.
@@ -267,9 +249,10 @@ fn check(
     let text =
         std::fs::read_to_string(map).with_context(|| format!("reading {}", map.display()))?;
     let m = LawMap::from_json(&text)?;
-    let reference = reference_settings(&m, tolerance_factor)?;
+    // Checked here, before the points: held_out_check_with leaves out points it cannot characterize.
+    tightened(m.spec.settings().ehl, tolerance_factor).context("--tolerance-factor")?;
     let t0 = Instant::now();
-    let r = pool(threads)?.install(|| held_out_check_with(&m, points, seed, &reference));
+    let r = pool(threads)?.install(|| held_out_check_with(&m, points, seed, tolerance_factor));
     anyhow::ensure!(!r.is_empty(), "no held-out point could be characterized");
     if let Some(p) = csv {
         write_check_csv(p, &r)?;
@@ -284,18 +267,26 @@ fn check(
 }
 
 /// One CSV row per held-out point: its groups, the map's errors against the direct law and the
-/// map's own error estimates, the direct law (dimensionless), and the point's rheology groups.
+/// map's own error estimates, the direct law (dimensionless), and the point's rheology groups;
+/// for a harmonic map also its mass group Ψ_H, the relative ĉ error, the map's estimate of it
+/// (relative) and the direct ĉ.
 fn write_check_csv(p: &Path, r: &[HeldOutPoint]) -> anyhow::Result<()> {
+    let harmonic = r.iter().any(|h| h.psi_h.is_some());
     let mut out = String::from(
         "m,l,ry_over_rx,force_error,d_error,delta_f_error,delta_f_error_over_load,\
          estimate_force,estimate_d,estimate_delta_f_over_load,k_hat,d,delta_f_hat,\
-         alpha_p0,ln_eta0_ratio,direct_converged\n",
+         alpha_p0,ln_eta0_ratio,direct_converged",
     );
+    out.push_str(if harmonic {
+        ",psi_h,c_hat_error,estimate_c_hat,c_hat\n"
+    } else {
+        "\n"
+    });
     // The rheology groups of the point (empty where the map's models do not use them).
     let cell = |v: Option<f64>| v.map_or(String::new(), |x| x.to_string());
     for h in r {
         out.push_str(&format!(
-            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{},{},{},{}\n",
+            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{},{},{},{}",
             h.groups.m,
             h.groups.l,
             h.groups.ry_over_rx,
@@ -313,6 +304,17 @@ fn write_check_csv(p: &Path, r: &[HeldOutPoint]) -> anyhow::Result<()> {
             cell(h.groups.ln_eta0_ratio),
             h.direct_converged
         ));
+        if harmonic {
+            let c_hat = h.direct.c_hat.unwrap_or(f64::NAN);
+            out.push_str(&format!(
+                ",{},{:e},{:e},{}",
+                cell(h.psi_h),
+                h.c_error.unwrap_or(f64::NAN),
+                h.map.error.c_hat.unwrap_or(f64::NAN) / c_hat.abs(),
+                c_hat
+            ));
+        }
+        out.push('\n');
     }
     ehl_bearing::io::write_atomic(p, out.as_bytes())?;
     Ok(())
@@ -348,6 +350,21 @@ fn print_check_summary(r: &[HeldOutPoint]) {
     for (name, v) in rows {
         let (a, b, c) = quantiles(&v);
         println!("  {name}: {a:.2e} / {b:.2e} / {c:.2e}");
+    }
+    if r.iter().any(|h| h.c_error.is_some()) {
+        let c_rows: [(&str, Vec<f64>); 2] = [
+            ("ĉ, relative", r.iter().filter_map(|h| h.c_error).collect()),
+            (
+                "estimate: ĉ, relative",
+                r.iter()
+                    .filter_map(|h| Some(h.map.error.c_hat? / h.direct.c_hat?.abs()))
+                    .collect(),
+            ),
+        ];
+        for (name, v) in c_rows {
+            let (a, b, c) = quantiles(&v);
+            println!("  {name}: {a:.2e} / {b:.2e} / {c:.2e}");
+        }
     }
     let under = r
         .iter()

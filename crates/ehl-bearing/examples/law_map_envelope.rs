@@ -23,7 +23,7 @@
 use ehl_bearing::bearing::{solve_equilibrium, ContactLaws, Race};
 use ehl_bearing::ehl::EhlContact;
 use ehl_bearing::io::parse_case;
-use ehl_bearing::law_map::{LawGroups, LawMap};
+use ehl_bearing::law_map::{mass_group, LawGroups, LawMap};
 use ehl_bearing::lubrication::rated_viscosity_mm2_s;
 use std::fmt::Write as _;
 
@@ -180,12 +180,16 @@ struct Row {
     groups: [f64; 5],
     /// Whether an embedded map holds it.
     covered: bool,
+    /// The harmonic law's mass group Ψ_H = (b/u_s)·√(w0/(δ_H·m)) with the ball's mass.
+    psi_h: f64,
+    /// Whether an embedded harmonic map holds it (groups and Ψ_H).
+    covered_harmonic: bool,
 }
 
 /// Solves every case and returns its loaded contacts, the number of cases per size and how many
 /// of them did not converge; writes one CSV row per contact into `csv`.
 fn contacts(csv: &mut String) -> Result<(Vec<Row>, Vec<CaseCount>), Box<dyn std::error::Error>> {
-    csv.push_str("bearing,rpm,axial_n,iso_vg,temperature_c,kappa,race,load_n,m,l,ry_over_rx,alpha_p0,ln_eta0_ratio,covered\n");
+    csv.push_str("bearing,rpm,axial_n,iso_vg,temperature_c,kappa,race,load_n,m,l,ry_over_rx,alpha_p0,ln_eta0_ratio,covered,psi_h,covered_harmonic\n");
     let mut rows = Vec::new();
     let mut counts = Vec::new();
     for (k, s) in SIZES.iter().enumerate() {
@@ -220,14 +224,18 @@ fn contacts(csv: &mut String) -> Result<(Vec<Row>, Vec<CaseCount>), Box<dyn std:
                             if c.load.is_nan() || c.load < 0.01 * qmax {
                                 continue;
                             }
-                            let g = LawGroups::of(&EhlContact {
+                            let ehl = EhlContact {
                                 load: c.load,
                                 rx: c.rx,
                                 ry: c.ry,
                                 sum_velocity: c.sum_velocity,
                                 e_reduced: case.bearing.reduced_modulus(),
                                 lubricant: case.lubricant_of(race),
-                            })?;
+                            };
+                            let g = LawGroups::of(&ehl)?;
+                            let psi_h = mass_group(&ehl, case.bearing.ball_mass())?;
+                            let covered_harmonic =
+                                LawMap::query_embedded_harmonic(&g, psi_h).is_ok();
                             let groups = [
                                 g.m,
                                 g.l,
@@ -239,7 +247,7 @@ fn contacts(csv: &mut String) -> Result<(Vec<Row>, Vec<CaseCount>), Box<dyn std:
                             let [m, l, r, a, e] = groups;
                             let _ = writeln!(
                                 csv,
-                                "{},{rpm:.1},{fa:.2},{grade},{t_c},{kappa:.4},{race:?},{:.4},{m:.6e},{l:.5},{r:.4},{a:.5},{e:.5},{covered}",
+                                "{},{rpm:.1},{fa:.2},{grade},{t_c},{kappa:.4},{race:?},{:.4},{m:.6e},{l:.5},{r:.4},{a:.5},{e:.5},{covered},{psi_h:.5},{covered_harmonic}",
                                 s.name, c.load
                             );
                             rows.push(Row {
@@ -247,6 +255,8 @@ fn contacts(csv: &mut String) -> Result<(Vec<Row>, Vec<CaseCount>), Box<dyn std:
                                 kappa,
                                 groups,
                                 covered,
+                                psi_h,
+                                covered_harmonic,
                             });
                         }
                     }
@@ -280,6 +290,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!("\nContacts by cell (L rows, M columns): count, and in brackets the share an embedded map holds.\n");
         cell_table(&picked);
         println!();
+        println!("The harmonic law's mass group Ψ_H = (b/u_s)·√(w0/(δ_H·m)) (m the ball's mass, steel):\n");
+        println!(
+            "| bearing | contacts | Ψ_H min | 5 % | median | 95 % | max | in the harmonic map |"
+        );
+        println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+        for (k, s) in SIZES.iter().enumerate() {
+            let of_size: Vec<&Row> = rows.iter().filter(|r| r.size == k).filter(pick).collect();
+            println!("| {} | {} |", s.name, psi_ranges(&of_size));
+        }
+        println!("| all | {} |\n", psi_ranges(&picked));
     }
     if let Some(p) = std::env::args().nth(1) {
         std::fs::write(&p, csv)?;
@@ -308,6 +328,27 @@ fn ranges(rows: &[&Row]) -> String {
     let covered = rows.iter().filter(|r| r.covered).count();
     let _ = write!(out, " {:.1} %", 100.0 * covered as f64 / rows.len() as f64);
     out
+}
+
+/// "contacts | Ψ_H min, 5 %, median, 95 %, max | share in the harmonic map" of `rows`.
+fn psi_ranges(rows: &[&Row]) -> String {
+    if rows.is_empty() {
+        return "0 | | | | | | |".into();
+    }
+    let mut v: Vec<f64> = rows.iter().map(|r| r.psi_h).collect();
+    v.sort_by(f64::total_cmp);
+    let q = |p: f64| v[((v.len() - 1) as f64 * p).round() as usize];
+    let covered = rows.iter().filter(|r| r.covered_harmonic).count();
+    format!(
+        "{} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.1} %",
+        v.len(),
+        q(0.0),
+        q(0.05),
+        q(0.5),
+        q(0.95),
+        q(1.0),
+        100.0 * covered as f64 / rows.len() as f64
+    )
 }
 
 fn cell_table(rows: &[&Row]) {

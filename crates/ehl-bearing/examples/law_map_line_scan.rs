@@ -9,7 +9,7 @@
 //! N points from M0 to M1 (geometric) at fixed L and Ry/Rx (and the rheology groups, for a map
 //! with them as axes), each characterized with the map's settings, the steady solver's tolerances
 //! (tol_residual, tol_force, tol_film) times F (default 1; the cycle limit 40·(1 + 2·log10(1/F))
-//! below 1, as `law-map check --tolerance-factor`), on the map's grid or N × N (the map's
+//! below 1: `study::tightened`, as `law-map check --tolerance-factor`), on the map's grid or N × N (the map's
 //! law is then only a landmark: it is of its own grid). Printed per point: M, NVM's central film
 //! over ΔX² of the grid (`ehl::film_resolution`), the direct and the map's d and ΔF̂ = ΔF/w0, the
 //! fit's RMS residual over w0, whether every steady solution met its tolerances, and each
@@ -19,6 +19,7 @@
 use ehl_bearing::contact::characterize_quasi_static;
 use ehl_bearing::ehl::film_resolution;
 use ehl_bearing::law_map::{hertz_deflection, LawMap};
+use ehl_bearing::study::tightened;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
@@ -26,11 +27,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Some(i) = args.iter().position(|a| a == "--tolerance-factor") {
         let v = args.get(i + 1).ok_or("--tolerance-factor needs a value")?;
         factor = v.parse()?;
-        if !(factor > 0.0 && factor <= 1.0) {
-            return Err(
-                format!("--tolerance-factor = {factor}: expected a number in (0, 1]").into(),
-            );
-        }
         args.drain(i..i + 2);
     }
     let mut grid = None;
@@ -65,13 +61,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Some(n) = grid {
         s.ehl.grid = n;
     }
-    s.ehl.tol_residual *= factor;
-    s.ehl.tol_force *= factor;
-    s.ehl.tol_film *= factor;
-    if factor < 1.0 {
-        let limit = (40.0 * (1.0 + 2.0 * (1.0 / factor).log10())).ceil() as usize;
-        s.ehl.max_cycles = s.ehl.max_cycles.max(limit);
-    }
+    s.ehl = tightened(s.ehl, factor).map_err(|e| e.to_string())?;
     println!("| M | film/ΔX² | d | d (map) | ΔF/w0 | ΔF/w0 (map) | fit RMS/w0 | converged | δ/δ_H (residual) of the solutions |");
     println!("|---:|---:|---:|---:|---:|---:|---:|---|---|");
     for i in 0..n {

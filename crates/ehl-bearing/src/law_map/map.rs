@@ -11,7 +11,7 @@
 //! the finer one from above (measured against direct characterizations in the docs).
 
 use super::{DimensionlessLaw, LawGroups, LawMapError};
-use crate::contact::QuasiStaticSettings;
+use crate::contact::{ExcitationFrequency, HarmonicSettings, QuasiStaticSettings};
 use crate::ehl::EhlSettings;
 use crate::material::{DensityModel, ViscosityModel};
 use serde::{Deserialize, Serialize};
@@ -34,6 +34,10 @@ pub enum Group {
     AlphaP0,
     /// ln(η0/η∞).
     LnEta0Ratio,
+    /// The harmonic law's mass group Ψ_H = (b/u_s)·√(w0/(δ_H·m)) ([`super::mass_group`]); an
+    /// axis of harmonic maps only, not one of the steady problem's groups (not in
+    /// [`Group::ALL`], not in [`LawGroups`]: a query gives it with the ball's mass).
+    PsiH,
 }
 
 impl Group {
@@ -54,6 +58,7 @@ impl Group {
             Group::RyOverRx => "Ry/Rx",
             Group::AlphaP0 => "alpha_p0",
             Group::LnEta0Ratio => "ln_eta0_ratio",
+            Group::PsiH => "psi_h",
         }
     }
 
@@ -65,6 +70,7 @@ impl Group {
             Group::RyOverRx => Some(g.ry_over_rx),
             Group::AlphaP0 => g.alpha_p0,
             Group::LnEta0Ratio => g.ln_eta0_ratio,
+            Group::PsiH => None,
         }
     }
 
@@ -75,6 +81,7 @@ impl Group {
             Group::RyOverRx => g.ry_over_rx = v,
             Group::AlphaP0 => g.alpha_p0 = Some(v),
             Group::LnEta0Ratio => g.ln_eta0_ratio = Some(v),
+            Group::PsiH => {}
         }
     }
 
@@ -83,6 +90,7 @@ impl Group {
             Group::M | Group::L | Group::RyOverRx => true,
             Group::AlphaP0 => v == ViscosityModel::Roelands || d == DensityModel::DowsonHigginson,
             Group::LnEta0Ratio => v == ViscosityModel::Roelands,
+            Group::PsiH => false,
         }
     }
 }
@@ -181,8 +189,34 @@ impl MapAxis {
     }
 }
 
-/// What a map samples: the models, the fixed groups, the axes, and the quasi-static method's
-/// dimensionless settings. Read from a TOML file (docs/law_map.md §5) or from a map file.
+/// The law a map samples.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LawKind {
+    /// The quasi-static method's law Q = K·δ^d + ΔF (the default; written nowhere in the file).
+    #[default]
+    QuasiStatic,
+    /// The harmonic method's law Q = K·δ^d + ΔF + c·δ̇ at a relative excitation frequency
+    /// Ω/ω_n; the map has the mass group Ψ_H as an axis and ĉ in every law.
+    Harmonic,
+}
+
+impl LawKind {
+    pub(crate) fn is_quasi_static(&self) -> bool {
+        *self == LawKind::QuasiStatic
+    }
+
+    /// "quasi-static" or "harmonic".
+    pub fn name(self) -> &'static str {
+        match self {
+            LawKind::QuasiStatic => "quasi-static",
+            LawKind::Harmonic => "harmonic",
+        }
+    }
+}
+
+/// What a map samples: the models, the fixed groups, the axes, and the method's dimensionless
+/// settings. Read from a TOML file (docs/law_map.md §5) or from a map file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LawMapSpec {
@@ -208,12 +242,21 @@ pub struct LawMapSpec {
     /// The axes (the first varies slowest in the node order).
     #[serde(rename = "axis")]
     pub axes: Vec<MapAxis>,
-    /// The quasi-static method's relative load amplitude ε.
+    /// The method's relative load amplitude ε.
     pub amplitude: f64,
-    /// The quasi-static method's number of steady solutions.
-    pub points: usize,
-    /// The steady solutions' grid (points per side).
+    /// The quasi-static method's number of steady solutions (quasi-static maps only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub points: Option<usize>,
+    /// The EHL grid (points per side).
     pub grid: usize,
+    /// The law sampled: `"quasi-static"` (the default, not written) or `"harmonic"`.
+    #[serde(default, skip_serializing_if = "LawKind::is_quasi_static")]
+    pub law: LawKind,
+    /// The harmonic method's excitation frequency over the contact's natural frequency, Ω/ω_n
+    /// (harmonic maps only; a relative frequency, as only those map: an absolute Ω is a new
+    /// group per contact).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frequency_fraction: Option<f64>,
 }
 
 impl LawMapSpec {
@@ -233,6 +276,7 @@ impl LawMapSpec {
             Group::RyOverRx => self.ry_over_rx,
             Group::AlphaP0 => self.alpha_p0,
             Group::LnEta0Ratio => self.ln_eta0_ratio,
+            Group::PsiH => None,
         }
     }
 
@@ -270,7 +314,8 @@ impl LawMapSpec {
                 }
             }
         }
-        if self.axes.is_empty() || self.axes.len() > 5 {
+        let most = 5 + usize::from(self.law == LawKind::Harmonic);
+        if self.axes.is_empty() || self.axes.len() > most {
             return Err(LawMapError::AxisCount {
                 axes: self.axes.len(),
             });
@@ -303,8 +348,64 @@ impl LawMapSpec {
         if !(self.amplitude.is_finite() && self.amplitude > 0.0 && self.amplitude <= 0.9) {
             return Err(inv("amplitude", self.amplitude, "0 < ε ≤ 0.9"));
         }
-        if !(4..=101).contains(&self.points) {
-            return Err(inv("points", self.points as f64, "4 to 101"));
+        let psi_axes = self.axes.iter().filter(|a| a.group == Group::PsiH).count();
+        match self.law {
+            LawKind::QuasiStatic => {
+                match self.points {
+                    Some(p) if (4..=101).contains(&p) => {}
+                    Some(p) => return Err(inv("points", p as f64, "4 to 101")),
+                    None => {
+                        return Err(inv(
+                            "points",
+                            f64::NAN,
+                            "4 to 101 (the quasi-static law's number of steady solutions)",
+                        ))
+                    }
+                }
+                if let Some(f) = self.frequency_fraction {
+                    return Err(inv(
+                        "frequency_fraction",
+                        f,
+                        "none: a quasi-static map has no excitation (law = \"harmonic\" for one)",
+                    ));
+                }
+                if psi_axes > 0 {
+                    return Err(inv(
+                        "axis psi_h",
+                        psi_axes as f64,
+                        "none: the mass group is an axis of harmonic maps only",
+                    ));
+                }
+            }
+            LawKind::Harmonic => {
+                if let Some(p) = self.points {
+                    return Err(inv(
+                        "points",
+                        p as f64,
+                        "none: a harmonic map's law is fitted to the recorded period",
+                    ));
+                }
+                match self.frequency_fraction {
+                    Some(f) if f.is_finite() && f > 0.0 && f <= 10.0 => {}
+                    f => {
+                        return Err(inv(
+                            "frequency_fraction",
+                            f.unwrap_or(f64::NAN),
+                            "0 < Ω/ω_n ≤ 10 (required for law = \"harmonic\")",
+                        ))
+                    }
+                }
+                if psi_axes != 1 {
+                    return Err(inv(
+                        "axis psi_h",
+                        psi_axes as f64,
+                        "exactly one [[axis]] with group = \"psi_h\" in a harmonic map",
+                    ));
+                }
+                self.harmonic_settings()
+                    .validate()
+                    .map_err(|e| inv("harmonic settings", f64::NAN, &e.to_string()))?;
+            }
         }
         // Every node's groups valid (ranges of M, L, Ry/Rx).
         self.node_groups(0).validate()?;
@@ -344,13 +445,41 @@ impl LawMapSpec {
         g
     }
 
+    /// The mass group Ψ_H of node `index` (harmonic maps; None for quasi-static ones).
+    pub fn node_psi_h(&self, index: usize) -> Option<f64> {
+        self.axes
+            .iter()
+            .zip(self.multi_index(index))
+            .find(|(a, _)| a.group == Group::PsiH)
+            .map(|(a, j)| a.node_values()[j])
+    }
+
     /// The quasi-static method's settings of the map's nodes (its grid, amplitude and number of
-    /// solutions; everything else the defaults).
+    /// solutions; everything else the defaults). For a harmonic map the fallback's quasi-static
+    /// settings: its grid and amplitude, the default number of solutions.
     pub fn settings(&self) -> QuasiStaticSettings {
         let d = QuasiStaticSettings::default();
         QuasiStaticSettings {
             amplitude: self.amplitude,
-            points: self.points,
+            points: self.points.unwrap_or(d.points),
+            ehl: EhlSettings {
+                grid: self.grid,
+                ..d.ehl
+            },
+            ..d
+        }
+    }
+
+    /// The harmonic method's settings of a harmonic map's nodes: its amplitude, grid and Ω/ω_n
+    /// (the default 0.005 if none is given), everything else the defaults.
+    pub fn harmonic_settings(&self) -> HarmonicSettings {
+        let d = HarmonicSettings::default();
+        HarmonicSettings {
+            amplitude: self.amplitude,
+            frequency: ExcitationFrequency::FractionOfNatural(
+                self.frequency_fraction
+                    .unwrap_or(crate::contact::DEFAULT_FREQUENCY_FRACTION),
+            ),
             ehl: EhlSettings {
                 grid: self.grid,
                 ..d.ehl
@@ -382,7 +511,9 @@ impl LawMapSpec {
                 }
             }
         }
-        for a in &self.axes {
+        // The mass group is no group of the steady problem: the query checks it
+        // (`LawMap::query_harmonic`).
+        for a in self.axes.iter().filter(|a| a.group != Group::PsiH) {
             let v = a.group.get(g).unwrap_or(f64::NAN);
             if !(v >= a.min && v <= a.max) {
                 return Err(LawMapError::OutsideEnvelope {
@@ -444,17 +575,18 @@ pub struct MapQuery {
     pub nodes_converged: bool,
 }
 
-fn law_of(v: &[f64; 6]) -> DimensionlessLaw {
+fn law_of(v: &[f64; 7], harmonic: bool) -> DimensionlessLaw {
     DimensionlessLaw {
         k_hat: v[0],
         d: v[1],
         delta_f_hat: v[2],
         approach_hat: v[3],
         range_hat: [v[4], v[5]],
+        c_hat: harmonic.then_some(v[6]),
     }
 }
 
-fn values_of(l: &DimensionlessLaw) -> [f64; 6] {
+fn values_of(l: &DimensionlessLaw) -> [f64; 7] {
     [
         l.k_hat,
         l.d,
@@ -462,6 +594,7 @@ fn values_of(l: &DimensionlessLaw) -> [f64; 6] {
         l.approach_hat,
         l.range_hat[0],
         l.range_hat[1],
+        l.c_hat.unwrap_or(0.0),
     ]
 }
 
@@ -484,6 +617,18 @@ impl LawMap {
                 laws: m.laws.len(),
                 quality: m.quality.len(),
                 nodes: n,
+            });
+        }
+        let harmonic = m.spec.law == LawKind::Harmonic;
+        if let Some(k) = m.laws.iter().position(|l| l.c_hat.is_some() != harmonic) {
+            return Err(LawMapError::Invalid {
+                field: format!("laws[{k}].c_hat"),
+                value: m.laws[k].c_hat.unwrap_or(f64::NAN),
+                expected: format!(
+                    "{} in a map of the {} law",
+                    if harmonic { "a value" } else { "none" },
+                    m.spec.law.name()
+                ),
             });
         }
         Ok(m)
@@ -541,7 +686,10 @@ impl LawMap {
     /// neighbour, the same axes with M 2700–10000 (`examples/law_map_mineral_oils_heavy.toml`).
     /// The eighth, for slow large bearings, on grid 129² (65² does not resolve their films):
     /// the oils' axes with M 300–3900 and L 8–12.5 (`examples/law_map_mineral_oils_low_l.toml`).
-    /// A query uses the first that holds it; its law is of that map's grid.
+    /// The ninth is of the harmonic law (ĉ and the mass group Ψ_H, Ω = 0.005·ω_n) for the
+    /// seed's oil: 11 × 5 × 9 × 3 nodes over M 120–4000, L 19–26, Ry/Rx 10–65 and Ψ_H 0.4–8
+    /// (`examples/law_map_seed_oil_harmonic.toml`). A query uses the first map of its law that
+    /// holds it; its law is of that map's grid.
     pub fn embedded_maps() -> &'static [LawMap] {
         static MAPS: std::sync::OnceLock<Vec<LawMap>> = std::sync::OnceLock::new();
         MAPS.get_or_init(|| {
@@ -554,6 +702,7 @@ impl LawMap {
                 include_str!("../../data/law_map_mineral_oils_light_g65.json"),
                 include_str!("../../data/law_map_mineral_oils_heavy_g65.json"),
                 include_str!("../../data/law_map_mineral_oils_low_l_g129.json"),
+                include_str!("../../data/law_map_seed_oil_harmonic_g65.json"),
             ]
             .iter()
             .map(|t| {
@@ -568,30 +717,92 @@ impl LawMap {
         &Self::embedded_maps()[0]
     }
 
-    /// The query of the first embedded map whose envelope holds `g`, with that map; outside all
-    /// of them an error listing why each refused.
+    /// The query of the first embedded map of the quasi-static law whose envelope holds `g`,
+    /// with that map; outside all of them an error listing why each refused.
     pub fn query_embedded(g: &LawGroups) -> Result<(MapQuery, &'static LawMap), LawMapError> {
+        Self::query_embedded_law(g, None)
+    }
+
+    /// The query of the first embedded map of the harmonic law whose envelope holds `g` and the
+    /// mass group `psi_h` ([`super::mass_group`]), with that map; outside all of them an error
+    /// listing why each refused.
+    pub fn query_embedded_harmonic(
+        g: &LawGroups,
+        psi_h: f64,
+    ) -> Result<(MapQuery, &'static LawMap), LawMapError> {
+        Self::query_embedded_law(g, Some(psi_h))
+    }
+
+    fn query_embedded_law(
+        g: &LawGroups,
+        psi_h: Option<f64>,
+    ) -> Result<(MapQuery, &'static LawMap), LawMapError> {
+        let kind = match psi_h {
+            Some(_) => LawKind::Harmonic,
+            None => LawKind::QuasiStatic,
+        };
         let mut reasons = Vec::new();
-        for m in Self::embedded_maps() {
-            match m.query(g) {
+        for m in Self::embedded_maps().iter().filter(|m| m.spec.law == kind) {
+            match m.query_at(g, psi_h) {
                 Ok(q) => return Ok((q, m)),
                 Err(e) => reasons.push(e.to_string()),
             }
         }
         Err(LawMapError::OutsideEveryMap {
             reasons: reasons.join("; "),
+            method: kind.name(),
         })
     }
 
     /// The interpolated law at `g` with its error estimate; an error if `g` lies outside the
-    /// envelope (naming the group, its value and the range) or a node the query needs failed.
+    /// envelope (naming the group, its value and the range), or the map is of the harmonic law
+    /// (see [`LawMap::query_harmonic`]).
     pub fn query(&self, g: &LawGroups) -> Result<MapQuery, LawMapError> {
+        self.query_at(g, None)
+    }
+
+    /// The interpolated harmonic law (with ĉ) at `g` and the mass group `psi_h`
+    /// ([`super::mass_group`]) with its error estimate; an error outside the envelope (naming
+    /// the group, its value and the range) or if the map is of the quasi-static law.
+    pub fn query_harmonic(&self, g: &LawGroups, psi_h: f64) -> Result<MapQuery, LawMapError> {
+        self.query_at(g, Some(psi_h))
+    }
+
+    fn query_at(&self, g: &LawGroups, psi_h: Option<f64>) -> Result<MapQuery, LawMapError> {
+        let harmonic = self.spec.law == LawKind::Harmonic;
+        if harmonic != psi_h.is_some() {
+            return Err(LawMapError::Invalid {
+                field: "psi_h".into(),
+                value: psi_h.unwrap_or(f64::NAN),
+                expected: format!(
+                    "{} for a map of the {} law",
+                    if harmonic {
+                        "the mass group Ψ_H (query_harmonic)"
+                    } else {
+                        "none"
+                    },
+                    self.spec.law.name()
+                ),
+            });
+        }
         self.spec.check_inside(g)?;
         let axes = &self.spec.axes;
-        let t: Vec<f64> = axes
-            .iter()
-            .map(|a| a.coord(a.group.get(g).unwrap_or(f64::NAN)))
-            .collect();
+        let value = |a: &MapAxis| match a.group {
+            Group::PsiH => psi_h.unwrap_or(f64::NAN),
+            grp => grp.get(g).unwrap_or(f64::NAN),
+        };
+        for a in axes.iter().filter(|a| a.group == Group::PsiH) {
+            let v = value(a);
+            if !(v >= a.min && v <= a.max) {
+                return Err(LawMapError::OutsideEnvelope {
+                    group: a.group.name().into(),
+                    value: v,
+                    min: a.min,
+                    max: a.max,
+                });
+            }
+        }
+        let t: Vec<f64> = axes.iter().map(|a| a.coord(value(a))).collect();
         let full: Vec<Vec<f64>> = axes.iter().zip(&t).map(|(a, &t)| a.basis(t, 1)).collect();
         let half: Vec<Vec<f64>> = axes.iter().zip(&t).map(|(a, &t)| a.basis(t, 2)).collect();
         // The nodes next to the query on each axis (for the fit quality there).
@@ -604,8 +815,8 @@ impl LawMap {
                 [j, (j + 1).min(x.len() - 1)]
             })
             .collect();
-        let mut vf = [0.0; 6];
-        let mut vh = [0.0; 6];
+        let mut vf = [0.0; 7];
+        let mut vh = [0.0; 7];
         let mut rms = 0.0_f64;
         let mut r2 = 1.0_f64;
         let mut conv = true;
@@ -617,7 +828,7 @@ impl LawMap {
                 continue;
             }
             let v = values_of(&self.laws[index]);
-            for c in 0..6 {
+            for c in 0..7 {
                 vf[c] += wf * v[c];
                 vh[c] += wh * v[c];
             }
@@ -628,16 +839,16 @@ impl LawMap {
                 conv &= q.converged;
             }
         }
-        let law = law_of(&vf);
-        let coarse = law_of(&vh);
-        let mut err = [0.0; 6];
-        for c in 0..6 {
+        let law = law_of(&vf, harmonic);
+        let coarse = law_of(&vh, harmonic);
+        let mut err = [0.0; 7];
+        for c in 0..7 {
             err[c] = (vf[c] - vh[c]).abs();
         }
         let a0 = law.approach_hat;
         Ok(MapQuery {
             law,
-            error: law_of(&err),
+            error: law_of(&err, harmonic),
             force_error: (law.force_hat(a0) - coarse.force_hat(a0)).abs(),
             node_rms_hat: rms,
             node_r_squared: r2,

@@ -80,8 +80,8 @@ pub enum LawMapError {
         /// The spec's density model.
         density_model: DensityModel,
     },
-    /// A number of axes outside 1 to 5.
-    #[error("law map: {axes} axes: expected 1 to 5")]
+    /// A number of axes outside 1 to 5 (6 with the harmonic law's psi_h).
+    #[error("law map: {axes} axes: expected 1 to 5 (6 with the harmonic law's psi_h)")]
     AxisCount {
         /// Axes given.
         axes: usize,
@@ -138,10 +138,13 @@ pub enum LawMapError {
         max: f64,
     },
     /// A contact outside every embedded map.
-    #[error("outside every embedded map: {reasons} (the map method's default, `fallback = true` in [method_options], characterizes such contacts by the quasi-static method)")]
+    #[error("outside every embedded map: {reasons} (the map method's default, `fallback = true` in [method_options], characterizes such contacts by the {method} method)")]
     OutsideEveryMap {
         /// Each map's refusal.
         reasons: String,
+        /// The EHL method of the maps' law, which the fallback uses: "quasi-static" or
+        /// "harmonic".
+        method: &'static str,
     },
     /// The store holds node files of another map under this map's names.
     #[error("{count} node file(s) hold nodes of a different map (first: {first}); nothing was overwritten — use another folder or overwrite")]
@@ -342,6 +345,43 @@ pub fn hertz_deflection(c: &EhlContact) -> Result<f64, LawMapError> {
     Ok(g.contact(positive("load [N]", c.load)?).deflection)
 }
 
+/// The damping scale w0·b/(δ_H·u_s) of a contact, N·s/m: c = ĉ·w0·b/(δ_H·u_s), with b the
+/// Hertz semi-width along the rolling direction and δ_H the Hertz deflection at w0 (the time
+/// the oil takes to cross b, b/u_s, over the Hertz secant compliance δ_H/w0).
+pub fn damping_scale(c: &EhlContact) -> Result<f64, LawMapError> {
+    let g = HertzGeometry::new(c.rx, c.ry, c.e_reduced)
+        .map_err(|e| invalid("rx, ry, e_reduced", c.ry / c.rx, &e.to_string()))?;
+    let h = g.contact(positive("load [N]", c.load)?);
+    Ok(c.load * h.semi_minor / (h.deflection * positive("sum_velocity [m/s]", c.sum_velocity)?))
+}
+
+/// The harmonic law's mass group Ψ_H = (b/u_s)·√(w0/(δ_H·m)) of a contact and the mass `m`
+/// (kg) on it: the natural frequency of the mass on the Hertz secant stiffness w0/δ_H times
+/// the time the oil takes to cross the Hertz semi-width b (docs/law_map.md §7). Computable
+/// without an EHL solution; at fixed other groups it is in one-to-one relation with
+/// Ψ = ω_n·b/u_s of the lubricated contact's linearized stiffness.
+pub fn mass_group(c: &EhlContact, mass: f64) -> Result<f64, LawMapError> {
+    let m = positive("ball mass [kg]", mass)?;
+    let g = HertzGeometry::new(c.rx, c.ry, c.e_reduced)
+        .map_err(|e| invalid("rx, ry, e_reduced", c.ry / c.rx, &e.to_string()))?;
+    let h = g.contact(positive("load [N]", c.load)?);
+    Ok(
+        h.semi_minor / positive("sum_velocity [m/s]", c.sum_velocity)?
+            * (c.load / (h.deflection * m)).sqrt(),
+    )
+}
+
+/// The mass (kg) that gives contact `c` the mass group `psi_h` ([`mass_group`] inverted):
+/// m = (w0/δ_H)·(b/(u_s·Ψ_H))².
+pub fn mass_for_group(c: &EhlContact, psi_h: f64) -> Result<f64, LawMapError> {
+    let psi = positive("psi_h", psi_h)?;
+    let g = HertzGeometry::new(c.rx, c.ry, c.e_reduced)
+        .map_err(|e| invalid("rx, ry, e_reduced", c.ry / c.rx, &e.to_string()))?;
+    let h = g.contact(positive("load [N]", c.load)?);
+    let t = h.semi_minor / (positive("sum_velocity [m/s]", c.sum_velocity)? * psi);
+    Ok(c.load / h.deflection * t * t)
+}
+
 /// A quasi-static law Q = K·δ^d + ΔF made dimensionless with the operating load w0 and the
 /// Hertz deflection δ_H at w0: Q/w0 = K̂·(δ/δ_H)^d + ΔF̂.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -356,20 +396,38 @@ pub struct DimensionlessLaw {
     pub approach_hat: f64,
     /// The fitted range of approaches over δ_H.
     pub range_hat: [f64; 2],
+    /// The harmonic law's damping made dimensionless, ĉ = c·δ_H·u_s/(w0·b) (b the Hertz
+    /// semi-width along the rolling direction at w0); None for the quasi-static law.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub c_hat: Option<f64>,
 }
 
 impl DimensionlessLaw {
     /// The dimensionless form of a fit of contact `c` (its load is the fit's w0).
+    /// A harmonic fit's damping c becomes ĉ = c·δ_H·u_s/(w0·b) ([`damping_scale`]).
     pub fn of_fit(fit: &ContactFit, c: &EhlContact) -> Result<DimensionlessLaw, LawMapError> {
         let dh = hertz_deflection(c)?;
         let w0 = c.load;
+        let c_hat = match fit.c {
+            Some(damping) => Some(damping / damping_scale(c)?),
+            None => None,
+        };
         Ok(DimensionlessLaw {
             k_hat: fit.k * dh.powf(fit.d) / w0,
             d: fit.d,
             delta_f_hat: fit.delta_f / w0,
             approach_hat: fit.approach / dh,
             range_hat: [fit.delta_range[0] / dh, fit.delta_range[1] / dh],
+            c_hat,
         })
+    }
+
+    /// The damping c of contact `c`, N·s/m (None for the quasi-static law).
+    pub fn damping(&self, c: &EhlContact) -> Result<Option<f64>, LawMapError> {
+        match self.c_hat {
+            Some(ch) => Ok(Some(ch * damping_scale(c)?)),
+            None => Ok(None),
+        }
     }
 
     /// Q/w0 at δ/δ_H = `approach_hat` (the power law, no extension).
@@ -391,12 +449,17 @@ impl DimensionlessLaw {
 
     /// The law of contact `c`, ready for the bearing model (the fitted law with its extension
     /// below the fitted range).
+    /// With ĉ (harmonic law) the law carries the damping c ([`DimensionlessLaw::damping`]).
     pub fn law(&self, c: &EhlContact) -> Result<FittedLaw, crate::Error> {
         let (k, d, df, [lo, hi]) = self.dimensional(c)?;
-        Ok(FittedLaw::new(k, d, df, lo, hi)?)
+        let law = FittedLaw::new(k, d, df, lo, hi)?;
+        Ok(match self.damping(c)? {
+            Some(damping) => law.with_damping(damping)?,
+            None => law,
+        })
     }
 }
 
 mod map;
 
-pub use map::{Group, LawMap, LawMapSpec, MapAxis, MapQuery, NodeQuality, FORMAT};
+pub use map::{Group, LawKind, LawMap, LawMapSpec, MapAxis, MapQuery, NodeQuality, FORMAT};

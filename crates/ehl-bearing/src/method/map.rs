@@ -1,16 +1,22 @@
-//! The `map` characterization method: the quasi-static law of a contact from the embedded map
-//! of the dimensionless law, with the map's error estimate, or — outside the map's envelope — an
-//! error naming the group, or with `fallback` the quasi-static method itself.
+//! The `map` characterization method: the quasi-static law of a contact from the embedded maps
+//! of the dimensionless law, with the map's error estimate, or — outside the maps' envelopes — an
+//! error naming the group, or with `fallback` the quasi-static method itself. With `law =
+//! "harmonic"` the harmonic law (with the damping c) from the embedded harmonic map at the
+//! contact's groups and mass group Ψ_H, the fallback being the harmonic method at that map's
+//! settings.
 
 use super::{
-    predict_steady, CharacterizedContact, ContactCharacterizer, ContactConditions, LoadPredictor,
-    MapSettings, Method, PredictedLaw, QuasiStaticCharacterizer,
+    predict_steady, CharacterizedContact, ContactCharacterizer, ContactConditions,
+    HarmonicCharacterizer, LoadPredictor, MapSettings, Method, PredictedLaw,
+    QuasiStaticCharacterizer,
 };
 use crate::budget::Deadline;
 use crate::contact::QuasiStaticSettings;
 use crate::ehl::{film_resolution, EhlContact, FILM_RESOLUTION_MIN};
 use crate::hertz::HertzGeometry;
-use crate::law_map::{hertz_deflection, LawGroups, LawMap};
+use crate::law_map::{
+    hertz_deflection, mass_group, LawGroups, LawKind, LawMap, LawMapError, MapQuery,
+};
 use crate::ContactLaw;
 use std::time::Instant;
 
@@ -22,9 +28,18 @@ use std::time::Instant;
 /// force at the nominal approach plus the nodes' own fit residual (N), `std_errors` the error
 /// estimates of (K, d, ΔF) (the difference of the two interpolants, not standard errors),
 /// `rms_residual` and `r_squared` those of the nearest nodes' fits, `samples` 0, `method`
-/// "map". Outside it, with `fallback`, the quasi-static method with the map's settings
+/// "map". Outside it, with `fallback`, the quasi-static method with the first map's settings
+/// (on 129² or 257² where 65² does not resolve the contact's film, [`fallback_settings`])
 /// characterizes the contact and its `method` reads "quasi-static (outside the map: …)" with the
-/// reason; without, the error names the group, its value and the envelope.
+/// reason (and the grid, where refined); without, the error names the group, its value and the
+/// envelope.
+///
+/// With `law = "harmonic"` ([`MapSettings::law`]) the same from the embedded harmonic map at
+/// the contact's groups and Ψ_H ([`crate::law_map::mass_group`] with the ball's mass): the law
+/// carries the damping c = ĉ·w0·b/(δ_H·u_s), `method` reads "map (harmonic)", and outside the
+/// map the harmonic method at the map's settings (Ω = 0.005·ω_n, its amplitude and grid)
+/// characterizes the contact ("harmonic (outside the map: …)"). The map's error estimate of ĉ
+/// has no place in [`CharacterizedContact`] ([`crate::law_map::MapQuery::error`] holds it).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct MapCharacterizer {
     /// Settings of the method.
@@ -40,6 +55,9 @@ impl ContactCharacterizer for MapCharacterizer {
         let t0 = Instant::now();
         let ehl = c.ehl_contact();
         let groups = LawGroups::of(&ehl)?;
+        if self.settings.law == LawKind::Harmonic {
+            return self.characterize_harmonic(c, &groups, deadline, t0);
+        }
         let q = match LawMap::query_embedded(&groups) {
             Ok((q, _)) => q,
             Err(e) if self.settings.fallback => {
@@ -55,6 +73,64 @@ impl ContactCharacterizer for MapCharacterizer {
             }
             Err(e) => return Err(e.into()),
         };
+        Self::from_query(c, &q, "map".into(), t0)
+    }
+
+    fn method(&self) -> Method {
+        Method::Map(self.settings)
+    }
+
+    fn predictor(&self) -> Option<&dyn LoadPredictor> {
+        Some(self)
+    }
+}
+
+/// The first embedded map of the harmonic law (the harmonic fallback's settings).
+fn harmonic_map() -> Result<&'static LawMap, LawMapError> {
+    LawMap::embedded_maps()
+        .iter()
+        .find(|m| m.spec.law == LawKind::Harmonic)
+        .ok_or_else(|| LawMapError::OutsideEveryMap {
+            reasons: "no embedded map of the harmonic law".into(),
+            method: "harmonic",
+        })
+}
+
+impl MapCharacterizer {
+    /// The harmonic law from the embedded harmonic map at the contact's groups and its mass
+    /// group Ψ_H (the ball's mass); outside it, with `fallback`, the harmonic method at the
+    /// map's settings, its `method` reading "harmonic (outside the map: …)".
+    fn characterize_harmonic(
+        &self,
+        c: &ContactConditions,
+        groups: &LawGroups,
+        deadline: Option<Deadline>,
+        t0: Instant,
+    ) -> Result<CharacterizedContact, crate::Error> {
+        let ehl = c.ehl_contact();
+        let psi_h = mass_group(&ehl, c.ball_mass)?;
+        match LawMap::query_embedded_harmonic(groups, psi_h) {
+            Ok((q, _)) => Self::from_query(c, &q, "map (harmonic)".into(), t0),
+            Err(e) if self.settings.fallback => {
+                let mut r = HarmonicCharacterizer {
+                    settings: harmonic_map()?.spec.harmonic_settings(),
+                }
+                .characterize(c, deadline)?;
+                r.method = format!("harmonic (outside the map: {e})");
+                Ok(r)
+            }
+            Err(e) => Err(e.into()),
+        }
+    }
+
+    /// The contact's law from a map query, with the map's error estimate.
+    fn from_query(
+        c: &ContactConditions,
+        q: &MapQuery,
+        method: String,
+        t0: Instant,
+    ) -> Result<CharacterizedContact, crate::Error> {
+        let ehl = c.ehl_contact();
         let law = q.law.law(&ehl)?;
         let dh = hertz_deflection(&ehl)?;
         let w0 = c.load;
@@ -79,18 +155,10 @@ impl ContactCharacterizer for MapCharacterizer {
                 q.error.delta_f_hat * w0,
             ],
             converged: q.nodes_converged,
-            method: "map".into(),
+            method,
             seconds: t0.elapsed().as_secs_f64(),
             samples: 0,
         })
-    }
-
-    fn method(&self) -> Method {
-        Method::Map(self.settings)
-    }
-
-    fn predictor(&self) -> Option<&dyn LoadPredictor> {
-        Some(self)
     }
 }
 
@@ -98,7 +166,7 @@ impl LoadPredictor for MapCharacterizer {
     /// Inside a map, the map's own law: h = δ_Hertz(w0) − δ_map(w0), no EHL solution (so the
     /// loop starts from nearly the lubricated loads, as the EHL methods' predictor makes it do;
     /// from the dry loads a light contact can start where the fallback's family reaches the
-    /// hydrodynamic regime, docs/law_map.md §7). Outside every map, with `fallback`, the
+    /// hydrodynamic regime, docs/law_map.md §8). Outside every map, with `fallback`, the
     /// quasi-static method's predictor at the map's settings (one loosely converged steady EHL
     /// solution, [`predict_steady`]); without, the map's error (the loop keeps that contact's
     /// dry law for the start).
@@ -109,7 +177,17 @@ impl LoadPredictor for MapCharacterizer {
     ) -> Result<PredictedLaw, crate::Error> {
         let ehl = c.ehl_contact();
         let groups = LawGroups::of(&ehl)?;
-        match LawMap::query_embedded(&groups) {
+        let (query, settings) = match self.settings.law {
+            LawKind::QuasiStatic => (
+                LawMap::query_embedded(&groups),
+                LawMap::embedded().spec.settings().ehl,
+            ),
+            LawKind::Harmonic => (
+                LawMap::query_embedded_harmonic(&groups, mass_group(&ehl, c.ball_mass)?),
+                harmonic_map()?.spec.harmonic_settings().ehl,
+            ),
+        };
+        match query {
             Ok((q, _)) => {
                 let law = q.law.law(&ehl)?;
                 let h = HertzGeometry::new(c.rx, c.ry, c.e_reduced)?;
@@ -121,9 +199,7 @@ impl LoadPredictor for MapCharacterizer {
                     q.nodes_converged,
                 )?)
             }
-            Err(_) if self.settings.fallback => {
-                predict_steady(c, &LawMap::embedded().spec.settings().ehl, deadline)
-            }
+            Err(_) if self.settings.fallback => predict_steady(c, &settings, deadline),
             Err(e) => Err(e.into()),
         }
     }

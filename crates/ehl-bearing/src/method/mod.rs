@@ -727,8 +727,16 @@ pub enum Method {
 pub struct MapSettings {
     /// Outside the map's envelope, characterize the contact by the quasi-static method with the
     /// map's settings (true, the default; the contact's `method` then says so) or fail with an
-    /// error naming the group, its value and the envelope (false).
+    /// error naming the group, its value and the envelope (false). For the harmonic law the
+    /// fallback is the harmonic method at the harmonic map's settings.
     pub fallback: bool,
+    /// The law the maps give: the quasi-static law (the default, not written in results) or
+    /// the harmonic method's, with the damping c (`[method_options] law = "harmonic"`).
+    #[serde(
+        default,
+        skip_serializing_if = "crate::law_map::LawKind::is_quasi_static"
+    )]
+    pub law: crate::law_map::LawKind,
 }
 
 impl Default for MapSettings {
@@ -736,7 +744,10 @@ impl Default for MapSettings {
     /// the contacts (milliseconds) and by EHL solutions elsewhere, each contact naming its
     /// method.
     fn default() -> Self {
-        MapSettings { fallback: true }
+        MapSettings {
+            fallback: true,
+            law: crate::law_map::LawKind::QuasiStatic,
+        }
     }
 }
 
@@ -745,6 +756,9 @@ impl Default for MapSettings {
 #[serde(deny_unknown_fields)]
 struct MapOptions {
     fallback: Option<bool>,
+    law: Option<crate::law_map::LawKind>,
+    /// Refused with a message: only relative frequencies map.
+    frequency_rad_s: Option<f64>,
 }
 
 impl Default for Method {
@@ -923,8 +937,18 @@ impl Method {
             }
             "map" => {
                 let o: MapOptions = options(name, table)?;
+                if let Some(w) = o.frequency_rad_s {
+                    return Err(MethodError::setting(
+                        "method_options.frequency_rad_s",
+                        w,
+                        "none: the map method maps the harmonic law at a relative excitation \
+                         frequency only (Ω/ω_n = 0.005, the harmonic map's); an absolute Ω needs \
+                         method = \"harmonic\"",
+                    ));
+                }
                 Method::Map(MapSettings {
                     fallback: o.fallback.unwrap_or(MapSettings::default().fallback),
+                    law: o.law.unwrap_or_default(),
                 })
             }
             other => {

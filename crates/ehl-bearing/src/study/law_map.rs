@@ -5,10 +5,11 @@
 //! map from the node files alone, so the map is byte for byte the same however it was run.
 
 use super::{PointStore, Shard, StoreError};
-use crate::contact::{characterize_quasi_static, QuasiStaticSettings};
+use crate::contact::{characterize_harmonic, characterize_quasi_static};
+use crate::ehl::EhlSettings;
 use crate::law_map::{
-    DimensionlessLaw, Group, LawGroups, LawMap, LawMapError, LawMapSpec, MapQuery, NodeQuality,
-    FORMAT,
+    mass_for_group, DimensionlessLaw, Group, LawGroups, LawKind, LawMap, LawMapError, LawMapSpec,
+    MapQuery, NodeQuality, FORMAT,
 };
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -40,6 +41,9 @@ pub struct NodeRecord {
     pub spec: LawMapSpec,
     /// The node's groups.
     pub groups: LawGroups,
+    /// The node's mass group Ψ_H (harmonic maps).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub psi_h: Option<f64>,
     /// The dimensionless law (None if the characterization failed).
     pub law: Option<DimensionlessLaw>,
     /// The fit's quality.
@@ -55,22 +59,87 @@ fn stem(index: usize) -> String {
 }
 
 /// The dimensionless law at `g` by a direct quasi-static characterization with the spec's
-/// settings (on a contact with Rx = 5 mm and a steel pair's E′), with its fit quality.
+/// settings (on a contact with Rx = 5 mm and a steel pair's E′), with its fit quality. For a
+/// harmonic map use [`characterize_node`] (this needs the mass group too).
 pub fn characterize_groups(
     g: &LawGroups,
     spec: &LawMapSpec,
 ) -> Result<(DimensionlessLaw, NodeQuality), crate::Error> {
-    characterize_groups_with(g, &spec.settings())
+    characterize_node(g, None, spec)
 }
 
-/// The dimensionless law at `g` by a direct quasi-static characterization with `settings` (on
-/// the nodes' contact), with its fit quality.
-pub fn characterize_groups_with(
+/// The dimensionless law at `g` (and, for a harmonic map, the mass group `psi_h`) by a direct
+/// characterization with the spec's settings, on a contact with Rx = 5 mm and a steel pair's
+/// E′: the quasi-static method, or the harmonic method with the mass that gives the contact
+/// `psi_h` ([`mass_for_group`]). With its fit quality.
+pub fn characterize_node(
     g: &LawGroups,
-    settings: &QuasiStaticSettings,
+    psi_h: Option<f64>,
+    spec: &LawMapSpec,
+) -> Result<(DimensionlessLaw, NodeQuality), crate::Error> {
+    characterize_node_with(g, psi_h, spec, 1.0)
+}
+
+/// The steady solver's settings `ehl` with its tolerances (`tol_residual`, `tol_force`,
+/// `tol_film`) times `factor`, in (0, 1], and below 1 its cycle limit raised to
+/// 40·(1 + 2·log10(1/factor)) (dimensionless). Used for references tighter than a map's own
+/// nodes (`law-map check --tolerance-factor`; docs/law_map.md §5, "ΔF of heavy contacts").
+pub fn tightened(ehl: EhlSettings, factor: f64) -> Result<EhlSettings, LawMapError> {
+    if !(factor.is_finite() && factor > 0.0 && factor <= 1.0) {
+        return Err(LawMapError::Invalid {
+            field: "tolerance_factor".into(),
+            value: factor,
+            expected: "a number in (0, 1]".into(),
+        });
+    }
+    let mut s = ehl;
+    s.tol_residual *= factor;
+    s.tol_force *= factor;
+    s.tol_film *= factor;
+    if factor < 1.0 {
+        let limit = (40.0 * (1.0 + 2.0 * (1.0 / factor).log10())).ceil() as usize;
+        s.max_cycles = s.max_cycles.max(limit);
+    }
+    Ok(s)
+}
+
+/// [`characterize_node`] with the steady solver's tolerances times `tolerance_factor`
+/// ([`tightened`]; 1: the spec's own settings).
+pub fn characterize_node_with(
+    g: &LawGroups,
+    psi_h: Option<f64>,
+    spec: &LawMapSpec,
+    tolerance_factor: f64,
 ) -> Result<(DimensionlessLaw, NodeQuality), crate::Error> {
     let c = g.contact(NODE_RX, NODE_E)?;
-    let fit = characterize_quasi_static(&c, settings)?;
+    let fit = match (spec.law, psi_h) {
+        (LawKind::QuasiStatic, None) => {
+            let mut s = spec.settings();
+            s.ehl = tightened(s.ehl, tolerance_factor)?;
+            characterize_quasi_static(&c, &s)?
+        }
+        (LawKind::Harmonic, Some(psi)) => {
+            let mut s = spec.harmonic_settings();
+            s.ehl = tightened(s.ehl, tolerance_factor)?;
+            characterize_harmonic(&c, mass_for_group(&c, psi)?, &s)?
+        }
+        (law, psi) => {
+            return Err(LawMapError::Invalid {
+                field: "psi_h".into(),
+                value: psi.unwrap_or(f64::NAN),
+                expected: format!(
+                    "{} for a map of the {} law",
+                    if law == LawKind::Harmonic {
+                        "a value"
+                    } else {
+                        "none"
+                    },
+                    law.name()
+                ),
+            }
+            .into())
+        }
+    };
     let law = DimensionlessLaw::of_fit(&fit, &c)?;
     Ok((
         law,
@@ -112,7 +181,8 @@ pub fn under_resolved_nodes(spec: &LawMapSpec) -> Result<Vec<(usize, f64)>, LawM
 fn compute(index: usize, spec: &LawMapSpec) -> NodeRecord {
     let t0 = Instant::now();
     let groups = spec.node_groups(index);
-    let (law, quality, error) = match characterize_groups(&groups, spec) {
+    let psi_h = spec.node_psi_h(index);
+    let (law, quality, error) = match characterize_node(&groups, psi_h, spec) {
         Ok((l, q)) => (Some(l), Some(q), None),
         Err(e) => (None, None, Some(e.to_string())),
     };
@@ -120,6 +190,7 @@ fn compute(index: usize, spec: &LawMapSpec) -> NodeRecord {
         index,
         spec: spec.clone(),
         groups,
+        psi_h,
         law,
         quality,
         error,
@@ -304,6 +375,8 @@ pub fn assemble_map(
 pub struct HeldOutPoint {
     /// The groups.
     pub groups: LawGroups,
+    /// The mass group Ψ_H (harmonic maps).
+    pub psi_h: Option<f64>,
     /// The map's law and error estimate.
     pub map: MapQuery,
     /// The direct characterization's law.
@@ -317,7 +390,9 @@ pub struct HeldOutPoint {
     pub delta_f_error: f64,
     /// |ΔF̂_map − ΔF̂_direct| (ΔF error over the load).
     pub delta_f_error_hat: f64,
-    /// Whether every steady solution of the direct characterization met its tolerances.
+    /// |ĉ_map − ĉ_direct|/|ĉ_direct| (harmonic maps).
+    pub c_error: Option<f64>,
+    /// Whether every solution of the direct characterization met its tolerances.
     pub direct_converged: bool,
 }
 
@@ -326,17 +401,18 @@ pub struct HeldOutPoint {
 /// with the map. Points whose direct characterization fails are left out (the count returned
 /// says how many remain).
 pub fn held_out_check(map: &LawMap, count: usize, seed: u64) -> Vec<HeldOutPoint> {
-    held_out_check_with(map, count, seed, &map.spec.settings())
+    held_out_check_with(map, count, seed, 1.0)
 }
 
-/// [`held_out_check`] with the direct characterizations at `reference` instead of the map's own
-/// settings (e.g. the map's grid with tighter solver tolerances: the fitted ΔF of heavy contacts
-/// follows the steady solutions' iteration error, docs/law_map.md §5).
+/// [`held_out_check`] against direct characterizations with the steady solver's tolerances times
+/// `tolerance_factor` ([`tightened`]; the fitted ΔF of heavy contacts follows the steady
+/// solutions' iteration error, docs/law_map.md §5). Points whose direct characterization fails
+/// (an invalid factor among them) are left out.
 pub fn held_out_check_with(
     map: &LawMap,
     count: usize,
     seed: u64,
-    reference: &QuasiStaticSettings,
+    tolerance_factor: f64,
 ) -> Vec<HeldOutPoint> {
     let spec = &map.spec;
     let mut state = seed;
@@ -347,9 +423,10 @@ pub fn held_out_check_with(
         z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
         ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
     };
-    let points: Vec<LawGroups> = (0..count)
+    let points: Vec<(LawGroups, Option<f64>)> = (0..count)
         .map(|_| {
             let mut g = spec.node_groups(0);
+            let mut psi_h = None;
             for a in &spec.axes {
                 let (lo, hi) = if a.log {
                     (a.min.ln(), a.max.ln())
@@ -358,20 +435,29 @@ pub fn held_out_check_with(
                 };
                 let t = lo + (hi - lo) * next();
                 let v = if a.log { t.exp() } else { t };
-                set_group(&mut g, a.group, v.clamp(a.min, a.max));
+                let v = v.clamp(a.min, a.max);
+                if a.group == Group::PsiH {
+                    psi_h = Some(v);
+                }
+                set_group(&mut g, a.group, v);
             }
-            g
+            (g, psi_h)
         })
         .collect();
     points
         .par_iter()
-        .filter_map(|g| {
-            let q = map.query(g).ok()?;
-            let (direct, quality) = characterize_groups_with(g, reference).ok()?;
+        .filter_map(|(g, psi_h)| {
+            let q = match psi_h {
+                Some(p) => map.query_harmonic(g, *p).ok()?,
+                None => map.query(g).ok()?,
+            };
+            let (direct, quality) =
+                characterize_node_with(g, *psi_h, spec, tolerance_factor).ok()?;
             let a0 = direct.approach_hat;
             let qd = direct.force_hat(a0);
             Some(HeldOutPoint {
                 groups: *g,
+                psi_h: *psi_h,
                 map: q,
                 direct,
                 force_error: (q.law.force_hat(a0) - qd).abs() / qd,
@@ -379,6 +465,10 @@ pub fn held_out_check_with(
                 delta_f_error: (q.law.delta_f_hat - direct.delta_f_hat).abs()
                     / direct.delta_f_hat.abs(),
                 delta_f_error_hat: (q.law.delta_f_hat - direct.delta_f_hat).abs(),
+                c_error: match (q.law.c_hat, direct.c_hat) {
+                    (Some(a), Some(b)) => Some((a - b).abs() / b.abs()),
+                    _ => None,
+                },
                 direct_converged: quality.converged,
             })
         })
@@ -392,5 +482,6 @@ fn set_group(g: &mut LawGroups, grp: Group, v: f64) {
         Group::RyOverRx => g.ry_over_rx = v,
         Group::AlphaP0 => g.alpha_p0 = Some(v),
         Group::LnEta0Ratio => g.ln_eta0_ratio = Some(v),
+        Group::PsiH => {}
     }
 }

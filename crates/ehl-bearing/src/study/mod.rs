@@ -30,9 +30,9 @@ mod trends;
 pub use crate::force_element::{JacobianMode, TrendEvalOptions, TrendForce, TrendForceElement};
 pub use crate::trends::{RaceTrends, TrendBearing, TrendCurve, TrendModel, TREND_VERSION};
 pub use law_map::{
-    assemble_map, characterize_groups, characterize_groups_with, generate_map, held_out_check,
-    held_out_check_with, node_film_resolution, shards_with_nodes_left, under_resolved_nodes,
-    HeldOutPoint, MapGeneration, MapGenerationError, NodeRecord,
+    assemble_map, characterize_groups, characterize_node, characterize_node_with, generate_map,
+    held_out_check, held_out_check_with, node_film_resolution, shards_with_nodes_left, tightened,
+    under_resolved_nodes, HeldOutPoint, MapGeneration, MapGenerationError, NodeRecord,
 };
 pub use point::{
     points_csv, results_csv, ContactLubrication, PointRecord, PointSpec, ResultRow,
