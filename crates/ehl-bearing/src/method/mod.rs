@@ -31,7 +31,7 @@ use std::time::Instant;
 use thiserror::Error;
 
 mod map;
-pub use map::MapCharacterizer;
+pub use map::{fallback_settings, MapCharacterizer};
 
 /// Errors of the method settings and of the method adapters.
 #[derive(Debug, Clone, PartialEq, Error)]
