@@ -334,6 +334,31 @@ fn contacts_table(s: &mut String, c: &BearingCharacterization) {
         100.0 * c.settings.load_reuse_tolerance,
         per_iteration.join(", ")
     );
+    // The method of each final law (a map's fallback names itself), counted in the contacts'
+    // order of first appearance.
+    let mut methods: Vec<(String, usize, Vec<String>)> = Vec::new();
+    for r in &c.contacts {
+        let label = ehl_bearing::characterize::method_label(&r.characterized.method);
+        let who = format!("{} {:?}", r.ball, r.race).to_lowercase();
+        match methods.iter_mut().find(|(m, _, _)| *m == label) {
+            Some((_, n, w)) => {
+                *n += 1;
+                w.push(who);
+            }
+            None => methods.push((label, 1, vec![who])),
+        }
+    }
+    let list: Vec<String> = methods
+        .iter()
+        .map(|(m, n, w)| {
+            if methods.len() > 1 && *n <= 4 {
+                format!("{n} by {m} (ball {})", w.join(", "))
+            } else {
+                format!("{n} by {m}")
+            }
+        })
+        .collect();
+    let _ = writeln!(s, "method of the final laws: {}.", list.join("; "));
 }
 
 /// The EHL and dry displacements and stiffness diagonals.

@@ -167,6 +167,61 @@ fn a_spec_with_a_missing_group_is_refused() {
     assert!(!o.status.success() && e.contains("alpha_p0"), "{e}");
 }
 
+/// The map method says which contacts its fallback characterized: the seed case at half its
+/// loads (5000 rpm) has its light inner contact (ball 7, M ≈ 108 < 120) outside every map, so the
+/// text names it under the contact table and the `method` column of contacts.csv (and the JSON's
+/// contacts) reads `quasi-static (outside the map)` for it and `map` for the 21 others.
+#[test]
+fn the_map_method_names_the_contacts_of_its_fallback() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/7006.toml"
+    ))
+    .unwrap();
+    assert_eq!(text.matches("= 1000.0").count(), 3);
+    let case = dir.path().join("half.toml");
+    std::fs::write(&case, text.replace("= 1000.0", "= 500.0")).unwrap();
+    let out = dir.path().join("out");
+    let o = bin()
+        .arg("characterize")
+        .arg(&case)
+        .args(["--method", "map", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        stdout.contains(
+            "method of the final laws: 21 by map; 1 by quasi-static (outside the map) (ball 7 inner)."
+        ),
+        "{stdout}"
+    );
+    let csv = std::fs::read_to_string(out.join("contacts.csv")).unwrap();
+    assert!(csv.lines().next().unwrap().ends_with(",method"), "{csv}");
+    let methods: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap())
+        .collect();
+    assert_eq!(methods.len(), 22);
+    assert_eq!(methods.iter().filter(|m| **m == "map").count(), 21, "{csv}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("characterization.json")).unwrap())
+            .unwrap();
+    let fallback: Vec<&serde_json::Value> = json["contacts"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|c| c["method"] != "map")
+        .collect();
+    assert_eq!(fallback.len(), 1);
+    assert_eq!(fallback[0]["method"], "quasi-static (outside the map)");
+    assert_eq!(fallback[0]["ball"], 7);
+    assert_eq!(fallback[0]["race"], "inner");
+}
+
 /// The map method feeds the consumers of fitted laws: a load × speed study of the 218 example
 /// (inside the second embedded map's envelope) converges at every point, fits its trend curves
 /// and writes them; `coefficients --method map` writes ROSS's table. Milliseconds per point.

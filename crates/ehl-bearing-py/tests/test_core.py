@@ -236,3 +236,28 @@ def test_map_method_characterizes_the_218_example(examples):
     assert co[0]["converged"] and co[0]["source"] == "characterization (map)"
     row = [float(x) for x in eb.ross_table_csv(co).splitlines()[1].split(",")]
     np.testing.assert_allclose(row[4], ch.stiffness[2][2], rtol=1e-3)
+
+
+def test_map_method_gives_the_harmonic_law_from_the_case_file(examples):
+    """`method = "map"` with `[method_options] law = "harmonic"` in the case file: the seed
+    case at 3000 rpm lies inside the embedded harmonic map (seed oil, Ψ_H 0.4–8), so every
+    contact's law comes from it with its damping c, and the fitted-law element carries that
+    damping (a damping matrix with a positive axial diagonal)."""
+    text = (examples / "7006.toml").read_text()
+    assert "inner_speed_rpm = 5000.0" in text
+    text = text.replace("inner_speed_rpm = 5000.0", "inner_speed_rpm = 3000.0")
+    case = eb.Case.from_toml(
+        'method = "map"\n' + text + '\n[method_options]\nlaw = "harmonic"\n', "7006 at 3000 rpm"
+    )
+    ch = eb.characterize(case)
+    assert ch.converged
+    rep = ch.report()
+    assert rep["method"]["name"] == "map"
+    assert len(rep["contacts"]) == 22
+    for c in rep["contacts"]:
+        assert c["method"] == "map (harmonic)", c["method"]
+        assert c["damping_n_s_m"] > 0.0
+    _, _, damping = ch.law_element().evaluate(
+        ch.displacement, inner_speed_rad_s=case.inner_speed_rad_s
+    )
+    assert damping[0, 0] > 0.0

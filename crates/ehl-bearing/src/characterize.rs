@@ -1314,6 +1314,21 @@ pub struct ContactRow {
     pub fit_approach_max_m: f64,
     /// Whether the equilibrium approach is outside the fitted range.
     pub outside_fit_range: bool,
+    /// The method that characterized the law ([`method_label`]): `quasi-static`, `harmonic`,
+    /// `hertz`, `map`, `map (harmonic)`, or with the map's fallback e.g. `quasi-static (outside the
+    /// map)` (empty in rows written before this column existed).
+    #[serde(default)]
+    pub method: String,
+}
+
+/// The label of a characterized contact's method for reports and CSV cells: its `method` without
+/// the reason a map's fallback gives after "(outside the map: " (the row's M, L and Ry/Rx say
+/// where the contact lies), so it holds no comma.
+pub fn method_label(method: &str) -> String {
+    match method.find("(outside the map: ") {
+        Some(i) => format!("{}(outside the map)", &method[..i]),
+        None => method.replace(',', ";"),
+    }
 }
 
 fn finite_or_none(v: f64) -> Option<f64> {
@@ -1368,6 +1383,7 @@ impl ContactRow {
             fit_approach_min_m: lo,
             fit_approach_max_m: hi,
             outside_fit_range: cc.law.outside_fit_range(c.state.deflection),
+            method: method_label(&cc.method),
         }
     }
 }

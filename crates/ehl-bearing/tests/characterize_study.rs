@@ -410,6 +410,7 @@ fn manufactured_rows(d_of: impl Fn(f64, f64) -> f64) -> Vec<ResultRow> {
                         fit_approach_min_m: delta * 0.9,
                         fit_approach_max_m: delta * 1.1,
                         outside_fit_range: false,
+                        method: "synthetic".into(),
                     },
                     lubrication: None,
                     starvation: None,

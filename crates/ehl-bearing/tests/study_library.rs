@@ -562,7 +562,7 @@ fn lubricated_studies_carry_the_lubrication_figures() {
         .lines()
         .next()
         .unwrap()
-        .ends_with(",outside_fit_range"));
+        .ends_with(",outside_fit_range,method"));
 }
 
 /// The roughness and the oil description are part of a point's spec: the point files of a study
