@@ -3,7 +3,8 @@
 `ehl-bearing` processes (start, case, loop, output), best and median of N runs:
 
 - the seed case (examples/7006.toml) at 3000, 4000 and 5000 rpm by `characterize … --json`;
-- the two bearings with other oils (examples/7205_vg68.toml, examples/7210_vg22.toml);
+- the two bearings with other oils (examples/7205_vg68.toml, examples/7210_vg22.toml), and the
+  7210 at 7500 rpm (a slow large bearing: the 129² map);
 - the seed study (examples/study_7006.toml: 3 speeds × 4 load scales, 12 points) by `study`.
 
 Each by the map (with the quasi-static fallback for contacts outside its envelope), the
@@ -82,6 +83,12 @@ def main() -> None:
             case_variants(f"seed {rpm} rpm", text, True)
         for name in ("7205_vg68", "7210_vg22"):
             case_variants(name, (ROOT / "examples" / f"{name}.toml").read_text(), False)
+        # A slow large bearing: the 7210 at 7500 rpm lies in the eighth map (L 8–12.5, grid 129²),
+        # so the quasi-static method at 129² is the one it reproduces.
+        slow = (ROOT / "examples" / "7210_vg22.toml").read_text()
+        assert "inner_speed_rpm = 12000.0" in slow
+        slow = slow.replace("inner_speed_rpm = 12000.0", "inner_speed_rpm = 7500.0")
+        case_variants("7210_vg22 at 7500 rpm", slow, True)
 
         study = (ROOT / "examples" / "study_7006.toml").read_text()
         study = study.replace('case = "7006.toml"', f'case = "{ROOT / "examples" / "7006.toml"}"')
