@@ -113,6 +113,21 @@ pub struct MapAxis {
 }
 
 impl MapAxis {
+    /// Whether `v` lies in the axis's range; outside (or NaN), the error naming the group, the
+    /// value and the range.
+    fn check(&self, v: f64) -> Result<(), LawMapError> {
+        if v >= self.min && v <= self.max {
+            Ok(())
+        } else {
+            Err(LawMapError::OutsideEnvelope {
+                group: self.group.name().into(),
+                value: v,
+                min: self.min,
+                max: self.max,
+            })
+        }
+    }
+
     fn coord(&self, v: f64) -> f64 {
         if self.log {
             v.ln()
@@ -514,15 +529,7 @@ impl LawMapSpec {
         // The mass group is no group of the steady problem: the query checks it
         // (`LawMap::query_harmonic`).
         for a in self.axes.iter().filter(|a| a.group != Group::PsiH) {
-            let v = a.group.get(g).unwrap_or(f64::NAN);
-            if !(v >= a.min && v <= a.max) {
-                return Err(LawMapError::OutsideEnvelope {
-                    group: a.group.name().into(),
-                    value: v,
-                    min: a.min,
-                    max: a.max,
-                });
-            }
+            a.check(a.group.get(g).unwrap_or(f64::NAN))?;
         }
         Ok(())
     }
@@ -792,15 +799,7 @@ impl LawMap {
             grp => grp.get(g).unwrap_or(f64::NAN),
         };
         for a in axes.iter().filter(|a| a.group == Group::PsiH) {
-            let v = value(a);
-            if !(v >= a.min && v <= a.max) {
-                return Err(LawMapError::OutsideEnvelope {
-                    group: a.group.name().into(),
-                    value: v,
-                    min: a.min,
-                    max: a.max,
-                });
-            }
+            a.check(value(a))?;
         }
         let t: Vec<f64> = axes.iter().map(|a| a.coord(value(a))).collect();
         let full: Vec<Vec<f64>> = axes.iter().zip(&t).map(|(a, &t)| a.basis(t, 1)).collect();
