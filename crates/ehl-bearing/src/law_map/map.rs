@@ -363,6 +363,22 @@ impl LawMapSpec {
         if !(self.amplitude.is_finite() && self.amplitude > 0.0 && self.amplitude <= 0.9) {
             return Err(inv("amplitude", self.amplitude, "0 < ε ≤ 0.9"));
         }
+        self.validate_law()?;
+        // Every node's groups valid (ranges of M, L, Ry/Rx).
+        self.node_groups(0).validate()?;
+        self.node_groups(self.node_count() - 1).validate()?;
+        Ok(())
+    }
+
+    /// The settings of the spec's law: `points` for the quasi-static law; `frequency_fraction`,
+    /// one Ψ_H axis and the harmonic method's settings for the harmonic one; none of the other
+    /// law's.
+    fn validate_law(&self) -> Result<(), LawMapError> {
+        let inv = |f: &str, v: f64, e: &str| LawMapError::Invalid {
+            field: f.into(),
+            value: v,
+            expected: e.into(),
+        };
         let psi_axes = self.axes.iter().filter(|a| a.group == Group::PsiH).count();
         match self.law {
             LawKind::QuasiStatic => {
@@ -422,9 +438,6 @@ impl LawMapSpec {
                     .map_err(|e| inv("harmonic settings", f64::NAN, &e.to_string()))?;
             }
         }
-        // Every node's groups valid (ranges of M, L, Ry/Rx).
-        self.node_groups(0).validate()?;
-        self.node_groups(self.node_count() - 1).validate()?;
         Ok(())
     }
 
