@@ -74,7 +74,8 @@ impl Group {
         }
     }
 
-    fn set(self, g: &mut LawGroups, v: f64) {
+    /// Sets group `self` of `g` to `v` (nothing for Ψ_H, which is no group of [`LawGroups`]).
+    pub(crate) fn set(self, g: &mut LawGroups, v: f64) {
         match self {
             Group::M => g.m = v,
             Group::L => g.l = v,

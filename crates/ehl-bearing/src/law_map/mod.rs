@@ -25,7 +25,7 @@
 use crate::contact::ContactFit;
 use crate::ehl::EhlContact;
 use crate::fit::FittedLaw;
-use crate::hertz::HertzGeometry;
+use crate::hertz::{HertzContact, HertzGeometry};
 use crate::material::{DensityModel, Lubricant, ViscosityModel, ROELANDS_LN_ETA_INF, ROELANDS_P0};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -340,18 +340,21 @@ impl LawGroups {
 /// The Hertz deflection δ_H of a contact at its load, m: the approach scale of the
 /// dimensionless law.
 pub fn hertz_deflection(c: &EhlContact) -> Result<f64, LawMapError> {
+    Ok(hertz_at_load(c)?.deflection)
+}
+
+/// The dry Hertz contact of `c` at its load (the scales of the dimensionless laws).
+fn hertz_at_load(c: &EhlContact) -> Result<HertzContact, LawMapError> {
     let g = HertzGeometry::new(c.rx, c.ry, c.e_reduced)
         .map_err(|e| invalid("rx, ry, e_reduced", c.ry / c.rx, &e.to_string()))?;
-    Ok(g.contact(positive("load [N]", c.load)?).deflection)
+    Ok(g.contact(positive("load [N]", c.load)?))
 }
 
 /// The damping scale w0·b/(δ_H·u_s) of a contact, N·s/m: c = ĉ·w0·b/(δ_H·u_s), with b the
 /// Hertz semi-width along the rolling direction and δ_H the Hertz deflection at w0 (the time
 /// the oil takes to cross b, b/u_s, over the Hertz secant compliance δ_H/w0).
 pub fn damping_scale(c: &EhlContact) -> Result<f64, LawMapError> {
-    let g = HertzGeometry::new(c.rx, c.ry, c.e_reduced)
-        .map_err(|e| invalid("rx, ry, e_reduced", c.ry / c.rx, &e.to_string()))?;
-    let h = g.contact(positive("load [N]", c.load)?);
+    let h = hertz_at_load(c)?;
     Ok(c.load * h.semi_minor / (h.deflection * positive("sum_velocity [m/s]", c.sum_velocity)?))
 }
 
@@ -362,9 +365,7 @@ pub fn damping_scale(c: &EhlContact) -> Result<f64, LawMapError> {
 /// Ψ = ω_n·b/u_s of the lubricated contact's linearized stiffness.
 pub fn mass_group(c: &EhlContact, mass: f64) -> Result<f64, LawMapError> {
     let m = positive("ball mass [kg]", mass)?;
-    let g = HertzGeometry::new(c.rx, c.ry, c.e_reduced)
-        .map_err(|e| invalid("rx, ry, e_reduced", c.ry / c.rx, &e.to_string()))?;
-    let h = g.contact(positive("load [N]", c.load)?);
+    let h = hertz_at_load(c)?;
     Ok(
         h.semi_minor / positive("sum_velocity [m/s]", c.sum_velocity)?
             * (c.load / (h.deflection * m)).sqrt(),
@@ -375,9 +376,7 @@ pub fn mass_group(c: &EhlContact, mass: f64) -> Result<f64, LawMapError> {
 /// m = (w0/δ_H)·(b/(u_s·Ψ_H))².
 pub fn mass_for_group(c: &EhlContact, psi_h: f64) -> Result<f64, LawMapError> {
     let psi = positive("psi_h", psi_h)?;
-    let g = HertzGeometry::new(c.rx, c.ry, c.e_reduced)
-        .map_err(|e| invalid("rx, ry, e_reduced", c.ry / c.rx, &e.to_string()))?;
-    let h = g.contact(positive("load [N]", c.load)?);
+    let h = hertz_at_load(c)?;
     let t = h.semi_minor / (positive("sum_velocity [m/s]", c.sum_velocity)? * psi);
     Ok(c.load / h.deflection * t * t)
 }

@@ -401,19 +401,20 @@ pub struct HeldOutPoint {
 /// with the map. Points whose direct characterization fails are left out (the count returned
 /// says how many remain).
 pub fn held_out_check(map: &LawMap, count: usize, seed: u64) -> Vec<HeldOutPoint> {
-    held_out_check_with(map, count, seed, 1.0)
+    held_out_check_with(map, count, seed, 1.0).expect("the tolerance factor 1 is valid")
 }
 
 /// [`held_out_check`] against direct characterizations with the steady solver's tolerances times
 /// `tolerance_factor` ([`tightened`]; the fitted ΔF of heavy contacts follows the steady
 /// solutions' iteration error, docs/law_map.md §5). Points whose direct characterization fails
-/// (an invalid factor among them) are left out.
+/// are left out; a factor outside (0, 1] is an error before any point is drawn.
 pub fn held_out_check_with(
     map: &LawMap,
     count: usize,
     seed: u64,
     tolerance_factor: f64,
-) -> Vec<HeldOutPoint> {
+) -> Result<Vec<HeldOutPoint>, LawMapError> {
+    tightened(map.spec.settings().ehl, tolerance_factor)?;
     let spec = &map.spec;
     let mut state = seed;
     let mut next = move || {
@@ -439,12 +440,12 @@ pub fn held_out_check_with(
                 if a.group == Group::PsiH {
                     psi_h = Some(v);
                 }
-                set_group(&mut g, a.group, v);
+                a.group.set(&mut g, v);
             }
             (g, psi_h)
         })
         .collect();
-    points
+    Ok(points
         .par_iter()
         .filter_map(|(g, psi_h)| {
             let q = match psi_h {
@@ -472,16 +473,5 @@ pub fn held_out_check_with(
                 direct_converged: quality.converged,
             })
         })
-        .collect()
-}
-
-fn set_group(g: &mut LawGroups, grp: Group, v: f64) {
-    match grp {
-        Group::M => g.m = v,
-        Group::L => g.l = v,
-        Group::RyOverRx => g.ry_over_rx = v,
-        Group::AlphaP0 => g.alpha_p0 = Some(v),
-        Group::LnEta0Ratio => g.ln_eta0_ratio = Some(v),
-        Group::PsiH => {}
-    }
+        .collect())
 }
