@@ -508,6 +508,7 @@ fn rescale(
             src.std_errors[1],
             src.std_errors[2] * e * r * r,
         ],
+        c_std_error: src.c_std_error,
         converged: src.converged,
         method: src.method.clone(),
         seconds: 0.0,
@@ -1275,6 +1276,10 @@ pub struct ContactRow {
     pub d_std_error: Option<f64>,
     /// Standard error of ΔF, N (null if undefined).
     pub delta_f_std_error_n: Option<f64>,
+    /// Standard error of the damping coefficient c, N·s/m (the harmonic map: its error estimate
+    /// of c; null for laws without damping, or in rows written before this column existed).
+    #[serde(default)]
+    pub damping_std_error_n_s_m: Option<f64>,
     /// Moes M at the characterization load.
     pub moes_m: f64,
     /// Moes L.
@@ -1360,6 +1365,7 @@ impl ContactRow {
             k_std_error: finite_or_none(cc.std_errors[0]),
             d_std_error: finite_or_none(cc.std_errors[1]),
             delta_f_std_error_n: finite_or_none(cc.std_errors[2]),
+            damping_std_error_n_s_m: cc.c_std_error.and_then(finite_or_none),
             moes_m: cc.moes_m,
             moes_l: cc.moes_l,
             ry_over_rx: cc.ry_over_rx,

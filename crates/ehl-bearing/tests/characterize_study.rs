@@ -391,6 +391,7 @@ fn manufactured_rows(d_of: impl Fn(f64, f64) -> f64) -> Vec<ResultRow> {
                         k_std_error: None,
                         d_std_error: None,
                         delta_f_std_error_n: None,
+                        damping_std_error_n_s_m: None,
                         moes_m: 1.0,
                         moes_l: 1.0,
                         ry_over_rx: 10.0,

@@ -11,11 +11,11 @@ use super::{
     QuasiStaticCharacterizer,
 };
 use crate::budget::Deadline;
-use crate::contact::QuasiStaticSettings;
-use crate::ehl::{film_resolution, EhlContact, FILM_RESOLUTION_MIN};
+use crate::contact::{HarmonicSettings, QuasiStaticSettings};
+use crate::ehl::{film_resolution, EhlContact, EhlSettings, FILM_RESOLUTION_MIN};
 use crate::hertz::HertzGeometry;
 use crate::law_map::{
-    hertz_deflection, mass_group, LawGroups, LawKind, LawMap, LawMapError, MapQuery,
+    damping_scale, hertz_deflection, mass_group, LawGroups, LawKind, LawMap, LawMapError, MapQuery,
 };
 use crate::ContactLaw;
 use std::time::Instant;
@@ -28,8 +28,8 @@ use std::time::Instant;
 /// force at the nominal approach plus the nodes' own fit residual (N), `std_errors` the error
 /// estimates of (K, d, ΔF) (the difference of the two interpolants, not standard errors),
 /// `rms_residual` and `r_squared` those of the nearest nodes' fits, `samples` 0, `method`
-/// "map". Outside it, with `fallback`, the quasi-static method with the first map's settings
-/// (on 129² or 257² where 65² does not resolve the contact's film, [`fallback_settings`])
+/// "map" (with the harmonic map, `c_std_error` its error estimate of c). Outside it, with `fallback`, the quasi-static method with the first map's settings
+/// (on 257² where 129² does not resolve the contact's film, [`fallback_settings`])
 /// characterizes the contact and its `method` reads "quasi-static (outside the map: …)" with the
 /// reason (and the grid, where refined); without, the error names the group, its value and the
 /// envelope.
@@ -37,8 +37,9 @@ use std::time::Instant;
 /// With `law = "harmonic"` ([`MapSettings::law`]) the same from the embedded harmonic map at
 /// the contact's groups and Ψ_H ([`crate::law_map::mass_group`] with the ball's mass): the law
 /// carries the damping c = ĉ·w0·b/(δ_H·u_s), `method` reads "map (harmonic)", and outside the
-/// map the harmonic method at the map's settings (Ω = 0.005·ω_n, its amplitude and grid)
-/// characterizes the contact ("harmonic (outside the map: …)"). The map's error estimate of ĉ
+/// map the harmonic method at the map's settings (Ω = 0.005·ω_n, its amplitude and grid, refined
+/// where 65² does not resolve the film, [`harmonic_fallback_settings`]) characterizes the
+/// contact ("harmonic (outside the map: …)"). The map's error estimate of ĉ
 /// has no place in [`CharacterizedContact`] ([`crate::law_map::MapQuery::error`] holds it).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct MapCharacterizer {
@@ -112,11 +113,14 @@ impl MapCharacterizer {
         match LawMap::query_embedded_harmonic(groups, psi_h) {
             Ok((q, _)) => Self::from_query(c, &q, "map (harmonic)".into(), t0),
             Err(e) if self.settings.fallback => {
-                let mut r = HarmonicCharacterizer {
-                    settings: harmonic_map()?.spec.harmonic_settings(),
-                }
-                .characterize(c, deadline)?;
-                r.method = format!("harmonic (outside the map: {e})");
+                let settings = harmonic_fallback_settings(&ehl)?;
+                let mut r = HarmonicCharacterizer { settings }.characterize(c, deadline)?;
+                r.method = if settings.ehl.grid == harmonic_map()?.spec.grid {
+                    format!("harmonic (outside the map: {e})")
+                } else {
+                    let n = settings.ehl.grid;
+                    format!("harmonic on {n} × {n} to resolve the film (outside the map: {e})")
+                };
                 Ok(r)
             }
             Err(e) => Err(e.into()),
@@ -154,6 +158,10 @@ impl MapCharacterizer {
                 q.error.d,
                 q.error.delta_f_hat * w0,
             ],
+            c_std_error: match q.error.c_hat {
+                Some(e) if law.c().is_some() => Some(e * damping_scale(&ehl)?),
+                _ => None,
+            },
             converged: q.nodes_converged,
             method,
             seconds: t0.elapsed().as_secs_f64(),
@@ -167,8 +175,8 @@ impl LoadPredictor for MapCharacterizer {
     /// loop starts from nearly the lubricated loads, as the EHL methods' predictor makes it do;
     /// from the dry loads a light contact can start where the fallback's family reaches the
     /// hydrodynamic regime, docs/law_map.md §8). Outside every map, with `fallback`, the
-    /// quasi-static method's predictor at the map's settings (one loosely converged steady EHL
-    /// solution, [`predict_steady`]); without, the map's error (the loop keeps that contact's
+    /// quasi-static method's predictor (one loosely converged steady EHL solution,
+    /// [`predict_steady`]) at [`predictor_settings`]; without, the map's error (the loop keeps that contact's
     /// dry law for the start).
     fn predict(
         &self,
@@ -180,11 +188,11 @@ impl LoadPredictor for MapCharacterizer {
         let (query, settings) = match self.settings.law {
             LawKind::QuasiStatic => (
                 LawMap::query_embedded(&groups),
-                LawMap::embedded().spec.settings().ehl,
+                predictor_settings(&ehl).ehl,
             ),
             LawKind::Harmonic => (
                 LawMap::query_embedded_harmonic(&groups, mass_group(&ehl, c.ball_mass)?),
-                harmonic_map()?.spec.harmonic_settings().ehl,
+                harmonic_fallback_settings(&ehl)?.ehl,
             ),
         };
         match query {
@@ -205,20 +213,52 @@ impl LoadPredictor for MapCharacterizer {
     }
 }
 
-/// The fallback's settings for contact `c`: the first embedded map's (grid 65²), or the same on
-/// 129² or, failing that, 257² where the coarser grid does not resolve the contact's film
-/// ([`film_resolution`] below [`FILM_RESOLUTION_MIN`]: there 65² gives limit cycles or negative
-/// films and a fitted ΔF several percent off, docs/ehl.md §5.9). 257² is kept even if it is
-/// still short of the threshold (the finest grid the fallback uses).
+/// The fallback's settings for contact `c`: the first embedded map's (grid 129²), or the same
+/// on 257² where 129² does not resolve the contact's film ([`film_resolution`] below
+/// [`FILM_RESOLUTION_MIN`]: there a grid gives limit cycles or negative films and a fitted ΔF
+/// several percent off, docs/ehl.md §5.9). 257² is kept even if it is still short of the
+/// threshold (the finest grid the fallback uses).
 pub fn fallback_settings(c: &EhlContact) -> QuasiStaticSettings {
+    refined(c, LawMap::embedded().spec.settings())
+}
+
+/// The settings of the map method's load predictor for a contact outside every map: the
+/// fallback's but on the coarsest of 65², 129², 257² that resolves the contact's film (the
+/// predictor's one loosely converged solution gives the loop its start, not the law; on 65² it
+/// costs a quarter of 129²).
+pub fn predictor_settings(c: &EhlContact) -> QuasiStaticSettings {
     let mut s = LawMap::embedded().spec.settings();
+    s.ehl.grid = s.ehl.grid.min(65);
+    refined(c, s)
+}
+
+/// `s` on 129² or, failing that, 257² where its grid does not resolve the film of `c`.
+fn refined(c: &EhlContact, mut s: QuasiStaticSettings) -> QuasiStaticSettings {
+    s.ehl = refined_ehl(c, s.ehl);
+    s
+}
+
+/// `ehl` on 129² or, failing that, 257² where its grid does not resolve the film of `c`.
+fn refined_ehl(c: &EhlContact, mut ehl: EhlSettings) -> EhlSettings {
     for grid in [129, 257] {
-        match film_resolution(c, &s.ehl) {
-            Ok(r) if r < FILM_RESOLUTION_MIN && s.ehl.grid < grid => s.ehl.grid = grid,
+        if ehl.grid >= grid {
+            continue;
+        }
+        match film_resolution(c, &ehl) {
+            Ok(r) if r < FILM_RESOLUTION_MIN => ehl.grid = grid,
             _ => break,
         }
     }
-    s
+    ehl
+}
+
+/// The harmonic fallback's settings for contact `c`: the harmonic map's (grid 65²,
+/// Ω = 0.005·ω_n), on 129² or 257² where 65² does not resolve the contact's film (as
+/// [`fallback_settings`]).
+pub fn harmonic_fallback_settings(c: &EhlContact) -> Result<HarmonicSettings, LawMapError> {
+    let mut s = harmonic_map()?.spec.harmonic_settings();
+    s.ehl = refined_ehl(c, s.ehl);
+    Ok(s)
 }
 
 #[cfg(test)]
@@ -241,30 +281,58 @@ mod tests {
         .unwrap()
     }
 
-    /// The fallback keeps the maps' 65² where it resolves the film and refines where it does
-    /// not: each chosen grid is the first of 65², 129², 257² with the film at ≥ 10 ΔX² (257² the
-    /// last resort).
+    /// The fallback keeps the maps' 129² where it resolves the film and refines where it does
+    /// not; the predictor and the harmonic fallback start from 65². Each chosen grid is the first with the film at
+    /// ≥ 10 ΔX² (257² the last resort).
     #[test]
-    fn the_fallback_refines_the_grid_where_65_does_not_resolve_the_film() {
+    fn the_fallback_refines_the_grid_where_129_does_not_resolve_the_film() {
         let ratio = |c: &EhlContact, grid: usize| {
             let mut s = LawMap::embedded().spec.settings().ehl;
             s.grid = grid;
             film_resolution(c, &s).unwrap()
         };
-        for (m, l, grid) in [(300.0, 20.0, 65), (3000.0, 10.0, 129), (20000.0, 8.0, 257)] {
+        assert_eq!(LawMap::embedded().spec.grid, 129);
+        for (m, l, fallback, coarse) in [
+            (300.0, 20.0, 129, 65),
+            (3000.0, 10.0, 129, 129),
+            (20000.0, 8.0, 257, 257),
+        ] {
             let c = contact(m, l);
-            let s = fallback_settings(&c);
-            assert_eq!(s.ehl.grid, grid, "M {m}, L {l}: {}", ratio(&c, s.ehl.grid));
-            if grid > 65 {
-                assert!(ratio(&c, grid / 2 + 1) < FILM_RESOLUTION_MIN);
+            let quasi_static = LawMap::embedded().spec.settings().ehl;
+            let harmonic = harmonic_map().unwrap().spec.harmonic_settings().ehl;
+            assert_eq!(harmonic.grid, 65);
+            for (s, grid, base) in [
+                (fallback_settings(&c).ehl, fallback, quasi_static),
+                (
+                    predictor_settings(&c).ehl,
+                    coarse,
+                    EhlSettings {
+                        grid: 65,
+                        ..quasi_static
+                    },
+                ),
+                (
+                    harmonic_fallback_settings(&c).unwrap().ehl,
+                    coarse,
+                    harmonic,
+                ),
+            ] {
+                assert_eq!(s.grid, grid, "M {m}, L {l}: {}", ratio(&c, s.grid));
+                if grid > base.grid {
+                    assert!(ratio(&c, grid / 2 + 1) < FILM_RESOLUTION_MIN);
+                }
+                if grid < 257 {
+                    assert!(ratio(&c, grid) >= FILM_RESOLUTION_MIN);
+                }
+                // Only the grid changes.
+                assert_eq!(
+                    EhlSettings {
+                        grid: base.grid,
+                        ..s
+                    },
+                    base
+                );
             }
-            if grid < 257 {
-                assert!(ratio(&c, grid) >= FILM_RESOLUTION_MIN);
-            }
-            assert_eq!(
-                s.ehl.tol_residual,
-                LawMap::embedded().spec.settings().ehl.tol_residual
-            );
         }
     }
 }

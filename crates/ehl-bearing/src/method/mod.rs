@@ -31,7 +31,7 @@ use std::time::Instant;
 use thiserror::Error;
 
 mod map;
-pub use map::{fallback_settings, MapCharacterizer};
+pub use map::{fallback_settings, predictor_settings, MapCharacterizer};
 
 /// Errors of the method settings and of the method adapters.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -146,6 +146,7 @@ impl CharacterizedContact {
             rms_residual: fit.rms_residual,
             max_residual,
             std_errors: [fit.std_errors.k, fit.std_errors.d, fit.std_errors.delta_f],
+            c_std_error: fit.std_errors.c,
             converged: fit.converged,
             method: fit.method,
             seconds: fit.seconds,
@@ -243,6 +244,10 @@ pub struct CharacterizedContact {
     /// Standard errors of (K in N/m^d, d, ΔF in N) from the fit's linearized covariance (K's is
     /// large relative to K: K and d are strongly correlated).
     pub std_errors: [f64; 3],
+    /// Standard error of the damping coefficient c, N·s/m, for a law with one (the damped fit's;
+    /// for the harmonic map its error estimate of c, as `std_errors` for the other terms); None
+    /// for laws without damping.
+    pub c_std_error: Option<f64>,
     /// Whether the characterization (solver and fit) converged.
     pub converged: bool,
     /// Name of the method.
@@ -412,6 +417,7 @@ fn fit_samples(
         rms_residual: fit.rms_residual,
         max_residual: max_abs_residual(&law, delta, q),
         std_errors: [fit.std_errors.k, fit.std_errors.d, fit.std_errors.delta_f],
+        c_std_error: fit.std_errors.c,
         converged: fit.converged,
         method: method.to_string(),
         seconds: start.elapsed().as_secs_f64(),
