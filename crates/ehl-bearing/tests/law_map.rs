@@ -410,6 +410,7 @@ mod map {
             grid: 33,
             law: Default::default(),
             frequency_fraction: None,
+            tolerance_factor: 1.0,
         }
     }
 
@@ -489,6 +490,43 @@ mod map {
             .unwrap_err()
             .to_string()
             .contains("axis L.nodes"));
+        for bad in [0.0, -0.1, 1.5, f64::NAN] {
+            let mut s = small();
+            s.tolerance_factor = bad;
+            let e = s.validate().unwrap_err().to_string();
+            assert!(
+                e.contains("tolerance_factor") && e.contains("(0, 1]"),
+                "{e}"
+            );
+        }
+    }
+
+    /// A spec's `tolerance_factor` tightens its nodes' steady solutions (and so the references
+    /// of its held-out check); without the key it is 1, the method's own tolerances, and a
+    /// spec of factor 1 writes no key (the maps' files stay as they were).
+    #[test]
+    fn the_tolerance_factor_tightens_the_settings() {
+        let plain = small();
+        let json = serde_json::to_string(&plain).unwrap();
+        assert!(!json.contains("tolerance_factor"), "{json}");
+        let back: LawMapSpec = serde_json::from_str(&json).unwrap();
+        assert_eq!(back, plain);
+        let d = plain.settings().ehl;
+        let mut tight = small();
+        tight.tolerance_factor = 0.1;
+        tight.validate().unwrap();
+        let t = tight.settings().ehl;
+        for (a, b) in [
+            (t.tol_residual, d.tol_residual),
+            (t.tol_force, d.tol_force),
+            (t.tol_film, d.tol_film),
+        ] {
+            assert!((a / b - 0.1).abs() < 1e-12, "{a} {b}");
+        }
+        assert!(t.max_cycles >= 120 && t.grid == d.grid, "{t:?}");
+        assert!(serde_json::to_string(&tight)
+            .unwrap()
+            .contains("\"tolerance_factor\":0.1"));
     }
 }
 

@@ -273,6 +273,45 @@ pub struct LawMapSpec {
     /// group per contact).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub frequency_fraction: Option<f64>,
+    /// The steady solver's tolerances (`tol_residual`, `tol_force`, `tol_film`) of the nodes
+    /// times this factor, in (0, 1] ([`tightened`]; 1, the method's own, is the default and not
+    /// written). Heavy contacts' ΔF needs it: at the method's tolerances a solution that stops
+    /// at a residual of 4e-5 instead of 1e-6 moves the fitted ΔF by several percent
+    /// (docs/law_map.md §5, "ΔF of heavy contacts").
+    #[serde(default = "unit_factor", skip_serializing_if = "is_unit_factor")]
+    pub tolerance_factor: f64,
+}
+
+fn unit_factor() -> f64 {
+    1.0
+}
+
+fn is_unit_factor(f: &f64) -> bool {
+    *f == 1.0
+}
+
+/// The steady solver's settings `ehl` with its tolerances (`tol_residual`, `tol_force`,
+/// `tol_film`) times `factor`, in (0, 1], and below 1 its cycle limit raised to
+/// 40·(1 + 2·log10(1/factor)) (dimensionless). A map's nodes with its spec's
+/// `tolerance_factor`; references tighter than a map's own nodes (`law-map check
+/// --tolerance-factor`; docs/law_map.md §5, "ΔF of heavy contacts").
+pub fn tightened(ehl: EhlSettings, factor: f64) -> Result<EhlSettings, LawMapError> {
+    if !(factor.is_finite() && factor > 0.0 && factor <= 1.0) {
+        return Err(LawMapError::Invalid {
+            field: "tolerance_factor".into(),
+            value: factor,
+            expected: "a number in (0, 1]".into(),
+        });
+    }
+    let mut s = ehl;
+    s.tol_residual *= factor;
+    s.tol_force *= factor;
+    s.tol_film *= factor;
+    if factor < 1.0 {
+        let limit = (40.0 * (1.0 + 2.0 * (1.0 / factor).log10())).ceil() as usize;
+        s.max_cycles = s.max_cycles.max(limit);
+    }
+    Ok(s)
 }
 
 impl LawMapSpec {
@@ -330,6 +369,7 @@ impl LawMapSpec {
                 }
             }
         }
+        tightened(EhlSettings::default(), self.tolerance_factor)?;
         let most = 5 + usize::from(self.law == LawKind::Harmonic);
         if self.axes.is_empty() || self.axes.len() > most {
             return Err(LawMapError::AxisCount {
@@ -491,12 +531,19 @@ impl LawMapSpec {
         QuasiStaticSettings {
             amplitude: self.amplitude,
             points: self.points.unwrap_or(d.points),
-            ehl: EhlSettings {
-                grid: self.grid,
-                ..d.ehl
-            },
+            ehl: self.ehl_settings(d.ehl),
             ..d
         }
+    }
+
+    /// `base` on the spec's grid with its tolerances times the spec's `tolerance_factor` (a
+    /// factor outside (0, 1], which [`LawMapSpec::validate`] refuses, leaves them).
+    fn ehl_settings(&self, base: EhlSettings) -> EhlSettings {
+        let s = EhlSettings {
+            grid: self.grid,
+            ..base
+        };
+        tightened(s, self.tolerance_factor).unwrap_or(s)
     }
 
     /// The harmonic method's settings of a harmonic map's nodes: its amplitude, grid and Ω/ω_n
@@ -509,10 +556,7 @@ impl LawMapSpec {
                 self.frequency_fraction
                     .unwrap_or(crate::contact::DEFAULT_FREQUENCY_FRACTION),
             ),
-            ehl: EhlSettings {
-                grid: self.grid,
-                ..d.ehl
-            },
+            ehl: self.ehl_settings(d.ehl),
             ..d
         }
     }

@@ -461,4 +461,6 @@ impl DimensionlessLaw {
 
 mod map;
 
-pub use map::{Group, LawKind, LawMap, LawMapSpec, MapAxis, MapQuery, NodeQuality, FORMAT};
+pub use map::{
+    tightened, Group, LawKind, LawMap, LawMapSpec, MapAxis, MapQuery, NodeQuality, FORMAT,
+};

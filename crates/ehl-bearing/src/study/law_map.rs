@@ -6,10 +6,9 @@
 
 use super::{PointStore, Shard, StoreError};
 use crate::contact::{characterize_harmonic, characterize_quasi_static};
-use crate::ehl::EhlSettings;
 use crate::law_map::{
-    mass_for_group, DimensionlessLaw, Group, LawGroups, LawKind, LawMap, LawMapError, LawMapSpec,
-    MapQuery, NodeQuality, FORMAT,
+    mass_for_group, tightened, DimensionlessLaw, Group, LawGroups, LawKind, LawMap, LawMapError,
+    LawMapSpec, MapQuery, NodeQuality, FORMAT,
 };
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -78,29 +77,6 @@ pub fn characterize_node(
     spec: &LawMapSpec,
 ) -> Result<(DimensionlessLaw, NodeQuality), crate::Error> {
     characterize_node_with(g, psi_h, spec, 1.0)
-}
-
-/// The steady solver's settings `ehl` with its tolerances (`tol_residual`, `tol_force`,
-/// `tol_film`) times `factor`, in (0, 1], and below 1 its cycle limit raised to
-/// 40·(1 + 2·log10(1/factor)) (dimensionless). Used for references tighter than a map's own
-/// nodes (`law-map check --tolerance-factor`; docs/law_map.md §5, "ΔF of heavy contacts").
-pub fn tightened(ehl: EhlSettings, factor: f64) -> Result<EhlSettings, LawMapError> {
-    if !(factor.is_finite() && factor > 0.0 && factor <= 1.0) {
-        return Err(LawMapError::Invalid {
-            field: "tolerance_factor".into(),
-            value: factor,
-            expected: "a number in (0, 1]".into(),
-        });
-    }
-    let mut s = ehl;
-    s.tol_residual *= factor;
-    s.tol_force *= factor;
-    s.tol_film *= factor;
-    if factor < 1.0 {
-        let limit = (40.0 * (1.0 + 2.0 * (1.0 / factor).log10())).ceil() as usize;
-        s.max_cycles = s.max_cycles.max(limit);
-    }
-    Ok(s)
 }
 
 /// [`characterize_node`] with the steady solver's tolerances times `tolerance_factor`

@@ -28,10 +28,11 @@ mod trends;
 // The trend model and its force element under their former paths (they live in
 // crate::trends and crate::force_element; the study imports them, never the reverse).
 pub use crate::force_element::{JacobianMode, TrendEvalOptions, TrendForce, TrendForceElement};
+pub use crate::law_map::tightened;
 pub use crate::trends::{RaceTrends, TrendBearing, TrendCurve, TrendModel, TREND_VERSION};
 pub use law_map::{
     assemble_map, characterize_groups, characterize_node, characterize_node_with, generate_map,
-    held_out_check, held_out_check_with, node_film_resolution, shards_with_nodes_left, tightened,
+    held_out_check, held_out_check_with, node_film_resolution, shards_with_nodes_left,
     under_resolved_nodes, HeldOutPoint, MapGeneration, MapGenerationError, NodeRecord,
 };
 pub use point::{
