@@ -712,8 +712,8 @@ mod embedded {
             3,
             include_str!("../../../examples/law_map_seed_oil_high_m.toml"),
             Some(7 * 5 * 9),
-            &[0, 314],
-            "high-M",
+            &[0, 157],
+            "high-M (tolerances × 0.1)",
         );
     }
 
@@ -779,6 +779,26 @@ mod embedded {
             assert!(
                 h.force_error < 5e-3 && h.d_error < 5e-3 && h.delta_f_error_hat < 2.2e-3,
                 "heavy map: {h:?}"
+            );
+        }
+    }
+
+    /// The seed oil's heavy-contact map (129², the steady solver's tolerances × 0.1) against
+    /// direct characterizations at its settings at held-out points (a fresh seed, not the 200 of
+    /// docs/law_map.md §5), within every acceptance bound, ΔF's 3 % included: with the method's
+    /// own tolerances the fitted ΔF of such contacts jitters by several percent from one
+    /// characterization to the next (§5, "ΔF of heavy contacts"); with them tightened the 200
+    /// points' largest ΔF error is 0.58 %.
+    #[test]
+    fn heavy_seed_map_against_direct_characterizations() {
+        let map = &LawMap::embedded_maps()[3];
+        assert_eq!((map.spec.grid, map.spec.tolerance_factor), (129, 0.1));
+        let r = held_out_check(map, 3, 20261131);
+        assert_eq!(r.len(), 3);
+        for h in &r {
+            assert!(
+                h.force_error < 5e-3 && h.d_error < 5e-3 && h.delta_f_error < 0.03,
+                "{h:?}"
             );
         }
     }
