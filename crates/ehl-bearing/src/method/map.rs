@@ -28,19 +28,18 @@ use std::time::Instant;
 /// force at the nominal approach plus the nodes' own fit residual (N), `std_errors` the error
 /// estimates of (K, d, ΔF) (the difference of the two interpolants, not standard errors),
 /// `rms_residual` and `r_squared` those of the nearest nodes' fits, `samples` 0, `method`
-/// "map" (with the harmonic map, `c_std_error` its error estimate of c). Outside it, with `fallback`, the quasi-static method with the first map's settings
-/// (on 257² where 129² does not resolve the contact's film, [`fallback_settings`])
-/// characterizes the contact and its `method` reads "quasi-static (outside the map: …)" with the
-/// reason (and the grid, where refined); without, the error names the group, its value and the
-/// envelope.
+/// "map" (with the harmonic map, `c_std_error` its error estimate of c). Outside it, with
+/// `fallback`, the quasi-static method with the first map's settings (on 257² where 129² does
+/// not resolve the contact's film, [`fallback_settings`]) characterizes the contact and its
+/// `method` reads "quasi-static (outside the map: …)" with the reason (and the grid, where
+/// refined); without, the error names the group, its value and the envelope.
 ///
 /// With `law = "harmonic"` ([`MapSettings::law`]) the same from the embedded harmonic map at
 /// the contact's groups and Ψ_H ([`crate::law_map::mass_group`] with the ball's mass): the law
 /// carries the damping c = ĉ·w0·b/(δ_H·u_s), `method` reads "map (harmonic)", and outside the
 /// map the harmonic method at the map's settings (Ω = 0.005·ω_n, its amplitude and grid, refined
 /// where 65² does not resolve the film, [`harmonic_fallback_settings`]) characterizes the
-/// contact ("harmonic (outside the map: …)"). The map's error estimate of ĉ
-/// has no place in [`CharacterizedContact`] ([`crate::law_map::MapQuery::error`] holds it).
+/// contact ("harmonic (outside the map: …)").
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct MapCharacterizer {
     /// Settings of the method.
@@ -176,7 +175,8 @@ impl LoadPredictor for MapCharacterizer {
     /// from the dry loads a light contact can start where the fallback's family reaches the
     /// hydrodynamic regime, docs/law_map.md §8). Outside every map, with `fallback`, the
     /// quasi-static method's predictor (one loosely converged steady EHL solution,
-    /// [`predict_steady`]) at [`predictor_settings`]; without, the map's error (the loop keeps that contact's
+    /// [`predict_steady`]) at [`predictor_settings`] (the harmonic map: at
+    /// [`harmonic_fallback_settings`]); without, the map's error (the loop keeps that contact's
     /// dry law for the start).
     fn predict(
         &self,
@@ -282,8 +282,8 @@ mod tests {
     }
 
     /// The fallback keeps the maps' 129² where it resolves the film and refines where it does
-    /// not; the predictor and the harmonic fallback start from 65². Each chosen grid is the first with the film at
-    /// ≥ 10 ΔX² (257² the last resort).
+    /// not; the predictor and the harmonic fallback start from 65². Each chosen grid is the
+    /// first with the film at ≥ 10 ΔX² (257² the last resort), and only the grid changes.
     #[test]
     fn the_fallback_refines_the_grid_where_129_does_not_resolve_the_film() {
         let ratio = |c: &EhlContact, grid: usize| {
