@@ -683,9 +683,17 @@ mod embedded {
     /// equal groups above); so are the other seed-oil maps'.
     #[test]
     fn embedded_map_is_the_example_spec_and_reproduces_its_nodes() {
+        assert!(std::ptr::eq(LawMap::embedded(), LawMap::embedded_maps()[0]));
+        // Each map is parsed once, whichever way it is reached.
+        use ehl_bearing::law_map::LawKind;
+        assert_eq!(LawMap::embedded_maps().len(), 9);
         assert!(std::ptr::eq(
-            LawMap::embedded(),
-            &LawMap::embedded_maps()[0]
+            LawMap::embedded_first(LawKind::Harmonic).unwrap(),
+            LawMap::embedded_maps()[8]
+        ));
+        assert!(std::ptr::eq(
+            LawMap::embedded_first(LawKind::QuasiStatic).unwrap(),
+            LawMap::embedded()
         ));
         assert_reproduces(
             0,
@@ -760,7 +768,7 @@ mod embedded {
     #[test]
     fn oils_map_against_direct_characterizations() {
         for (index, seed) in [(4, 20261127), (5, 20261128)] {
-            let r = held_out_check(&LawMap::embedded_maps()[index], 6, seed);
+            let r = held_out_check(LawMap::embedded_maps()[index], 6, seed);
             assert_eq!(r.len(), 6);
             for h in &r {
                 assert!(
@@ -773,7 +781,7 @@ mod embedded {
         // everywhere: at M above 5000 ΔF is 2 % of the load and the fits trade d against it
         // (200 held-out points, docs/law_map.md §5: 7 above 3 %, at most 6.0 %; ΔF/w0 at most
         // 1.1e-3). Its ΔF is checked over the load, at twice that largest error.
-        let r = held_out_check(&LawMap::embedded_maps()[6], 4, 20261129);
+        let r = held_out_check(LawMap::embedded_maps()[6], 4, 20261129);
         assert_eq!(r.len(), 4);
         for h in &r {
             assert!(
@@ -853,7 +861,7 @@ mod embedded {
     /// load) and none the ĉ one (at most 2.0 %); these four fresh points meet all.
     #[test]
     fn harmonic_map_against_direct_characterizations() {
-        let r = held_out_check(&LawMap::embedded_maps()[8], 4, 20261130);
+        let r = held_out_check(LawMap::embedded_maps()[8], 4, 20261130);
         assert_eq!(r.len(), 4);
         for h in &r {
             assert!(

@@ -87,13 +87,10 @@ impl ContactCharacterizer for MapCharacterizer {
 
 /// The first embedded map of the harmonic law (the harmonic fallback's settings).
 fn harmonic_map() -> Result<&'static LawMap, LawMapError> {
-    LawMap::embedded_maps()
-        .iter()
-        .find(|m| m.spec.law == LawKind::Harmonic)
-        .ok_or_else(|| LawMapError::OutsideEveryMap {
-            reasons: "no embedded map of the harmonic law".into(),
-            method: "harmonic",
-        })
+    LawMap::embedded_first(LawKind::Harmonic).ok_or_else(|| LawMapError::OutsideEveryMap {
+        reasons: "no embedded map of the harmonic law".into(),
+        method: "harmonic",
+    })
 }
 
 impl MapCharacterizer {
