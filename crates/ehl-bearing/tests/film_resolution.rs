@@ -87,7 +87,7 @@ fn under_resolved_contact_has_a_negative_nodal_film() {
 #[test]
 fn law_map_specs_checked_for_resolution() {
     let heavy = LawMapSpec::from_toml(include_str!(
-        "../../../examples/law_map_mineral_oils_heavy.toml"
+        "../../../examples/law_map_mineral_oils_heavy_g65.toml"
     ))
     .unwrap();
     let bad = under_resolved_nodes(&heavy).unwrap();
@@ -124,6 +124,10 @@ fn print_example_specs() {
         (
             "mineral_oils_heavy",
             include_str!("../../../examples/law_map_mineral_oils_heavy.toml"),
+        ),
+        (
+            "mineral_oils_heavy_g65",
+            include_str!("../../../examples/law_map_mineral_oils_heavy_g65.toml"),
         ),
         (
             "mineral_oils_low_l",

@@ -172,8 +172,11 @@ impl LoadPredictor for MapCharacterizer {
     /// from the dry loads a light contact can start where the fallback's family reaches the
     /// hydrodynamic regime, docs/law_map.md §8). Outside every map, with `fallback`, the
     /// quasi-static method's predictor (one loosely converged steady EHL solution,
-    /// [`predict_steady`]) at [`predictor_settings`] (the harmonic map: at
-    /// [`harmonic_fallback_settings`]); without, the map's error (the loop keeps that contact's
+    /// [`predict_steady`]) at the fallback's settings, [`fallback_settings`] (the harmonic map:
+    /// [`harmonic_fallback_settings`]), so the loop starts where the fallback's method would
+    /// start it (a start from a coarser grid's prediction put the seed's light inner contact at
+    /// half load 2 % lighter, where the fallback's ±20 % family reached the hydrodynamic
+    /// regime); without, the map's error (the loop keeps that contact's
     /// dry law for the start).
     fn predict(
         &self,
@@ -183,10 +186,7 @@ impl LoadPredictor for MapCharacterizer {
         let ehl = c.ehl_contact();
         let groups = LawGroups::of(&ehl)?;
         let (query, settings) = match self.settings.law {
-            LawKind::QuasiStatic => (
-                LawMap::query_embedded(&groups),
-                predictor_settings(&ehl).ehl,
-            ),
+            LawKind::QuasiStatic => (LawMap::query_embedded(&groups), fallback_settings(&ehl).ehl),
             LawKind::Harmonic => (
                 LawMap::query_embedded_harmonic(&groups, mass_group(&ehl, c.ball_mass)?),
                 harmonic_fallback_settings(&ehl)?.ehl,
@@ -217,16 +217,6 @@ impl LoadPredictor for MapCharacterizer {
 /// threshold (the finest grid the fallback uses).
 pub fn fallback_settings(c: &EhlContact) -> QuasiStaticSettings {
     refined(c, LawMap::embedded().spec.settings())
-}
-
-/// The settings of the map method's load predictor for a contact outside every map: the
-/// fallback's but on the coarsest of 65², 129², 257² that resolves the contact's film (the
-/// predictor's one loosely converged solution gives the loop its start, not the law; on 65² it
-/// costs a quarter of 129²).
-pub fn predictor_settings(c: &EhlContact) -> QuasiStaticSettings {
-    let mut s = LawMap::embedded().spec.settings();
-    s.ehl.grid = s.ehl.grid.min(65);
-    refined(c, s)
 }
 
 /// `s` on 129² or, failing that, 257² where its grid does not resolve the film of `c`.
@@ -279,10 +269,10 @@ mod tests {
     }
 
     /// The fallback keeps the maps' 129² where it resolves the film and refines where it does
-    /// not; the predictor and the harmonic fallback start from 65². Each chosen grid is the
-    /// first with the film at ≥ 10 ΔX² (257² the last resort), and only the grid changes.
+    /// not; the harmonic fallback starts from its map's 65². Each chosen grid is the first with
+    /// the film at ≥ 10 ΔX² (257² the last resort), and only the grid changes.
     #[test]
-    fn the_fallback_refines_the_grid_where_129_does_not_resolve_the_film() {
+    fn the_fallbacks_refine_the_grid_where_theirs_does_not_resolve_the_film() {
         let ratio = |c: &EhlContact, grid: usize| {
             let mut s = LawMap::embedded().spec.settings().ehl;
             s.grid = grid;
@@ -300,14 +290,6 @@ mod tests {
             assert_eq!(harmonic.grid, 65);
             for (s, grid, base) in [
                 (fallback_settings(&c).ehl, fallback, quasi_static),
-                (
-                    predictor_settings(&c).ehl,
-                    coarse,
-                    EhlSettings {
-                        grid: 65,
-                        ..quasi_static
-                    },
-                ),
                 (
                     harmonic_fallback_settings(&c).unwrap().ehl,
                     coarse,

@@ -31,9 +31,7 @@ use std::time::Instant;
 use thiserror::Error;
 
 mod map;
-pub use map::{
-    fallback_settings, harmonic_fallback_settings, predictor_settings, MapCharacterizer,
-};
+pub use map::{fallback_settings, harmonic_fallback_settings, MapCharacterizer};
 
 /// Errors of the method settings and of the method adapters.
 #[derive(Debug, Clone, PartialEq, Error)]
