@@ -899,6 +899,16 @@ mod bearing {
     use ehl_bearing::law_map::LawMap;
     use ehl_bearing::method::{MapSettings, Method};
 
+    /// The methods of the contacts of `b` whose final law is not from the map (`by_map` is the
+    /// map's own method label).
+    fn fallbacks<'a>(b: &'a BearingCharacterization, by_map: &str) -> Vec<&'a str> {
+        b.contacts
+            .iter()
+            .map(|c| c.characterized.method.as_str())
+            .filter(|m| *m != by_map)
+            .collect()
+    }
+
     /// Largest relative differences of b against a: contact loads, stiffness diagonal.
     fn largest_differences(a: &BearingCharacterization, b: &BearingCharacterization) -> (f64, f64) {
         let mut worst_load = 0.0_f64;
@@ -943,11 +953,7 @@ mod bearing {
             });
             let b = characterize_bearing(&case, &map, &s).unwrap();
             let tb = t0.elapsed().as_secs_f64();
-            let fallbacks = b
-                .contacts
-                .iter()
-                .filter(|c| c.characterized.method != "map")
-                .count();
+            let fallbacks = fallbacks(&b, "map").len();
             let (worst_load, worst_k) = largest_differences(&a, &b);
             eprintln!(
                 "seed {rpm} rpm: {fallbacks} fallbacks of {}; loads {worst_load:.3e}, stiffness \
@@ -1118,12 +1124,7 @@ mod bearing {
         let t0 = std::time::Instant::now();
         let b = characterize_bearing(&case, &map, &s).unwrap();
         let tb = t0.elapsed().as_secs_f64();
-        let fell: Vec<&str> = b
-            .contacts
-            .iter()
-            .map(|c| c.characterized.method.as_str())
-            .filter(|m| *m != "map (harmonic)")
-            .collect();
+        let fell = fallbacks(&b, "map (harmonic)");
         eprintln!("fallbacks: {fell:?}");
         let fallbacks = fell.len();
         let (worst_load, worst_k) = largest_differences(&a, &b);
@@ -1186,12 +1187,7 @@ mod bearing {
         )
         .unwrap();
         assert!(b.converged);
-        let fell: Vec<&str> = b
-            .contacts
-            .iter()
-            .map(|c| c.characterized.method.as_str())
-            .filter(|m| *m != "map (harmonic)")
-            .collect();
+        let fell = fallbacks(&b, "map (harmonic)");
         assert!(fell.len() <= 1, "{fell:?}");
         assert!(fell
             .iter()
