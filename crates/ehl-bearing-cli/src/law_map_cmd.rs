@@ -76,7 +76,8 @@ pub enum LawMapCommand {
         threads: Option<usize>,
         /// The direct characterizations' solver tolerances (tol_residual, tol_force, tol_film)
         /// times this factor, in (0, 1]; below 1 their cycle limit grows to 40·(1 + 2·log10(1/F))
-        /// (1: the map's own settings).
+        /// (1: the map's own settings, its spec's tolerance_factor included; below 1, those times
+        /// F).
         #[arg(long, default_value_t = 1.0)]
         tolerance_factor: f64,
     },

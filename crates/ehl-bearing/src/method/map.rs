@@ -63,12 +63,8 @@ impl ContactCharacterizer for MapCharacterizer {
             Err(e) if self.settings.fallback => {
                 let settings = fallback_settings(&ehl);
                 let mut r = QuasiStaticCharacterizer { settings }.characterize(c, deadline)?;
-                r.method = if settings.ehl.grid == LawMap::embedded().spec.grid {
-                    format!("quasi-static (outside the map: {e})")
-                } else {
-                    let n = settings.ehl.grid;
-                    format!("quasi-static on {n} × {n} to resolve the film (outside the map: {e})")
-                };
+                r.method =
+                    fallback_method("quasi-static", settings.ehl.grid, LawMap::embedded(), &e);
                 return Ok(r);
             }
             Err(e) => return Err(e.into()),
@@ -82,6 +78,17 @@ impl ContactCharacterizer for MapCharacterizer {
 
     fn predictor(&self) -> Option<&dyn LoadPredictor> {
         Some(self)
+    }
+}
+
+/// The `method` of a contact the fallback characterized by `name` on `grid` points a side,
+/// outside every map for `reason`: it names the grid where it is not the fallback's `map`'s
+/// (refined to resolve the film).
+fn fallback_method(name: &str, grid: usize, map: &LawMap, reason: &LawMapError) -> String {
+    if grid == map.spec.grid {
+        format!("{name} (outside the map: {reason})")
+    } else {
+        format!("{name} on {grid} × {grid} to resolve the film (outside the map: {reason})")
     }
 }
 
@@ -111,12 +118,7 @@ impl MapCharacterizer {
             Err(e) if self.settings.fallback => {
                 let settings = harmonic_fallback_settings(&ehl)?;
                 let mut r = HarmonicCharacterizer { settings }.characterize(c, deadline)?;
-                r.method = if settings.ehl.grid == harmonic_map()?.spec.grid {
-                    format!("harmonic (outside the map: {e})")
-                } else {
-                    let n = settings.ehl.grid;
-                    format!("harmonic on {n} × {n} to resolve the film (outside the map: {e})")
-                };
+                r.method = fallback_method("harmonic", settings.ehl.grid, harmonic_map()?, &e);
                 Ok(r)
             }
             Err(e) => Err(e.into()),
@@ -185,12 +187,11 @@ impl LoadPredictor for MapCharacterizer {
     ) -> Result<PredictedLaw, crate::Error> {
         let ehl = c.ehl_contact();
         let groups = LawGroups::of(&ehl)?;
-        let (query, settings) = match self.settings.law {
-            LawKind::QuasiStatic => (LawMap::query_embedded(&groups), fallback_settings(&ehl).ehl),
-            LawKind::Harmonic => (
-                LawMap::query_embedded_harmonic(&groups, mass_group(&ehl, c.ball_mass)?),
-                harmonic_fallback_settings(&ehl)?.ehl,
-            ),
+        let query = match self.settings.law {
+            LawKind::QuasiStatic => LawMap::query_embedded(&groups),
+            LawKind::Harmonic => {
+                LawMap::query_embedded_harmonic(&groups, mass_group(&ehl, c.ball_mass)?)
+            }
         };
         match query {
             Ok((q, _)) => {
@@ -204,7 +205,13 @@ impl LoadPredictor for MapCharacterizer {
                     q.nodes_converged,
                 )?)
             }
-            Err(_) if self.settings.fallback => predict_steady(c, &settings, deadline),
+            Err(_) if self.settings.fallback => {
+                let settings = match self.settings.law {
+                    LawKind::QuasiStatic => fallback_settings(&ehl).ehl,
+                    LawKind::Harmonic => harmonic_fallback_settings(&ehl)?.ehl,
+                };
+                predict_steady(c, &settings, deadline)
+            }
             Err(e) => Err(e.into()),
         }
     }

@@ -380,8 +380,8 @@ pub fn held_out_check(map: &LawMap, count: usize, seed: u64) -> Vec<HeldOutPoint
     held_out_check_with(map, count, seed, 1.0).expect("the tolerance factor 1 is valid")
 }
 
-/// [`held_out_check`] against direct characterizations with the steady solver's tolerances times
-/// `tolerance_factor` ([`tightened`]; the fitted ΔF of heavy contacts follows the steady
+/// [`held_out_check`] against direct characterizations with the map's steady tolerances (its
+/// spec's `tolerance_factor` included) times `tolerance_factor` ([`tightened`]; the fitted ΔF of heavy contacts follows the steady
 /// solutions' iteration error, docs/law_map.md §5). Points whose direct characterization fails
 /// are left out; a factor outside (0, 1] is an error before any point is drawn.
 pub fn held_out_check_with(
