@@ -501,6 +501,64 @@ mod map {
         }
     }
 
+    /// A Roelands Z axis stands for α·p0: a node's α·p0 is Z·ln(η0/η∞), a query reads Z back
+    /// from the contact's groups and checks it against the axis; Z beside α·p0, or with Barus
+    /// viscosity, is refused naming the group.
+    #[test]
+    fn a_z_axis_stands_for_alpha_p0() {
+        let z_axis = MapAxis {
+            group: Group::RoelandsZ,
+            min: 0.6,
+            max: 0.8,
+            nodes: 3,
+            log: false,
+        };
+        let ln_axis = MapAxis {
+            group: Group::LnEta0Ratio,
+            min: 4.0,
+            max: 7.0,
+            nodes: 3,
+            log: false,
+        };
+        let mut s = small();
+        s.alpha_p0 = None;
+        s.ln_eta0_ratio = None;
+        s.ry_over_rx = Some(15.0);
+        s.axes.truncate(2);
+        s.axes.extend([ln_axis, z_axis]);
+        s.validate().unwrap();
+        // Nodes: the last axis (Z) fastest; node 5 is (M 300, L 20, ln 5.5, Z 0.8).
+        let g = s.node_groups(5);
+        assert_eq!(g.ln_eta0_ratio, Some(5.5));
+        assert!((g.alpha_p0.unwrap() - 0.8 * 5.5).abs() < 1e-12, "{g:?}");
+        assert!((Group::RoelandsZ.get(&g).unwrap() - 0.8).abs() < 1e-12);
+        assert!(s.check_inside(&g).is_ok());
+        let outside = ehl_bearing::law_map::LawGroups {
+            alpha_p0: Some(5.05),
+            ln_eta0_ratio: Some(4.1),
+            ..g
+        };
+        let e = s.check_inside(&outside).unwrap_err().to_string();
+        assert!(
+            e.contains("roelands_z = 1.23") && e.contains("[0.6, 0.8]"),
+            "{e}"
+        );
+        let mut both = s.clone();
+        both.alpha_p0 = Some(4.0);
+        let e = both.validate().unwrap_err().to_string();
+        assert!(e.contains("alpha_p0") && e.contains("roelands_z"), "{e}");
+        let mut barus = s.clone();
+        barus.viscosity_model = ViscosityModel::Barus;
+        barus.density_model = DensityModel::Incompressible;
+        barus.axes.truncate(2);
+        barus.axes.push(z_axis);
+        let e = barus.validate().unwrap_err().to_string();
+        assert!(
+            e.contains("roelands_z") && e.contains("do not depend"),
+            "{e}"
+        );
+    }
+
     /// A spec's `tolerance_factor` tightens its nodes' steady solutions (and so the references
     /// of its held-out check); without the key it is 1, the method's own tolerances, and a
     /// spec of factor 1 writes no key (the maps' files stay as they were).
@@ -582,7 +640,7 @@ mod harmonic_spec {
         let qs = serde_json::to_string(&LawMap::embedded().spec).unwrap();
         assert!(!qs.contains("law") && !qs.contains("frequency"), "{qs}");
         // Queries.
-        let map = &LawMap::embedded_maps()[9];
+        let map = &LawMap::embedded_maps()[12];
         let g = LawGroups {
             m: 500.0,
             l: 22.0,
@@ -679,8 +737,13 @@ mod embedded {
 
     /// `count` held-out points of `map` (random with `seed`) against direct characterizations at
     /// the map's settings, each within the acceptance bounds: force at the nominal approach
-    /// 0.5 %, d 0.005, ΔF 3 %.
-    fn assert_within_bounds(map: &LawMap, count: usize, seed: u64, name: &str) {
+    /// 0.5 %, d 0.005, ΔF 3 %. Returns the points.
+    fn assert_within_bounds(
+        map: &LawMap,
+        count: usize,
+        seed: u64,
+        name: &str,
+    ) -> Vec<ehl_bearing::study::HeldOutPoint> {
         let r = held_out_check(map, count, seed);
         assert_eq!(r.len(), count, "{name}");
         for h in &r {
@@ -689,6 +752,7 @@ mod embedded {
                 "{name}: {h:?}"
             );
         }
+        r
     }
 
     /// The embedded map is what `law-map generate` and `assemble` give for
@@ -700,10 +764,10 @@ mod embedded {
         assert!(std::ptr::eq(LawMap::embedded(), LawMap::embedded_maps()[0]));
         // Each map is parsed once, whichever way it is reached.
         use ehl_bearing::law_map::LawKind;
-        assert_eq!(LawMap::embedded_maps().len(), 10);
+        assert_eq!(LawMap::embedded_maps().len(), 13);
         assert!(std::ptr::eq(
             LawMap::embedded_first(LawKind::Harmonic).unwrap(),
-            LawMap::embedded_maps()[9]
+            LawMap::embedded_maps()[12]
         ));
         assert!(std::ptr::eq(
             LawMap::embedded_first(LawKind::QuasiStatic).unwrap(),
@@ -741,7 +805,8 @@ mod embedded {
 
     /// The embedded maps with the rheology groups as axes (other oils) are what `law-map
     /// generate` and `assemble` give for examples/law_map_mineral_oils.toml and
-    /// examples/law_map_mineral_oils_light.toml, _heavy.toml, _low_l.toml and _heavy_g65.toml:
+    /// examples/law_map_mineral_oils_light.toml, _heavy.toml, _low_l.toml, _low_l_light.toml,
+    /// _high_l.toml and _heavy_g65.toml:
     /// their specs are the files' and
     /// recomputed nodes (the first, one in the middle, the last) reproduce its
     /// stored laws to round-off.
@@ -777,6 +842,27 @@ mod embedded {
         );
         assert_reproduces(
             8,
+            include_str!("../../../examples/law_map_mineral_oils_low_l_light.toml"),
+            Some(5 * 7 * 5 * 3 * 3),
+            &[0, 1574],
+            "oils, slow large bearings' light contacts",
+        );
+        assert_reproduces(
+            9,
+            include_str!("../../../examples/law_map_mineral_oils_high_l.toml"),
+            Some(7 * 5 * 5 * 3 * 3),
+            &[0, 1574],
+            "oils, high L (axes ln(η0/η∞) and Z)",
+        );
+        assert_reproduces(
+            10,
+            include_str!("../../../examples/law_map_mineral_oils_lightest.toml"),
+            Some(5 * 7 * 5 * 3 * 3),
+            &[0, 1574],
+            "oils, the lightest contacts (axes ln(η0/η∞) and Z)",
+        );
+        assert_reproduces(
+            11,
             include_str!("../../../examples/law_map_mineral_oils_heavy_g65.toml"),
             Some(7 * 7 * 5 * 3 * 3),
             &[1102, 2204],
@@ -802,7 +888,7 @@ mod embedded {
         // relative ΔF bound everywhere: at M above 5000 its references jitter (200 held-out
         // points, docs/law_map.md §5: 7 above 3 %, at most 6.0 %; ΔF/w0 at most 1.1e-3). Its ΔF
         // is checked over the load, at twice that largest error.
-        let r = held_out_check(LawMap::embedded_maps()[8], 4, 20261129);
+        let r = held_out_check(LawMap::embedded_maps()[11], 4, 20261129);
         assert_eq!(r.len(), 4);
         for h in &r {
             assert!(
@@ -830,12 +916,49 @@ mod embedded {
     /// bounds (force at the nominal approach 0.5 %, d 0.005, ΔF 3 %).
     #[test]
     fn low_l_map_against_direct_characterizations() {
-        let map = LawMap::embedded_maps()[7];
-        assert_eq!(map.spec.grid, 129);
-        assert_within_bounds(map, 4, 20261130, "oils, slow large bearings");
+        let maps = LawMap::embedded_maps();
+        assert_eq!(maps[7].spec.grid, 129);
+        assert_within_bounds(maps[7], 4, 20261130, "oils, slow large bearings");
+        assert_within_bounds(
+            maps[8],
+            3,
+            20261201,
+            "oils, slow large bearings' light contacts",
+        );
     }
 
-    /// The embedded harmonic map (the ninth) is what `law-map generate` and `assemble` give for
+    /// The two oils maps whose rheology axes are ln(η0/η∞) and Roelands' Z (their nodes' α·p0 =
+    /// Z·ln(η0/η∞)) — high L, and the lightest contacts — against direct characterizations at
+    /// held-out points (fresh seeds, not the 200 of docs/law_map.md §5), within the acceptance
+    /// bounds; the held-out points' α·p0 is Z·ln(η0/η∞) of the sampled axes, inside the boxes.
+    #[test]
+    fn z_axis_maps_against_direct_characterizations() {
+        let maps = LawMap::embedded_maps();
+        for (map, seed, name, l, z) in [
+            (
+                maps[9],
+                20261202,
+                "oils, high L",
+                (26.0, 36.0),
+                (0.55, 0.85),
+            ),
+            (
+                maps[10],
+                20261203,
+                "oils, the lightest",
+                (12.5, 26.0),
+                (0.55, 0.8),
+            ),
+        ] {
+            let r = assert_within_bounds(map, 3, seed, name);
+            assert!(r.iter().all(|h| {
+                let zh = h.groups.alpha_p0.unwrap() / h.groups.ln_eta0_ratio.unwrap();
+                (z.0..=z.1).contains(&zh) && (l.0..=l.1).contains(&h.groups.l)
+            }));
+        }
+    }
+
+    /// The embedded harmonic map (the last) is what `law-map generate` and `assemble` give for
     /// examples/law_map_seed_oil_harmonic.toml: its spec is the file's, and two nodes recomputed
     /// now by the harmonic method (the first and the last, the mass from the node's Ψ_H)
     /// reproduce its stored laws, ĉ included, to round-off (1e-9).
@@ -843,7 +966,7 @@ mod embedded {
     fn harmonic_map_is_the_example_spec_and_reproduces_its_nodes() {
         use ehl_bearing::law_map::LawKind;
         use ehl_bearing::study::characterize_node;
-        let map = &LawMap::embedded_maps()[9];
+        let map = &LawMap::embedded_maps()[12];
         let spec = LawMapSpec::from_toml(include_str!(
             "../../../examples/law_map_seed_oil_harmonic.toml"
         ))
@@ -868,7 +991,7 @@ mod embedded {
     /// load) and none the ĉ one (at most 2.0 %); these four fresh points meet all.
     #[test]
     fn harmonic_map_against_direct_characterizations() {
-        let r = held_out_check(LawMap::embedded_maps()[9], 4, 20261130);
+        let r = held_out_check(LawMap::embedded_maps()[12], 4, 20261130);
         assert_eq!(r.len(), 4);
         for h in &r {
             assert!(
@@ -1082,7 +1205,7 @@ mod bearing {
     /// The seed bearing (examples/7006.toml) at 4000 rpm by the harmonic map (`law =
     /// "harmonic"`, with the harmonic fallback, which characterizes the light inner contact at
     /// M ≈ 111) against the harmonic method at the map's
-    /// settings (grid 65², Ω = 0.005·ω_n): contact loads, the stiffness diagonal and the damping
+    /// settings (grid 129², Ω = 0.005·ω_n): contact loads, the stiffness diagonal and the damping
     /// diagonal of the linearized bearing (the fitted-law element at the final equilibrium, as
     /// `coefficients`). Bounds: loads 0.2 % and stiffness 0.5 % as the quasi-static map's; the
     /// damping diagonal 3 %, the ĉ target (docs/law_map.md §7). 29 s (the harmonic method's
@@ -1113,7 +1236,7 @@ mod bearing {
                 .unwrap()
                 .damping
         };
-        let harmonic = Method::Harmonic(LawMap::embedded_maps()[9].spec.harmonic_settings());
+        let harmonic = Method::Harmonic(LawMap::embedded_maps()[12].spec.harmonic_settings());
         let t0 = std::time::Instant::now();
         let a = characterize_bearing(&case, &harmonic, &s).unwrap();
         let ta = t0.elapsed().as_secs_f64();
@@ -1212,7 +1335,7 @@ mod bearing {
             .characterize(&cond, None)
             .unwrap();
         let direct = HarmonicCharacterizer {
-            settings: LawMap::embedded_maps()[9].spec.harmonic_settings(),
+            settings: LawMap::embedded_maps()[12].spec.harmonic_settings(),
         }
         .characterize(&cond, None)
         .unwrap();

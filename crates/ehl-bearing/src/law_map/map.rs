@@ -34,6 +34,12 @@ pub enum Group {
     AlphaP0,
     /// ln(η0/η∞).
     LnEta0Ratio,
+    /// Roelands' pressure–viscosity index Z = α·p0/ln(η0/η∞) (Roelands viscosity only): an axis
+    /// in place of α·p0, which a node then gets as Z·ln(η0/η∞). Mineral oils lie near one Z
+    /// (≈ 0.6–0.8), so a box in (ln(η0/η∞), Z) holds them without the (α·p0, ln(η0/η∞)) box's
+    /// corners no oil reaches (α·p0 5 at ln(η0/η∞) 4 is Z = 1.2). Not one of [`Group::ALL`]: the
+    /// steady problem's groups stay α·p0 and ln(η0/η∞).
+    RoelandsZ,
     /// The harmonic law's mass group Ψ_H = (b/u_s)·√(w0/(δ_H·m)) ([`super::mass_group`]); an
     /// axis of harmonic maps only, not one of the steady problem's groups (not in
     /// [`Group::ALL`], not in [`LawGroups`]: a query gives it with the ball's mass).
@@ -58,6 +64,7 @@ impl Group {
             Group::RyOverRx => "Ry/Rx",
             Group::AlphaP0 => "alpha_p0",
             Group::LnEta0Ratio => "ln_eta0_ratio",
+            Group::RoelandsZ => "roelands_z",
             Group::PsiH => "psi_h",
         }
     }
@@ -70,19 +77,21 @@ impl Group {
             Group::RyOverRx => Some(g.ry_over_rx),
             Group::AlphaP0 => g.alpha_p0,
             Group::LnEta0Ratio => g.ln_eta0_ratio,
+            Group::RoelandsZ => g.alpha_p0.zip(g.ln_eta0_ratio).map(|(a, c)| a / c),
             Group::PsiH => None,
         }
     }
 
-    /// Sets group `self` of `g` to `v` (nothing for Ψ_H, which is no group of [`LawGroups`]).
-    pub(crate) fn set(self, g: &mut LawGroups, v: f64) {
+    /// Sets group `self` of `g` to `v` (nothing for Ψ_H, which is no group of [`LawGroups`], nor
+    /// for Z, which sets α·p0 only with ln(η0/η∞): [`LawMapSpec::groups_at`]).
+    fn set(self, g: &mut LawGroups, v: f64) {
         match self {
             Group::M => g.m = v,
             Group::L => g.l = v,
             Group::RyOverRx => g.ry_over_rx = v,
             Group::AlphaP0 => g.alpha_p0 = Some(v),
             Group::LnEta0Ratio => g.ln_eta0_ratio = Some(v),
-            Group::PsiH => {}
+            Group::RoelandsZ | Group::PsiH => {}
         }
     }
 
@@ -91,7 +100,7 @@ impl Group {
             Group::M | Group::L | Group::RyOverRx => true,
             Group::AlphaP0 => v == ViscosityModel::Roelands || d == DensityModel::DowsonHigginson,
             Group::LnEta0Ratio => v == ViscosityModel::Roelands,
-            Group::PsiH => false,
+            Group::RoelandsZ | Group::PsiH => false,
         }
     }
 }
@@ -331,7 +340,7 @@ impl LawMapSpec {
             Group::RyOverRx => self.ry_over_rx,
             Group::AlphaP0 => self.alpha_p0,
             Group::LnEta0Ratio => self.ln_eta0_ratio,
-            Group::PsiH => None,
+            Group::RoelandsZ | Group::PsiH => None,
         }
     }
 
@@ -343,13 +352,31 @@ impl LawMapSpec {
             value: v,
             expected: e.into(),
         };
+        // A Z axis stands for α·p0 (and needs Roelands' ln(η0/η∞)).
+        let z_axes = self
+            .axes
+            .iter()
+            .filter(|a| a.group == Group::RoelandsZ)
+            .count();
+        if z_axes > 0 && self.viscosity_model != ViscosityModel::Roelands {
+            return Err(LawMapError::GroupNotUsed {
+                group: Group::RoelandsZ.name(),
+                viscosity_model: self.viscosity_model,
+                density_model: self.density_model,
+            });
+        }
         for g in Group::ALL {
-            let axes = self.axes.iter().filter(|a| a.group == g).count();
+            let axes = self.axes.iter().filter(|a| a.group == g).count()
+                + if g == Group::AlphaP0 { z_axes } else { 0 };
             let fixed = self.fixed(g).is_some() as usize;
             let needed = g.needed(self.viscosity_model, self.density_model);
             if needed && axes + fixed != 1 {
                 return Err(LawMapError::GroupCount {
-                    group: g.name(),
+                    group: if g == Group::AlphaP0 && z_axes > 0 {
+                        "alpha_p0 (a roelands_z axis stands for it)"
+                    } else {
+                        g.name()
+                    },
                     axes,
                     fixed,
                     viscosity_model: self.viscosity_model,
@@ -499,6 +526,18 @@ impl LawMapSpec {
 
     /// The groups of node `index`.
     pub fn node_groups(&self, index: usize) -> LawGroups {
+        let values: Vec<f64> = self
+            .axes
+            .iter()
+            .zip(self.multi_index(index))
+            .map(|(a, j)| a.node_values()[j])
+            .collect();
+        self.groups_at(&values)
+    }
+
+    /// The groups with the axes at `values` (one per axis, in the axes' order; Ψ_H's is no
+    /// group) and the fixed groups; a Z axis gives α·p0 = Z·ln(η0/η∞).
+    pub fn groups_at(&self, values: &[f64]) -> LawGroups {
         let mut g = LawGroups {
             m: self.m.unwrap_or(f64::NAN),
             l: self.l.unwrap_or(f64::NAN),
@@ -508,8 +547,15 @@ impl LawMapSpec {
             viscosity: self.viscosity_model,
             density: self.density_model,
         };
-        for (a, j) in self.axes.iter().zip(self.multi_index(index)) {
-            a.group.set(&mut g, a.node_values()[j]);
+        let mut z = None;
+        for (a, &v) in self.axes.iter().zip(values) {
+            match a.group {
+                Group::RoelandsZ => z = Some(v),
+                grp => grp.set(&mut g, v),
+            }
+        }
+        if let Some(z) = z {
+            g.alpha_p0 = g.ln_eta0_ratio.map(|c| z * c);
         }
         g
     }
@@ -642,7 +688,7 @@ pub struct MapQuery {
 
 /// The embedded map files in query order, with the law each samples (so a query parses only the
 /// maps of its law, and those only up to the first that holds it).
-const EMBEDDED: [(&str, LawKind); 10] = [
+const EMBEDDED: [(&str, LawKind); 13] = [
     (
         include_str!("../../data/law_map_seed_oil_g129.json"),
         LawKind::QuasiStatic,
@@ -676,11 +722,23 @@ const EMBEDDED: [(&str, LawKind); 10] = [
         LawKind::QuasiStatic,
     ),
     (
+        include_str!("../../data/law_map_mineral_oils_low_l_light_g129.json"),
+        LawKind::QuasiStatic,
+    ),
+    (
+        include_str!("../../data/law_map_mineral_oils_high_l_g129.json"),
+        LawKind::QuasiStatic,
+    ),
+    (
+        include_str!("../../data/law_map_mineral_oils_lightest_g129.json"),
+        LawKind::QuasiStatic,
+    ),
+    (
         include_str!("../../data/law_map_mineral_oils_heavy_g65.json"),
         LawKind::QuasiStatic,
     ),
     (
-        include_str!("../../data/law_map_seed_oil_harmonic_g65.json"),
+        include_str!("../../data/law_map_seed_oil_harmonic_g129.json"),
         LawKind::Harmonic,
     ),
 ];
@@ -794,24 +852,27 @@ impl LawMap {
 
     /// The maps embedded in the library (generated by `ehl-bearing law-map`, docs/law_map.md §5),
     /// in query order, each parsed on its first use (the first call parses them all). All are
-    /// Roelands and Dowson–Higginson, ε = 0.2, on grid 129² (the quasi-static method's default)
-    /// but the ninth and the tenth, on 65². Four quasi-static maps for the seed's oil (α·p0 =
-    /// 4.312, ln(η0/η∞) = 6.451 fixed): 17 × 5 × 9 nodes over M 120–4000, L 19–26, Ry/Rx 10–65
-    /// (`examples/law_map_seed_oil.toml`); 17 × 5 × 9 over M 200–4000, L 26–34, Ry/Rx 10–65
+    /// Roelands and Dowson–Higginson, ε = 0.2, on grid 129² (the quasi-static and harmonic
+    /// methods' default) but the eleventh, on 65². Four quasi-static maps for the seed's oil
+    /// (α·p0 = 4.312, ln(η0/η∞) = 6.451 fixed): 17 × 5 × 9 nodes over M 120–4000, L 19–26, Ry/Rx
+    /// 10–65 (`examples/law_map_seed_oil.toml`); 17 × 5 × 9 over M 200–4000, L 26–34, Ry/Rx 10–65
     /// (`examples/law_map_seed_oil_high_l.toml`); 9 × 5 × 5 over M 64–150, L 19–26, Ry/Rx 10–15
     /// (`examples/law_map_seed_oil_low_m.toml`: light outer contacts at speed); 7 × 5 × 9 over
     /// M 3000–8000, L 19–26, Ry/Rx 10–65 with the steady solver's tolerances × 0.1
     /// (`examples/law_map_seed_oil_high_m.toml`: the heavy contacts of the seed study's larger
-    /// loads). Five with the rheology groups as axes too (mineral oils, α·p0 2.9–5.05,
-    /// ln(η0/η∞) 4.1–7.0, Ry/Rx 14–45): M 500–2700 and L 12.5–26
+    /// loads). Seven with the rheology groups as axes too (mineral oils): with α·p0 2.9–5.05,
+    /// ln(η0/η∞) 4.1–7.0 and Ry/Rx 14–45, M 500–2700 and L 12.5–26
     /// (`examples/law_map_mineral_oils.toml`), M 100–500 and L 12.5–23 (`…_light.toml`), M
     /// 2700–7200 and L 12.5–23 with the tolerances × 0.1 (`…_heavy.toml`), M 300–3900 and
-    /// L 8–12.5 (`…_low_l.toml`: slow large bearings), and on 65² M 2700–10000 and L 12.5–23
-    /// (`…_heavy_g65.toml`, after the others: it answers M 7200–10000). The tenth is of the
-    /// harmonic law (ĉ and the mass group Ψ_H, Ω = 0.005·ω_n) for the seed's oil: 11 × 5 × 9 × 3
-    /// nodes over M 120–4000, L 19–26, Ry/Rx 10–65 and Ψ_H 0.4–8
-    /// (`examples/law_map_seed_oil_harmonic.toml`). A query uses the first map of its law that
-    /// holds it; its law is of that map's grid.
+    /// L 8–12.5 (`…_low_l.toml`: slow large bearings), M 100–300 and L 8–12.5
+    /// (`…_low_l_light.toml`); with ln(η0/η∞) and Roelands' Z = α·p0/ln(η0/η∞) as axes and Ry/Rx
+    /// 14–35, M 180–2500 and L 26–36 (`…_high_l.toml`: ln(η0/η∞) 5.4–7.0, Z 0.55–0.85), M
+    /// 90–300 and L 12.5–26 (`…_lightest.toml`: ln(η0/η∞) 4.1–6.9, Z 0.55–0.8); and on 65²
+    /// M 2700–10000 and L 12.5–23 (`…_heavy_g65.toml`, after the others: it answers M
+    /// 7200–10000). The last is of the harmonic law (ĉ and the mass group Ψ_H, Ω = 0.005·ω_n)
+    /// for the seed's oil: 11 × 5 × 9 × 3 nodes over M 120–4000, L 19–26, Ry/Rx 10–65 and Ψ_H
+    /// 0.4–8 (`examples/law_map_seed_oil_harmonic.toml`). A query uses the first map of its law
+    /// that holds it; its law is of that map's grid.
     pub fn embedded_maps() -> &'static [&'static LawMap] {
         static ALL: std::sync::OnceLock<Vec<&'static LawMap>> = std::sync::OnceLock::new();
         ALL.get_or_init(|| (0..EMBEDDED.len()).map(embedded_map).collect())

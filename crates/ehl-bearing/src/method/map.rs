@@ -38,7 +38,7 @@ use std::time::Instant;
 /// the contact's groups and Ψ_H ([`crate::law_map::mass_group`] with the ball's mass): the law
 /// carries the damping c = ĉ·w0·b/(δ_H·u_s), `method` reads "map (harmonic)", and outside the
 /// map the harmonic method at the map's settings (Ω = 0.005·ω_n, its amplitude and grid, refined
-/// where 65² does not resolve the film, [`harmonic_fallback_settings`]) characterizes the
+/// where 129² does not resolve the film, [`harmonic_fallback_settings`]) characterizes the
 /// contact ("harmonic (outside the map: …)").
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct MapCharacterizer {
@@ -246,9 +246,9 @@ fn refined_ehl(c: &EhlContact, mut ehl: EhlSettings) -> EhlSettings {
     ehl
 }
 
-/// The harmonic fallback's settings for contact `c`: the harmonic map's (grid 65²,
-/// Ω = 0.005·ω_n), on 129² or 257² where 65² does not resolve the contact's film (as
-/// [`fallback_settings`]).
+/// The harmonic fallback's settings for contact `c`: the harmonic map's (grid 129²,
+/// Ω = 0.005·ω_n), on 257² where 129² does not resolve the contact's film (as
+/// [`fallback_settings`]; from any grid of the map's, the first that resolves it).
 pub fn harmonic_fallback_settings(c: &EhlContact) -> Result<HarmonicSettings, LawMapError> {
     let mut s = harmonic_map()?.spec.harmonic_settings();
     s.ehl = refined_ehl(c, s.ehl);
@@ -275,9 +275,9 @@ mod tests {
         .unwrap()
     }
 
-    /// The fallback keeps the maps' 129² where it resolves the film and refines where it does
-    /// not; the harmonic fallback starts from its map's 65². Each chosen grid is the first with
-    /// the film at ≥ 10 ΔX² (257² the last resort), and only the grid changes.
+    /// The fallbacks keep the maps' 129² (the harmonic map's too) where it resolves the film and
+    /// refine where it does not. Each chosen grid is the first with the film at ≥ 10 ΔX² (257²
+    /// the last resort), and only the grid changes.
     #[test]
     fn the_fallbacks_refine_the_grid_where_theirs_does_not_resolve_the_film() {
         let ratio = |c: &EhlContact, grid: usize| {
@@ -286,22 +286,14 @@ mod tests {
             film_resolution(c, &s).unwrap()
         };
         assert_eq!(LawMap::embedded().spec.grid, 129);
-        for (m, l, fallback, coarse) in [
-            (300.0, 20.0, 129, 65),
-            (3000.0, 10.0, 129, 129),
-            (20000.0, 8.0, 257, 257),
-        ] {
+        for (m, l, grid) in [(300.0, 20.0, 129), (3000.0, 10.0, 129), (20000.0, 8.0, 257)] {
             let c = contact(m, l);
             let quasi_static = LawMap::embedded().spec.settings().ehl;
             let harmonic = harmonic_map().unwrap().spec.harmonic_settings().ehl;
-            assert_eq!(harmonic.grid, 65);
-            for (s, grid, base) in [
-                (fallback_settings(&c).ehl, fallback, quasi_static),
-                (
-                    harmonic_fallback_settings(&c).unwrap().ehl,
-                    coarse,
-                    harmonic,
-                ),
+            assert_eq!(harmonic.grid, 129);
+            for (s, base) in [
+                (fallback_settings(&c).ehl, quasi_static),
+                (harmonic_fallback_settings(&c).unwrap().ehl, harmonic),
             ] {
                 assert_eq!(s.grid, grid, "M {m}, L {l}: {}", ratio(&c, s.grid));
                 if grid > base.grid {

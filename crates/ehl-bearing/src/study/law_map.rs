@@ -402,7 +402,7 @@ pub fn held_out_check_with(
     };
     let points: Vec<(LawGroups, Option<f64>)> = (0..count)
         .map(|_| {
-            let mut g = spec.node_groups(0);
+            let mut values = Vec::with_capacity(spec.axes.len());
             let mut psi_h = None;
             for a in &spec.axes {
                 let (lo, hi) = if a.log {
@@ -416,9 +416,9 @@ pub fn held_out_check_with(
                 if a.group == Group::PsiH {
                     psi_h = Some(v);
                 }
-                a.group.set(&mut g, v);
+                values.push(v);
             }
-            (g, psi_h)
+            (spec.groups_at(&values), psi_h)
         })
         .collect();
     Ok(points
