@@ -1208,7 +1208,7 @@ mod bearing {
     /// settings (grid 129², Ω = 0.005·ω_n): contact loads, the stiffness diagonal and the damping
     /// diagonal of the linearized bearing (the fitted-law element at the final equilibrium, as
     /// `coefficients`). Bounds: loads 0.2 % and stiffness 0.5 % as the quasi-static map's; the
-    /// damping diagonal 3 %, the ĉ target (docs/law_map.md §7). 29 s (the harmonic method's
+    /// damping diagonal 3 %, the ĉ target (docs/law_map.md §7). 52 s on 129² (the harmonic method's
     /// 22 contacts), so not in the default run: `cargo test --release -p ehl-bearing --test
     /// law_map -- --ignored`; its fast version is
     /// `seed_bearing_by_harmonic_map_heaviest_contact_against_harmonic`.
