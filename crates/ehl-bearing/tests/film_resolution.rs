@@ -82,14 +82,17 @@ fn under_resolved_contact_has_a_negative_nodal_film() {
     assert!(sol.converged && sol.h_min > 0.0, "h_min {}", sol.h_min);
 }
 
-/// The heavy oils map (grid 65²) reaches under-resolved nodes at its high-M end; the trial
-/// low-L spec (grid 129², M ≤ 4000) has none.
+/// The heavy oils box on 65² and up to M 10000 (the shipped heavy maps' predecessor) reaches
+/// under-resolved nodes at its high-M end; the low-L spec (grid 129², M ≤ 3900) has none.
 #[test]
 fn law_map_specs_checked_for_resolution() {
-    let heavy = LawMapSpec::from_toml(include_str!(
-        "../../../examples/law_map_mineral_oils_heavy_g65.toml"
+    let mut heavy = LawMapSpec::from_toml(include_str!(
+        "../../../examples/law_map_mineral_oils_heavy.toml"
     ))
     .unwrap();
+    heavy.grid = 65;
+    heavy.tolerance_factor = 1.0;
+    heavy.axes[0].max = 10000.0;
     let bad = under_resolved_nodes(&heavy).unwrap();
     assert!(!bad.is_empty());
     assert!(
@@ -126,12 +129,24 @@ fn print_example_specs() {
             include_str!("../../../examples/law_map_mineral_oils_heavy.toml"),
         ),
         (
-            "mineral_oils_heavy_g65",
-            include_str!("../../../examples/law_map_mineral_oils_heavy_g65.toml"),
+            "mineral_oils_heaviest",
+            include_str!("../../../examples/law_map_mineral_oils_heaviest.toml"),
         ),
         (
             "mineral_oils_low_l",
             include_str!("../../../examples/law_map_mineral_oils_low_l.toml"),
+        ),
+        (
+            "mineral_oils_low_l_light",
+            include_str!("../../../examples/law_map_mineral_oils_low_l_light.toml"),
+        ),
+        (
+            "mineral_oils_high_l",
+            include_str!("../../../examples/law_map_mineral_oils_high_l.toml"),
+        ),
+        (
+            "mineral_oils_lightest",
+            include_str!("../../../examples/law_map_mineral_oils_lightest.toml"),
         ),
         (
             "seed_oil",
