@@ -154,6 +154,13 @@ impl MapAxis {
         }
     }
 
+    /// The group's value at fraction `f` ∈ [0, 1] of the axis's coordinate range (of ln(group)
+    /// when `log`), within [min, max].
+    pub(crate) fn at_fraction(&self, f: f64) -> f64 {
+        let (lo, hi) = (self.coord(self.min), self.coord(self.max));
+        self.value(lo + (hi - lo) * f).clamp(self.min, self.max)
+    }
+
     /// The node coordinates, ascending (the ends exactly at min and max).
     fn node_coords(&self) -> Vec<f64> {
         let (a, b) = (self.coord(self.min), self.coord(self.max));

@@ -381,9 +381,10 @@ pub fn held_out_check(map: &LawMap, count: usize, seed: u64) -> Vec<HeldOutPoint
 }
 
 /// [`held_out_check`] against direct characterizations with the map's steady tolerances (its
-/// spec's `tolerance_factor` included) times `tolerance_factor` ([`tightened`]; the fitted ΔF of heavy contacts follows the steady
-/// solutions' iteration error, docs/law_map.md §5). Points whose direct characterization fails
-/// are left out; a factor outside (0, 1] is an error before any point is drawn.
+/// spec's `tolerance_factor` included) times `tolerance_factor` ([`tightened`]; the fitted ΔF
+/// of heavy contacts follows the steady solutions' iteration error, docs/law_map.md §5). Points
+/// whose direct characterization fails are left out; a factor outside (0, 1] is an error before
+/// any point is drawn.
 pub fn held_out_check_with(
     map: &LawMap,
     count: usize,
@@ -405,14 +406,7 @@ pub fn held_out_check_with(
             let mut values = Vec::with_capacity(spec.axes.len());
             let mut psi_h = None;
             for a in &spec.axes {
-                let (lo, hi) = if a.log {
-                    (a.min.ln(), a.max.ln())
-                } else {
-                    (a.min, a.max)
-                };
-                let t = lo + (hi - lo) * next();
-                let v = if a.log { t.exp() } else { t };
-                let v = v.clamp(a.min, a.max);
+                let v = a.at_fraction(next());
                 if a.group == Group::PsiH {
                     psi_h = Some(v);
                 }
