@@ -1,5 +1,6 @@
 //! `ehl-bearing law-map generate SPEC.toml -o DIR [--shard i/N]`, `law-map assemble SPEC.toml -o
-//! DIR --map FILE`, `law-map sbatch SPEC.toml -o DIR --map FILE` (a Slurm job array of the
+//! DIR --map FILE`, `law-map convert IN OUT` (JSON text ⇄ the compact binary form), `law-map sbatch
+//! SPEC.toml -o DIR --map FILE` (a Slurm job array of the
 //! shards and the assemble job: `law_map_slurm`) and `law-map check FILE --points N`: the map of the dimensionless quasi-static
 //! law over the groups (`ehl_bearing::law_map`, docs/law_map.md). The nodes are point files in
 //! DIR/points (atomic, resumable, shardable as a study's); `assemble` writes the map file from
@@ -51,16 +52,25 @@ pub enum LawMapCommand {
         /// The folder the nodes were generated into.
         #[arg(short = 'o', long = "output")]
         output: PathBuf,
-        /// The map file to write (JSON).
+        /// The map file to write: JSON text if it ends in .json, the compact binary form if in
+        /// .bin (docs/law_map.md §5).
         #[arg(long)]
         map: PathBuf,
+    },
+    /// Write a map file in the other form: JSON text (.json) or the compact binary form (.bin),
+    /// by the output's extension; the numbers are the same, bit for bit.
+    Convert {
+        /// The map file to read (either form).
+        input: PathBuf,
+        /// The map file to write (.json or .bin).
+        output: PathBuf,
     },
     /// Write (and with --submit, submit) a Slurm job array that generates the nodes, one shard
     /// per task, and the dependent job that assembles the map file.
     Sbatch(crate::law_map_slurm::LawMapSbatchArgs),
     /// Compare the map with direct characterizations at random points inside its envelope.
     Check {
-        /// Map file (JSON).
+        /// Map file (JSON text or the binary form).
         map: PathBuf,
         /// Number of random points.
         #[arg(long, default_value_t = 200)]
@@ -123,6 +133,7 @@ pub fn run(a: &LawMapArgs) -> anyhow::Result<()> {
             *threads,
         ),
         LawMapCommand::Assemble { spec, output, map } => assemble(spec, output, map),
+        LawMapCommand::Convert { input, output } => convert(input, output),
         LawMapCommand::Sbatch(args) => crate::law_map_slurm::run(args),
         LawMapCommand::Check {
             map,
@@ -218,10 +229,11 @@ fn warn_under_resolved(s: &LawMapSpec) -> anyhow::Result<()> {
 /// `law-map assemble`: build the map file `map` from the node files in `output`.
 fn assemble(spec: &Path, output: &Path, map: &Path) -> anyhow::Result<()> {
     let s = read_spec(spec)?;
+    binary_form(map)?;
     let store = FsStore::open(output)?;
     let m = assemble_map(&s, &store)?;
-    let text = m.to_json();
-    ehl_bearing::io::write_atomic(map, text.as_bytes())?;
+    let text = map_file_bytes(&m, map)?;
+    ehl_bearing::io::write_atomic(map, &text)?;
     let worst = m.quality.iter().map(|q| q.rms_hat).fold(0.0, f64::max);
     println!(
         "{}: {} nodes, {} bytes, {:.1} CPU hours ({:.0} s), worst node fit RMS/w0 {:.2e}, {} not converged",
@@ -232,6 +244,50 @@ fn assemble(spec: &Path, output: &Path, map: &Path) -> anyhow::Result<()> {
         m.cpu_seconds,
         worst,
         m.quality.iter().filter(|q| !q.converged).count()
+    );
+    Ok(())
+}
+
+/// The map file `p` (either form), read and checked (errors name the file).
+fn read_map(p: &Path) -> anyhow::Result<LawMap> {
+    let bytes = std::fs::read(p).with_context(|| format!("reading {}", p.display()))?;
+    LawMap::parse(&bytes).with_context(|| format!("in {}", p.display()))
+}
+
+/// Whether the map file `p` is to be written in the binary form (.bin) rather than as JSON text
+/// (.json); any other extension an error naming both.
+pub(crate) fn binary_form(p: &Path) -> anyhow::Result<bool> {
+    match p.extension().and_then(|e| e.to_str()) {
+        Some("json") => Ok(false),
+        Some("bin") => Ok(true),
+        other => anyhow::bail!(
+            "{}: the extension {:?} names no map file form: expected .json (JSON text) or .bin \
+             (the compact binary form)",
+            p.display(),
+            other.unwrap_or("")
+        ),
+    }
+}
+
+/// The map file's bytes in the form `p`'s extension names ([`binary_form`]).
+fn map_file_bytes(m: &LawMap, p: &Path) -> anyhow::Result<Vec<u8>> {
+    Ok(if binary_form(p)? {
+        m.to_binary()
+    } else {
+        m.to_json().into_bytes()
+    })
+}
+
+/// `law-map convert`: write the map file `input` in the form of `output`'s extension.
+fn convert(input: &Path, output: &Path) -> anyhow::Result<()> {
+    let m = read_map(input)?;
+    let bytes = map_file_bytes(&m, output)?;
+    ehl_bearing::io::write_atomic(output, &bytes)?;
+    println!(
+        "{}: {} nodes, {} bytes",
+        output.display(),
+        m.laws.len(),
+        bytes.len()
     );
     Ok(())
 }
@@ -247,9 +303,7 @@ fn check(
     threads: Option<usize>,
     tolerance_factor: f64,
 ) -> anyhow::Result<()> {
-    let text =
-        std::fs::read_to_string(map).with_context(|| format!("reading {}", map.display()))?;
-    let m = LawMap::from_json(&text)?;
+    let m = read_map(map)?;
     let t0 = Instant::now();
     let r = pool(threads)?
         .install(|| held_out_check_with(&m, points, seed, tolerance_factor))

@@ -23,7 +23,8 @@ pub struct LawMapSbatchArgs {
     /// Shared folder of the node files (on a file system every node sees); created if needed.
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
-    /// The map file the assemble job writes (JSON); its folder must exist.
+    /// The map file the assemble job writes (.json: JSON text, .bin: the compact binary form);
+    /// its folder must exist.
     #[arg(long)]
     pub map: PathBuf,
     /// The job-array options (as `study sbatch`). With --submit, tasks of an earlier submission
@@ -117,6 +118,7 @@ exec {} law-map assemble {} -o {} --map {}
 
 /// The map file as an absolute path (its folder must exist; the file need not).
 fn absolute_map(map: &Path) -> anyhow::Result<PathBuf> {
+    crate::law_map_cmd::binary_form(map)?;
     let name = map
         .file_name()
         .with_context(|| format!("--map {}: expected a file name", map.display()))?;

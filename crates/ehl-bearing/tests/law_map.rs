@@ -708,6 +708,121 @@ mod harmonic_spec {
     }
 }
 
+/// The map file's two forms (JSON text and the compact binary form of the embedded maps).
+mod file {
+    use ehl_bearing::law_map::{LawMap, LawMapError, BINARY_MAGIC};
+
+    /// The embedded map files, read from the source tree (what `include_bytes!` embeds).
+    fn data_files() -> Vec<(String, Vec<u8>)> {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
+        let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| {
+                let p = e.unwrap().path();
+                (p.display().to_string(), std::fs::read(&p).unwrap())
+            })
+            .collect();
+        files.sort();
+        files
+    }
+
+    /// Every embedded map file is in the binary form and converts to JSON text and back to the
+    /// same bytes, its numbers bit for bit (`LawMap` equality compares the f64s); each is one of
+    /// the maps the library embeds.
+    #[test]
+    fn map_files_convert_both_ways_bit_for_bit() {
+        let files = data_files();
+        let embedded = LawMap::embedded_maps();
+        assert_eq!(files.len(), embedded.len());
+        for (name, bytes) in &files {
+            assert!(bytes.starts_with(BINARY_MAGIC), "{name}");
+            let m = LawMap::parse(bytes).unwrap();
+            assert_eq!(m.to_binary(), *bytes, "{name}");
+            let text = m.to_json();
+            let back = LawMap::parse(text.as_bytes()).unwrap();
+            assert_eq!(back, m, "{name}");
+            assert_eq!(back.to_binary(), *bytes, "{name}");
+            assert_eq!(LawMap::from_json(&text).unwrap().to_json(), text, "{name}");
+            assert!(embedded.iter().any(|e| **e == m), "{name}");
+            // About a quarter of the text.
+            assert!(bytes.len() * 3 < text.len(), "{name}");
+        }
+    }
+
+    /// A damaged binary file is refused with the field and its value, or the length found and
+    /// expected; never read as a map.
+    #[test]
+    fn binary_map_file_errors_name_the_field() {
+        let map = LawMap::embedded_maps()[2];
+        let good = map.to_binary();
+        let msg = |b: &[u8]| LawMap::parse(b).unwrap_err().to_string();
+        // The header: its length field, then the header itself.
+        let head = BINARY_MAGIC.len()
+            + 4
+            + u32::from_le_bytes(
+                good[BINARY_MAGIC.len()..BINARY_MAGIC.len() + 4]
+                    .try_into()
+                    .unwrap(),
+            ) as usize;
+        let m = msg(&good[..BINARY_MAGIC.len() + 2]);
+        assert!(m.contains("header length: 2 bytes, expected 4"), "{m}");
+        let m = msg(&good[..head - 1]);
+        assert!(m.contains("header:") && m.contains("expected"), "{m}");
+        // Truncated records: the length found and expected.
+        let m = msg(&good[..good.len() - 1]);
+        let records = good.len() - head;
+        assert!(
+            m.contains(&format!(
+                "225 node records of 65 bytes: {} bytes, expected {records}",
+                records - 1
+            )),
+            "{m}"
+        );
+        // A value that is not finite: the field named.
+        let mut b = good.clone();
+        b[head + 65 + 8..head + 65 + 16].copy_from_slice(&f64::NAN.to_le_bytes());
+        let m = msg(&b);
+        assert!(m.contains("laws[1].d = NaN") && m.contains("finite"), "{m}");
+        let mut b = good.clone();
+        b[head + 6 * 8..head + 7 * 8].copy_from_slice(&f64::INFINITY.to_le_bytes());
+        let m = msg(&b);
+        assert!(m.contains("quality[0].r_squared = inf"), "{m}");
+        // The converged byte.
+        let mut b = good.clone();
+        b[head + 64] = 7;
+        let m = msg(&b);
+        assert!(
+            m.contains("quality[0].converged = 7") && m.contains("0 or 1"),
+            "{m}"
+        );
+        // Node count in the header against the spec.
+        let text = String::from_utf8(good[BINARY_MAGIC.len() + 4..head].to_vec()).unwrap();
+        let bad = text.replace("\"nodes\":225", "\"nodes\":224");
+        assert_ne!(bad, text);
+        let mut b = good[..BINARY_MAGIC.len()].to_vec();
+        b.extend_from_slice(&(bad.len() as u32).to_le_bytes());
+        b.extend_from_slice(bad.as_bytes());
+        b.extend_from_slice(&good[head..]);
+        assert!(matches!(
+            LawMap::parse(&b),
+            Err(LawMapError::NodeCount {
+                laws: 224,
+                nodes: 225,
+                ..
+            })
+        ));
+        // Neither form.
+        let m = msg(&[0xff, 0xfe, 0x00]);
+        assert!(
+            m.contains("neither the binary form") && m.contains("JSON"),
+            "{m}"
+        );
+        let m = msg(b"{\"format\": 1}");
+        assert!(m.contains("law map:"), "{m}");
+        assert_eq!(LawMap::parse(&good).unwrap(), *map);
+    }
+}
+
 mod embedded {
     use super::{difference, SAME};
     use ehl_bearing::law_map::{LawMap, LawMapSpec};

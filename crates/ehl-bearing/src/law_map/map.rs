@@ -695,57 +695,57 @@ pub struct MapQuery {
 
 /// The embedded map files in query order, with the law each samples (so a query parses only the
 /// maps of its law, and those only up to the first that holds it).
-const EMBEDDED: [(&str, LawKind); 13] = [
+const EMBEDDED: [(&[u8], LawKind); 13] = [
     (
-        include_str!("../../data/law_map_seed_oil_g129.json"),
+        include_bytes!("../../data/law_map_seed_oil_g129.bin"),
         LawKind::QuasiStatic,
     ),
     (
-        include_str!("../../data/law_map_seed_oil_high_l_g129.json"),
+        include_bytes!("../../data/law_map_seed_oil_high_l_g129.bin"),
         LawKind::QuasiStatic,
     ),
     (
-        include_str!("../../data/law_map_seed_oil_low_m_g129.json"),
+        include_bytes!("../../data/law_map_seed_oil_low_m_g129.bin"),
         LawKind::QuasiStatic,
     ),
     (
-        include_str!("../../data/law_map_seed_oil_high_m_g129.json"),
+        include_bytes!("../../data/law_map_seed_oil_high_m_g129.bin"),
         LawKind::QuasiStatic,
     ),
     (
-        include_str!("../../data/law_map_mineral_oils_g129.json"),
+        include_bytes!("../../data/law_map_mineral_oils_g129.bin"),
         LawKind::QuasiStatic,
     ),
     (
-        include_str!("../../data/law_map_mineral_oils_light_g129.json"),
+        include_bytes!("../../data/law_map_mineral_oils_light_g129.bin"),
         LawKind::QuasiStatic,
     ),
     (
-        include_str!("../../data/law_map_mineral_oils_heavy_g129.json"),
+        include_bytes!("../../data/law_map_mineral_oils_heavy_g129.bin"),
         LawKind::QuasiStatic,
     ),
     (
-        include_str!("../../data/law_map_mineral_oils_low_l_g129.json"),
+        include_bytes!("../../data/law_map_mineral_oils_low_l_g129.bin"),
         LawKind::QuasiStatic,
     ),
     (
-        include_str!("../../data/law_map_mineral_oils_low_l_light_g129.json"),
+        include_bytes!("../../data/law_map_mineral_oils_low_l_light_g129.bin"),
         LawKind::QuasiStatic,
     ),
     (
-        include_str!("../../data/law_map_mineral_oils_high_l_g129.json"),
+        include_bytes!("../../data/law_map_mineral_oils_high_l_g129.bin"),
         LawKind::QuasiStatic,
     ),
     (
-        include_str!("../../data/law_map_mineral_oils_lightest_g129.json"),
+        include_bytes!("../../data/law_map_mineral_oils_lightest_g129.bin"),
         LawKind::QuasiStatic,
     ),
     (
-        include_str!("../../data/law_map_mineral_oils_heaviest_g129.json"),
+        include_bytes!("../../data/law_map_mineral_oils_heaviest_g129.bin"),
         LawKind::QuasiStatic,
     ),
     (
-        include_str!("../../data/law_map_seed_oil_harmonic_g129.json"),
+        include_bytes!("../../data/law_map_seed_oil_harmonic_g129.bin"),
         LawKind::Harmonic,
     ),
 ];
@@ -756,14 +756,14 @@ fn embedded_map(index: usize) -> &'static LawMap {
     static MAPS: [std::sync::OnceLock<LawMap>; EMBEDDED.len()] =
         [const { std::sync::OnceLock::new() }; EMBEDDED.len()];
     MAPS[index].get_or_init(|| {
-        let (text, law) = EMBEDDED[index];
-        let map = LawMap::from_json(text).expect("the embedded maps are valid");
+        let (bytes, law) = EMBEDDED[index];
+        let map = LawMap::from_binary(bytes).expect("the embedded maps are valid");
         assert_eq!(map.spec.law, law, "embedded map {index}: its law");
         map
     })
 }
 
-fn law_of(v: &[f64; 7], harmonic: bool) -> DimensionlessLaw {
+pub(super) fn law_of(v: &[f64; 7], harmonic: bool) -> DimensionlessLaw {
     DimensionlessLaw {
         k_hat: v[0],
         d: v[1],
@@ -774,7 +774,7 @@ fn law_of(v: &[f64; 7], harmonic: bool) -> DimensionlessLaw {
     }
 }
 
-fn values_of(l: &DimensionlessLaw) -> [f64; 7] {
+pub(super) fn values_of(l: &DimensionlessLaw) -> [f64; 7] {
     [
         l.k_hat,
         l.d,
@@ -787,76 +787,6 @@ fn values_of(l: &DimensionlessLaw) -> [f64; 7] {
 }
 
 impl LawMap {
-    /// Parses a map file (JSON) and checks it against its spec.
-    pub fn from_json(text: &str) -> Result<LawMap, LawMapError> {
-        let m: LawMap = serde_json::from_str(text).map_err(|e| LawMapError::Parse {
-            message: e.to_string(),
-        })?;
-        if m.format != FORMAT {
-            return Err(LawMapError::Format {
-                format: m.format.clone(),
-                expected: FORMAT,
-            });
-        }
-        m.spec.validate()?;
-        let n = m.spec.node_count();
-        if m.laws.len() != n || m.quality.len() != n {
-            return Err(LawMapError::NodeCount {
-                laws: m.laws.len(),
-                quality: m.quality.len(),
-                nodes: n,
-            });
-        }
-        let harmonic = m.spec.law == LawKind::Harmonic;
-        if let Some(k) = m.laws.iter().position(|l| l.c_hat.is_some() != harmonic) {
-            return Err(LawMapError::Invalid {
-                field: format!("laws[{k}].c_hat"),
-                value: m.laws[k].c_hat.unwrap_or(f64::NAN),
-                expected: format!(
-                    "{} in a map of the {} law",
-                    if harmonic { "a value" } else { "none" },
-                    m.spec.law.name()
-                ),
-            });
-        }
-        Ok(m)
-    }
-
-    /// The map file's text (JSON, one node per line).
-    pub fn to_json(&self) -> String {
-        let mut s = String::new();
-        s.push_str("{\n");
-        s.push_str(&format!(
-            "\"format\": {},\n",
-            serde_json::to_string(&self.format).expect("string")
-        ));
-        s.push_str(&format!(
-            "\"spec\": {},\n",
-            serde_json::to_string(&self.spec).expect("spec serializes")
-        ));
-        let rows = |v: Vec<String>| v.join(",\n");
-        s.push_str(&format!(
-            "\"laws\": [\n{}\n],\n",
-            rows(
-                self.laws
-                    .iter()
-                    .map(|l| serde_json::to_string(l).expect("law"))
-                    .collect()
-            )
-        ));
-        s.push_str(&format!(
-            "\"quality\": [\n{}\n],\n",
-            rows(
-                self.quality
-                    .iter()
-                    .map(|q| serde_json::to_string(q).expect("quality"))
-                    .collect()
-            )
-        ));
-        s.push_str(&format!("\"cpu_seconds\": {}\n}}\n", self.cpu_seconds));
-        s
-    }
-
     /// The maps embedded in the library (generated by `ehl-bearing law-map`, docs/law_map.md §5),
     /// in query order, each parsed on its first use (the first call parses them all). All are
     /// Roelands and Dowson–Higginson, ε = 0.2, on grid 129² (the quasi-static and harmonic

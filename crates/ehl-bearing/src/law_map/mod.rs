@@ -459,7 +459,10 @@ impl DimensionlessLaw {
     }
 }
 
+mod file;
 mod map;
+
+pub use file::BINARY_MAGIC;
 
 pub use map::{
     tightened, Group, LawKind, LawMap, LawMapSpec, MapAxis, MapQuery, NodeQuality, FORMAT,

@@ -1,0 +1,42 @@
+//! Reading the law maps: all embedded map files parsed from their compact binary form (what the
+//! library embeds) against the same maps parsed from JSON text (what `law-map assemble` writes
+//! for a `.json` file), side by side in one run. The first query of the `map` method that
+//! reaches a map pays its parse once (docs/law_map.md §5).
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use ehl_bearing::law_map::LawMap;
+
+fn parse(c: &mut Criterion) {
+    let maps = LawMap::embedded_maps();
+    let binary: Vec<Vec<u8>> = maps.iter().map(|m| m.to_binary()).collect();
+    let json: Vec<String> = maps.iter().map(|m| m.to_json()).collect();
+    let mut g = c.benchmark_group("law_map_parse_all_embedded");
+    g.sample_size(20);
+    g.bench_function("binary", |b| {
+        b.iter(|| {
+            for bytes in &binary {
+                black_box(LawMap::from_binary(black_box(bytes)).unwrap());
+            }
+        })
+    });
+    g.bench_function("json", |b| {
+        b.iter(|| {
+            for text in &json {
+                black_box(LawMap::from_json(black_box(text)).unwrap());
+            }
+        })
+    });
+    g.finish();
+    // The first map alone (the seed oil's; a seed-case query parses only it).
+    let mut g = c.benchmark_group("law_map_parse_first");
+    g.bench_function("binary", |b| {
+        b.iter(|| black_box(LawMap::from_binary(black_box(&binary[0])).unwrap()))
+    });
+    g.bench_function("json", |b| {
+        b.iter(|| black_box(LawMap::from_json(black_box(&json[0])).unwrap()))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, parse);
+criterion_main!(benches);
