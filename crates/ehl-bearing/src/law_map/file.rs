@@ -1,5 +1,5 @@
 //! The map file in its two forms: JSON text (one node per line, for reading and diffing) and a
-//! compact binary form (the embedded maps: the same numbers, bit for bit, in about a seventh of
+//! compact binary form (the embedded maps: the same numbers, bit for bit, in about a quarter of
 //! the bytes). [`LawMap::parse`] reads either; both are checked against the map's spec the same
 //! way.
 //!

@@ -43,10 +43,12 @@ pub enum LawMapError {
         /// The valid range.
         expected: String,
     },
-    /// A spec (TOML) or map (JSON) file that does not parse: the parser's message.
+    /// A spec (TOML) or map (JSON text or binary) file that does not parse: the parser's
+    /// message, or what of the binary form is wrong.
     #[error("law map: {message}")]
     Parse {
-        /// The TOML or JSON parser's message, with line and column.
+        /// The TOML or JSON parser's message, with line and column, or the binary form's
+        /// length found and expected.
         message: String,
     },
     /// A group the spec's rheology models need, not given exactly once.
