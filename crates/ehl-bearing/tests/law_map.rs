@@ -17,6 +17,11 @@ use ehl_bearing::material::{
     reduced_modulus, DensityModel, Lubricant, Solid, ViscosityModel, ROELANDS_P0,
 };
 
+/// The embedded map of the harmonic law (the last embedded map).
+fn harmonic_map() -> &'static ehl_bearing::law_map::LawMap {
+    ehl_bearing::law_map::LawMap::embedded_first(ehl_bearing::law_map::LawKind::Harmonic).unwrap()
+}
+
 fn settings() -> QuasiStaticSettings {
     QuasiStaticSettings {
         ehl: EhlSettings {
@@ -640,7 +645,7 @@ mod harmonic_spec {
         let qs = serde_json::to_string(&LawMap::embedded().spec).unwrap();
         assert!(!qs.contains("law") && !qs.contains("frequency"), "{qs}");
         // Queries.
-        let map = &LawMap::embedded_maps()[12];
+        let map = crate::harmonic_map();
         let g = LawGroups {
             m: 500.0,
             l: 22.0,
@@ -882,7 +887,7 @@ mod embedded {
         assert_eq!(LawMap::embedded_maps().len(), 13);
         assert!(std::ptr::eq(
             LawMap::embedded_first(LawKind::Harmonic).unwrap(),
-            LawMap::embedded_maps()[12]
+            *LawMap::embedded_maps().last().unwrap()
         ));
         assert!(std::ptr::eq(
             LawMap::embedded_first(LawKind::QuasiStatic).unwrap(),
@@ -1074,7 +1079,7 @@ mod embedded {
     fn harmonic_map_is_the_example_spec_and_reproduces_its_nodes() {
         use ehl_bearing::law_map::LawKind;
         use ehl_bearing::study::characterize_node;
-        let map = &LawMap::embedded_maps()[12];
+        let map = crate::harmonic_map();
         let spec = LawMapSpec::from_toml(include_str!(
             "../../../examples/law_map_seed_oil_harmonic.toml"
         ))
@@ -1099,7 +1104,7 @@ mod embedded {
     /// load) and none the ĉ one (at most 2.0 %); these four fresh points meet all.
     #[test]
     fn harmonic_map_against_direct_characterizations() {
-        let r = held_out_check(LawMap::embedded_maps()[12], 4, 20261130);
+        let r = held_out_check(crate::harmonic_map(), 4, 20261130);
         assert_eq!(r.len(), 4);
         for h in &r {
             assert!(
@@ -1344,7 +1349,7 @@ mod bearing {
                 .unwrap()
                 .damping
         };
-        let harmonic = Method::Harmonic(LawMap::embedded_maps()[12].spec.harmonic_settings());
+        let harmonic = Method::Harmonic(crate::harmonic_map().spec.harmonic_settings());
         let t0 = std::time::Instant::now();
         let a = characterize_bearing(&case, &harmonic, &s).unwrap();
         let ta = t0.elapsed().as_secs_f64();
@@ -1443,7 +1448,7 @@ mod bearing {
             .characterize(&cond, None)
             .unwrap();
         let direct = HarmonicCharacterizer {
-            settings: LawMap::embedded_maps()[12].spec.harmonic_settings(),
+            settings: crate::harmonic_map().spec.harmonic_settings(),
         }
         .characterize(&cond, None)
         .unwrap();
