@@ -84,69 +84,7 @@ fn shards_assemble_and_check() {
     let m =
         ehl_bearing::law_map::LawMap::from_json(&std::fs::read_to_string(&map).unwrap()).unwrap();
     assert_eq!(m.laws.len(), 27);
-    // The binary form: assembled directly or converted from the JSON text, the same bytes; and
-    // converted back, the same text. Any other extension names both forms.
-    let run = |args: &[&std::ffi::OsStr]| bin().args(args).output().unwrap();
-    let bin_map = dir.path().join("map.bin");
-    let o = run(&[
-        "law-map".as_ref(),
-        "assemble".as_ref(),
-        spec.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-        "--map".as_ref(),
-        bin_map.as_os_str(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let converted = dir.path().join("converted.bin");
-    let o = run(&[
-        "law-map".as_ref(),
-        "convert".as_ref(),
-        map.as_os_str(),
-        converted.as_os_str(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let bytes = std::fs::read(&bin_map).unwrap();
-    assert_eq!(bytes, std::fs::read(&converted).unwrap());
-    assert_eq!(bytes, m.to_binary());
-    let back = dir.path().join("back.json");
-    let o = run(&[
-        "law-map".as_ref(),
-        "convert".as_ref(),
-        bin_map.as_os_str(),
-        back.as_os_str(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert_eq!(std::fs::read(&back).unwrap(), std::fs::read(&map).unwrap());
-    let o = run(&[
-        "law-map".as_ref(),
-        "convert".as_ref(),
-        map.as_os_str(),
-        dir.path().join("map.txt").as_os_str(),
-    ]);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        !o.status.success()
-            && err.contains("\"txt\"")
-            && err.contains(".json")
-            && err.contains(".bin"),
-        "{err}"
-    );
-    let mut damaged = bytes.clone();
-    damaged.truncate(bytes.len() - 3);
-    std::fs::write(&converted, &damaged).unwrap();
-    let o = run(&[
-        "law-map".as_ref(),
-        "check".as_ref(),
-        converted.as_os_str(),
-        "--points".as_ref(),
-        "1".as_ref(),
-    ]);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        !o.status.success() && err.contains("converted.bin") && err.contains("bytes, expected"),
-        "{err}"
-    );
+    binary_form_round_trips(dir.path(), &spec, &out, &map, &m);
     let csv = dir.path().join("check.csv");
     let o = bin()
         .args(["law-map", "check"])
@@ -212,6 +150,79 @@ fn shards_assemble_and_check() {
             "{bad}: {err}"
         );
     }
+}
+
+/// The binary form of the map `m` assembled into `map` (JSON text) from the nodes in `out`:
+/// assembled directly or converted from the JSON text, the same bytes; converted back, the same
+/// text; any other extension refused naming both forms; a truncated file refused with its length.
+fn binary_form_round_trips(
+    dir: &std::path::Path,
+    spec: &std::path::Path,
+    out: &std::path::Path,
+    map: &std::path::Path,
+    m: &ehl_bearing::law_map::LawMap,
+) {
+    let run = |args: &[&std::ffi::OsStr]| bin().args(args).output().unwrap();
+    let bin_map = dir.join("map.bin");
+    let o = run(&[
+        "law-map".as_ref(),
+        "assemble".as_ref(),
+        spec.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+        "--map".as_ref(),
+        bin_map.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let converted = dir.join("converted.bin");
+    let o = run(&[
+        "law-map".as_ref(),
+        "convert".as_ref(),
+        map.as_os_str(),
+        converted.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let bytes = std::fs::read(&bin_map).unwrap();
+    assert_eq!(bytes, std::fs::read(&converted).unwrap());
+    assert_eq!(bytes, m.to_binary());
+    let back = dir.join("back.json");
+    let o = run(&[
+        "law-map".as_ref(),
+        "convert".as_ref(),
+        bin_map.as_os_str(),
+        back.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read(&back).unwrap(), std::fs::read(&map).unwrap());
+    let o = run(&[
+        "law-map".as_ref(),
+        "convert".as_ref(),
+        map.as_os_str(),
+        dir.join("map.txt").as_os_str(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success()
+            && err.contains("\"txt\"")
+            && err.contains(".json")
+            && err.contains(".bin"),
+        "{err}"
+    );
+    let mut damaged = bytes.clone();
+    damaged.truncate(bytes.len() - 3);
+    std::fs::write(&converted, &damaged).unwrap();
+    let o = run(&[
+        "law-map".as_ref(),
+        "check".as_ref(),
+        converted.as_os_str(),
+        "--points".as_ref(),
+        "1".as_ref(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("converted.bin") && err.contains("bytes, expected"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -450,69 +461,6 @@ fn sbatch_runs_the_shards_as_array_tasks_and_resubmits_only_what_is_left() {
     let m =
         ehl_bearing::law_map::LawMap::from_json(&std::fs::read_to_string(&map).unwrap()).unwrap();
     assert_eq!(m.laws.len(), 27);
-    // The binary form: assembled directly or converted from the JSON text, the same bytes; and
-    // converted back, the same text. Any other extension names both forms.
-    let run = |args: &[&std::ffi::OsStr]| bin().args(args).output().unwrap();
-    let bin_map = dir.path().join("map.bin");
-    let o = run(&[
-        "law-map".as_ref(),
-        "assemble".as_ref(),
-        spec.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-        "--map".as_ref(),
-        bin_map.as_os_str(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let converted = dir.path().join("converted.bin");
-    let o = run(&[
-        "law-map".as_ref(),
-        "convert".as_ref(),
-        map.as_os_str(),
-        converted.as_os_str(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let bytes = std::fs::read(&bin_map).unwrap();
-    assert_eq!(bytes, std::fs::read(&converted).unwrap());
-    assert_eq!(bytes, m.to_binary());
-    let back = dir.path().join("back.json");
-    let o = run(&[
-        "law-map".as_ref(),
-        "convert".as_ref(),
-        bin_map.as_os_str(),
-        back.as_os_str(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert_eq!(std::fs::read(&back).unwrap(), std::fs::read(&map).unwrap());
-    let o = run(&[
-        "law-map".as_ref(),
-        "convert".as_ref(),
-        map.as_os_str(),
-        dir.path().join("map.txt").as_os_str(),
-    ]);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        !o.status.success()
-            && err.contains("\"txt\"")
-            && err.contains(".json")
-            && err.contains(".bin"),
-        "{err}"
-    );
-    let mut damaged = bytes.clone();
-    damaged.truncate(bytes.len() - 3);
-    std::fs::write(&converted, &damaged).unwrap();
-    let o = run(&[
-        "law-map".as_ref(),
-        "check".as_ref(),
-        converted.as_os_str(),
-        "--points".as_ref(),
-        "1".as_ref(),
-    ]);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        !o.status.success() && err.contains("converted.bin") && err.contains("bytes, expected"),
-        "{err}"
-    );
     sbatch_refuses_invalid_options(&spec, &out, &map);
 }
 
