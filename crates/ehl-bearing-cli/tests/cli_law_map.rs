@@ -193,7 +193,7 @@ fn binary_form_round_trips(
         back.as_os_str(),
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert_eq!(std::fs::read(&back).unwrap(), std::fs::read(&map).unwrap());
+    assert_eq!(std::fs::read(&back).unwrap(), std::fs::read(map).unwrap());
     let o = run(&[
         "law-map".as_ref(),
         "convert".as_ref(),
