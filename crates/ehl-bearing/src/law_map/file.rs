@@ -3,17 +3,7 @@
 //! the bytes). [`LawMap::parse`] reads either; both are checked against the map's spec the same
 //! way.
 //!
-//! The binary form, all integers and floats little-endian:
-//!
-//! | bytes | content |
-//! |---|---|
-//! | 29 | [`BINARY_MAGIC`], `"ehl-bearing law map binary 1\n"` |
-//! | 4 | u32 h, the header's length in bytes |
-//! | h | header, JSON: `{"spec": …, "cpu_seconds": …, "nodes": n}` (the spec as in the JSON form) |
-//! | n × r | one record per node in node order (the last axis fastest): K̂, d, ΔF̂, approach, range low, range high, [ĉ for a map of the harmonic law], R², RMS/w0 as f64; converged as one byte, 0 or 1 |
-//!
-//! r = 8·(6 + 2) + 1 = 65 bytes (73 with ĉ). The file's length must be exactly that of its
-//! header and n records.
+//! The binary form's layout is in [`LawMap::to_binary`].
 
 use super::map::{law_of, values_of, LawKind, LawMap, LawMapSpec, NodeQuality, FORMAT};
 use super::LawMapError;
@@ -107,8 +97,19 @@ impl LawMap {
         s
     }
 
-    /// The map file in the binary form (module docs): the same numbers as [`LawMap::to_json`],
-    /// bit for bit.
+    /// The map file in the binary form: the same numbers as [`LawMap::to_json`], bit for bit.
+    ///
+    /// The binary form, all integers and floats little-endian:
+    ///
+    /// | bytes | content |
+    /// |---|---|
+    /// | 29 | [`BINARY_MAGIC`], `"ehl-bearing law map binary 1\n"` |
+    /// | 4 | u32 h, the header's length in bytes |
+    /// | h | header, JSON: `{"spec": …, "cpu_seconds": …, "nodes": n}` (the spec as in the JSON form) |
+    /// | n × r | one record per node in node order (the last axis fastest): K̂, d, ΔF̂, approach, range low, range high, ĉ (a map of the harmonic law only), R², RMS/w0 as f64; converged as one byte, 0 or 1 |
+    ///
+    /// r = 8·(6 + 2) + 1 = 65 bytes (73 with ĉ). The file's length must be exactly that of its
+    /// header and n records.
     pub fn to_binary(&self) -> Vec<u8> {
         let header = serde_json::to_vec(&BinaryHeader {
             spec: self.spec.clone(),
@@ -138,7 +139,7 @@ impl LawMap {
         b
     }
 
-    /// Parses a map file in the binary form (module docs) and checks it against its spec: every
+    /// Parses a map file in the binary form ([`LawMap::to_binary`]) and checks it against its spec: every
     /// value finite, every converged byte 0 or 1, the length exactly the header's and n records.
     pub fn from_binary(bytes: &[u8]) -> Result<LawMap, LawMapError> {
         let rest =
