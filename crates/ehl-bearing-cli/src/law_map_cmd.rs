@@ -1,5 +1,6 @@
 //! `ehl-bearing law-map generate SPEC.toml -o DIR [--shard i/N]`, `law-map assemble SPEC.toml -o
-//! DIR --map FILE`, `law-map convert IN OUT` (JSON text ⇄ the compact binary form), `law-map sbatch
+//! DIR --map FILE`, `law-map convert IN OUT` (JSON text ⇄ the compact binary form), `law-map info
+//! [FILE…]` (what map files or the embedded maps hold), `law-map sbatch
 //! SPEC.toml -o DIR --map FILE` (a Slurm job array of the
 //! shards and the assemble job: `law_map_slurm`) and `law-map check FILE --points N`: the map of the dimensionless quasi-static
 //! law over the groups (`ehl_bearing::law_map`, docs/law_map.md). The nodes are point files in
@@ -56,6 +57,15 @@ pub enum LawMapCommand {
         /// .bin (docs/law_map.md §5).
         #[arg(long)]
         map: PathBuf,
+    },
+    /// Print what map files hold (spec, nodes, generation cost, fit quality): the given files,
+    /// or without any the maps embedded in the library, in the order a query tries them.
+    Info {
+        /// Map files (JSON text or the binary form); none: the embedded maps.
+        maps: Vec<PathBuf>,
+        /// One JSON array of the maps' summaries on stdout instead of text.
+        #[arg(long)]
+        json: bool,
     },
     /// Write a map file in the other form: JSON text (.json) or the compact binary form (.bin),
     /// by the output's extension; the numbers are the same, bit for bit.
@@ -134,6 +144,7 @@ pub fn run(a: &LawMapArgs) -> anyhow::Result<()> {
         ),
         LawMapCommand::Assemble { spec, output, map } => assemble(spec, output, map),
         LawMapCommand::Convert { input, output } => convert(input, output),
+        LawMapCommand::Info { maps, json } => info(maps, *json),
         LawMapCommand::Sbatch(args) => crate::law_map_slurm::run(args),
         LawMapCommand::Check {
             map,
@@ -234,17 +245,7 @@ fn assemble(spec: &Path, output: &Path, map: &Path) -> anyhow::Result<()> {
     let m = assemble_map(&s, &store)?;
     let text = map_file_bytes(&m, map)?;
     ehl_bearing::io::write_atomic(map, &text)?;
-    let worst = m.quality.iter().map(|q| q.rms_hat).fold(0.0, f64::max);
-    println!(
-        "{}: {} nodes, {} bytes, {:.1} CPU hours ({:.0} s), worst node fit RMS/w0 {:.2e}, {} not converged",
-        map.display(),
-        m.laws.len(),
-        text.len(),
-        m.cpu_seconds / 3600.0,
-        m.cpu_seconds,
-        worst,
-        m.quality.iter().filter(|q| !q.converged).count()
-    );
+    println!("{} ({} bytes): {}", map.display(), text.len(), m.summary());
     Ok(())
 }
 
@@ -289,6 +290,35 @@ fn convert(input: &Path, output: &Path) -> anyhow::Result<()> {
         m.laws.len(),
         bytes.len()
     );
+    Ok(())
+}
+
+/// `law-map info`: the summaries of the map files `maps` (or of the embedded maps), as text or
+/// as one JSON array.
+fn info(maps: &[PathBuf], json: bool) -> anyhow::Result<()> {
+    let owned: Vec<LawMap> = maps.iter().map(|p| read_map(p)).collect::<Result<_, _>>()?;
+    let (names, all): (Vec<String>, Vec<&LawMap>) = if maps.is_empty() {
+        let e = LawMap::embedded_maps();
+        (
+            (1..=e.len())
+                .map(|i| format!("embedded map {i} of {}", e.len()))
+                .collect(),
+            e.to_vec(),
+        )
+    } else {
+        (
+            maps.iter().map(|p| p.display().to_string()).collect(),
+            owned.iter().collect(),
+        )
+    };
+    if json {
+        let s: Vec<_> = all.iter().map(|m| m.summary()).collect();
+        println!("{}", serde_json::to_string_pretty(&s)?);
+    } else {
+        for (name, m) in names.iter().zip(&all) {
+            println!("{name}: {}", m.summary());
+        }
+    }
     Ok(())
 }
 

@@ -185,6 +185,25 @@ fn binary_form_round_trips(
     let bytes = std::fs::read(&bin_map).unwrap();
     assert_eq!(bytes, std::fs::read(&converted).unwrap());
     assert_eq!(bytes, m.to_binary());
+    // `law-map info` of either form: the same summary.
+    let o = run(&[
+        "law-map".as_ref(),
+        "info".as_ref(),
+        map.as_os_str(),
+        bin_map.as_os_str(),
+    ]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(o.status.success() && lines.len() == 6, "{text}");
+    assert!(
+        lines[0].contains("quasi-static law, grid 33²") && lines[0].contains("27 nodes"),
+        "{text}"
+    );
+    assert_eq!(
+        lines[0].split_once(": ").unwrap().1,
+        lines[3].split_once(": ").unwrap().1
+    );
+    assert_eq!(lines[1..3], lines[4..6]);
     let back = dir.join("back.json");
     let o = run(&[
         "law-map".as_ref(),
@@ -552,5 +571,59 @@ log = true
     assert!(
         e.contains("does not resolve the film of 3 of 3 nodes") && e.contains("node 2, M = 20000"),
         "{e}"
+    );
+}
+
+/// `law-map info` without files: the embedded maps in query order, as text or JSON (the same
+/// summary); a file that does not exist or does not parse is named.
+#[test]
+fn info_lists_the_embedded_maps() {
+    let maps = ehl_bearing::law_map::LawMap::embedded_maps();
+    let o = bin().args(["law-map", "info"]).output().unwrap();
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let heads: Vec<&str> = text
+        .lines()
+        .filter(|l| l.starts_with("embedded map"))
+        .collect();
+    assert_eq!(heads.len(), maps.len(), "{text}");
+    assert!(
+        heads[0].starts_with(&format!(
+            "embedded map 1 of {}: quasi-static law, grid 129²",
+            maps.len()
+        )) && heads[maps.len() - 1].contains("harmonic law"),
+        "{text}"
+    );
+    assert!(
+        text.contains(
+            "axes: M 120–4000 (17 nodes, log) · L 19–26 (5 nodes) · Ry/Rx 10–65 (9 nodes, log)"
+        ),
+        "{text}"
+    );
+    let o = bin().args(["law-map", "info", "--json"]).output().unwrap();
+    let v: Vec<serde_json::Value> = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v.len(), maps.len());
+    for (j, m) in v.iter().zip(maps) {
+        assert_eq!(j["nodes"].as_u64(), Some(m.laws.len() as u64));
+        assert_eq!(j["law"], m.spec.law.name());
+        assert_eq!(j["spec"]["grid"].as_u64(), Some(m.spec.grid as u64));
+        assert!(j["worst_node_rms_hat"].as_f64().unwrap() > 0.0);
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("missing.bin");
+    let o = bin()
+        .args(["law-map", "info"])
+        .arg(&missing)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("missing.bin"), "{err}");
+    let junk = dir.path().join("junk.json");
+    std::fs::write(&junk, "{}").unwrap();
+    let o = bin().args(["law-map", "info"]).arg(&junk).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("junk.json") && err.contains("law map:"),
+        "{err}"
     );
 }

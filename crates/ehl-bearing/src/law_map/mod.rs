@@ -463,8 +463,10 @@ impl DimensionlessLaw {
 
 mod file;
 mod map;
+mod summary;
 
 pub use file::BINARY_MAGIC;
+pub use summary::MapSummary;
 
 pub use map::{
     tightened, Group, LawKind, LawMap, LawMapSpec, MapAxis, MapQuery, NodeQuality, FORMAT,
