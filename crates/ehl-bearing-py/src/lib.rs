@@ -1084,6 +1084,20 @@ pub(crate) fn square(a: &PyReadonlyArray2<'_, f64>, n: usize, what: &str) -> PyR
     Ok(a.as_array().iter().copied().collect())
 }
 
+/// The law maps embedded in the library, in the order a `method = "map"` query tries them: one
+/// dict per map with the keys of `ehl-bearing law-map info --json` (`law`, `nodes`,
+/// `cpu_seconds` in s, `nodes_not_converged`, `worst_node_rms_hat`, `worst_node_r_squared`, and
+/// `spec`: the models, fixed groups, axes with `group`, `min`, `max`, `nodes`, `log`, and the
+/// method's settings; groups dimensionless), docs/law_map.md §5.
+#[pyfunction]
+fn law_maps(py: Python<'_>) -> PyResult<PyObject> {
+    let s: Vec<_> = ehl_bearing::law_map::LawMap::embedded_maps()
+        .iter()
+        .map(|m| m.summary())
+        .collect();
+    to_py(py, &s)
+}
+
 /// The native module.
 /// The keys of a result record, in order, for results Python builds as dicts of numpy arrays:
 /// `"rotor_run"` (`RotorModel.simulate`) and `"rotor_static"` (`RotorModel.static_equilibrium`);
@@ -1118,6 +1132,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(coefficients, m)?)?;
     m.add_function(wrap_pyfunction!(ross_table_csv, m)?)?;
     m.add_function(wrap_pyfunction!(result_keys, m)?)?;
+    m.add_function(wrap_pyfunction!(law_maps, m)?)?;
     rotor::register(m)?;
     Ok(())
 }

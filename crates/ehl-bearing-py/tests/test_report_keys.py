@@ -92,3 +92,14 @@ def test_characterization_report_has_the_keys_of_characterize_json(cli, examples
     report = eb.characterize(eb.Case.from_file(str(path)), method="hertz").report(timing=True)
     assert key_tree(report) == key_tree(from_cli)
     assert report["contacts"] == from_cli["contacts"]
+
+
+def test_law_maps_are_the_cli_info(cli: str) -> None:
+    """`law_maps()` gives the summaries `ehl-bearing law-map info --json` prints, key for key and
+    value for value: the embedded maps in query order, the first the seed oil's (M 120–4000)."""
+    maps = eb.law_maps()
+    assert maps == run_json(cli, "law-map", "info")
+    assert maps[0]["law"] == "quasi-static" and maps[-1]["law"] == "harmonic"
+    m = maps[0]["spec"]["axis"][0]
+    assert (m["group"], m["min"], m["max"], m["nodes"], m["log"]) == ("m", 120.0, 4000.0, 17, True)
+    assert all(x["nodes"] > 0 and x["worst_node_r_squared"] <= 1.0 for x in maps)

@@ -9,6 +9,7 @@ from Python. SI units throughout; our axes: x axial, y and z radial, θy and θz
 - :func:`equilibrium`, :func:`ehl`, :func:`contact`, :func:`characterize`, :func:`study`,
   :func:`coefficients`, :func:`ross_table_csv` — the library's computations; results with many
   fields come back as dicts (the library's JSON, SI), matrices as numpy arrays.
+- :func:`law_maps` — the shipped law maps of ``method="map"`` (their envelopes and settings).
 - :class:`LawElement`, :class:`TrendForceElement` — the bearing as a force element: numpy
   displacement (5,) in, reaction (5,), stiffness (5, 5), damping (5, 5) out.
 - :class:`RotorModel` — the Rust time integrator for rotors on our force elements.
@@ -39,6 +40,7 @@ from ._native import (
     contact,
     ehl,
     equilibrium,
+    law_maps,
     result_keys,
     ross_table_csv,
     study,
@@ -57,6 +59,7 @@ __all__ = [
     "contact",
     "ehl",
     "equilibrium",
+    "law_maps",
     "print_progress",
     "read_case",
     "result_keys",
