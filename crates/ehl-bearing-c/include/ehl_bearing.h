@@ -478,6 +478,15 @@ int ehl_coefficients(const struct EhlCase *c,
  */
 int ehl_ross_table_csv(const char *coefficients_json, char **out_csv);
 
+/**
+ * The law maps embedded in the library (`method = "map"`), in the order a query tries them, as
+ * one JSON array into `*out_json` (free with ehl_string_free): per map its law, nodes,
+ * generation CPU time (s), nodes flagged not converged, worst node fit and spec (models, fixed
+ * groups, axes with range and nodes; groups dimensionless) — the keys of `ehl-bearing law-map
+ * info --json` and Python's `law_maps()`.
+ */
+int ehl_law_maps_json(char **out_json);
+
 #ifdef __cplusplus
 }  // extern "C"
 #endif  // __cplusplus

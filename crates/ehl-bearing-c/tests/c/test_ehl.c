@@ -276,6 +276,18 @@ int main(int argc, char **argv) {
               "zero speeds refused");
     }
 
+    /* The embedded law maps' summaries. */
+    {
+        char *json = NULL;
+        MUST(ehl_law_maps_json(&json));
+        CHECK(json[0] == '[' && strstr(json, "\"law\":\"quasi-static\"") && strstr(json, "\"law\":\"harmonic\"")
+                  && strstr(json, "\"group\":\"m\",\"min\":120.0,\"max\":4000.0,\"nodes\":17"),
+              "law maps JSON: %.200s", json);
+        ehl_string_free(json);
+        CHECK(ehl_law_maps_json(NULL) == EHL_ERR_NULL && strstr(ehl_last_error(), "out_json"),
+              "NULL out_json: %s", ehl_last_error());
+    }
+
     /* Error paths: status and message, never a crash. */
     {
         EhlCase *bad = NULL;
