@@ -58,7 +58,11 @@ fn c_program_agrees_with_the_rust_library() {
         .status()
         .unwrap_or_else(|e| panic!("the C compiler `{cc}` could not be run: {e} (install gcc)"));
     assert!(status.success(), "compiling tests/c/test_ehl.c failed");
+    // The library found first is the one it was linked against: cargo's LD_LIBRARY_PATH (which
+    // outranks the rpath) may name target/debug first, where an earlier build's copy can lack
+    // the newest functions.
     let out = Command::new(&exe)
+        .env("LD_LIBRARY_PATH", &lib)
         .arg(&root)
         .arg(&reference)
         .output()
