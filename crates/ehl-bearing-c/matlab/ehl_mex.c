@@ -477,6 +477,11 @@ void mexFunction(int nlhs, mxArray *plhs[], int nrhs, const mxArray *prhs[]) {
         need(nrhs, 2, "ehl_mex('ross_table', coefficients_json)");
         CALL(ehl_ross_table_csv(text_arg(prhs[1], "coefficients_json"), &csv));
         plhs[0] = take_text(csv);
+    } else if (strcmp(cmd, "law_maps") == 0) {
+        char *json = NULL;
+        need(nrhs, 1, "ehl_mex('law_maps')");
+        CALL(ehl_law_maps_json(&json));
+        plhs[0] = take_text(json);
     } else if (strcmp(cmd, "free") == 0) {
         int i;
         for (i = 1; i < nrhs; i++) {

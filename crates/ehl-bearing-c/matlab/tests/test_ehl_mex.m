@@ -72,6 +72,12 @@ check(numel(co) == 2 && isequal(size(co(1).stiffness), [5 5]) && co(1).inner_spe
       'coefficients struct array');
 check(ischar(csv) && numel(strsplit(strtrim(csv), sprintf('\n'))) >= 3, 'ROSS table');
 
+% The embedded law maps (the first the seed oil's: M 120-4000, 17 nodes, log).
+maps = ehl_law_maps();
+if iscell(maps), first = maps{1}; last = maps{end}; else, first = maps(1); last = maps(end); end
+check(numel(maps) >= 13 && strcmp(first.law, 'quasi-static') && strcmp(last.law, 'harmonic') ...
+      && first.spec.axis(1).min == 120 && first.spec.axis(1).nodes == 17, 'law maps');
+
 % Error paths: MATLAB errors with the library's message and an identifier per status.
 expect_error(@() ehl_case(sprintf('this is [ not toml =\n')), 'ehl:input', 'toml');
 expect_error(@() ehl_case(fullfile(root, 'no_such_case.toml')), 'ehl:input', 'no_such_case');
