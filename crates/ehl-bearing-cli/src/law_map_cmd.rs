@@ -11,8 +11,8 @@ use anyhow::Context;
 use ehl_bearing::io::FsStore;
 use ehl_bearing::law_map::{LawMap, LawMapSpec};
 use ehl_bearing::study::{
-    assemble_map, generate_map, held_out_check_with, under_resolved_nodes, HeldOutPoint,
-    NodeRecord, Shard,
+    assemble_map, generate_map, held_out_compare, held_out_references, under_resolved_nodes,
+    HeldOutPoint, NodeRecord, PointStore, Shard,
 };
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -78,29 +78,41 @@ pub enum LawMapCommand {
     /// Write (and with --submit, submit) a Slurm job array that generates the nodes, one shard
     /// per task, and the dependent job that assembles the map file.
     Sbatch(crate::law_map_slurm::LawMapSbatchArgs),
-    /// Compare the map with direct characterizations at random points inside its envelope.
-    Check {
-        /// Map file (JSON text or the binary form).
-        map: PathBuf,
-        /// Number of random points.
-        #[arg(long, default_value_t = 200)]
-        points: usize,
-        /// Seed of the random points.
-        #[arg(long, default_value_t = 1)]
-        seed: u64,
-        /// Write one CSV row per point here.
-        #[arg(long)]
-        csv: Option<PathBuf>,
-        /// Threads (default: RAYON_NUM_THREADS or the number of cores).
-        #[arg(long)]
-        threads: Option<usize>,
-        /// The direct characterizations' solver tolerances (tol_residual, tol_force, tol_film)
-        /// times this factor, in (0, 1]; below 1 their cycle limit grows to 40·(1 + 2·log10(1/F))
-        /// (1: the map's own settings, its spec's tolerance_factor included; below 1, those times
-        /// F).
-        #[arg(long, default_value_t = 1.0)]
-        tolerance_factor: f64,
-    },
+    /// Compare the map with direct characterizations at random points inside its envelope
+    /// (with --references DIR, kept there and reused; given a spec instead of a map, only those
+    /// references are computed, e.g. beside the map's generation).
+    Check(CheckArgs),
+}
+
+/// Arguments of `law-map check`.
+#[derive(clap::Args)]
+pub struct CheckArgs {
+    /// Map file (JSON text or the binary form), or a map spec (.toml): then only the direct
+    /// characterizations are computed, into --references, for a later check of the map.
+    map: PathBuf,
+    /// Number of random points.
+    #[arg(long, default_value_t = 200)]
+    points: usize,
+    /// Seed of the random points.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Write one CSV row per point here.
+    #[arg(long)]
+    csv: Option<PathBuf>,
+    /// Threads (default: RAYON_NUM_THREADS or the number of cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// The direct characterizations' solver tolerances (tol_residual, tol_force, tol_film)
+    /// times this factor, in (0, 1]; below 1 their cycle limit grows to 40·(1 + 2·log10(1/F))
+    /// (1: the map's own settings, its spec's tolerance_factor included; below 1, those times
+    /// F).
+    #[arg(long, default_value_t = 1.0)]
+    tolerance_factor: f64,
+    /// Folder of the direct characterizations (one file per point, written as each is done;
+    /// created if needed): a rerun, or the check after a run on the map's spec, computes only
+    /// the points not there yet.
+    #[arg(long)]
+    references: Option<PathBuf>,
 }
 
 fn pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
@@ -146,21 +158,7 @@ pub fn run(a: &LawMapArgs) -> anyhow::Result<()> {
         LawMapCommand::Convert { input, output } => convert(input, output),
         LawMapCommand::Info { maps, json } => info(maps, *json),
         LawMapCommand::Sbatch(args) => crate::law_map_slurm::run(args),
-        LawMapCommand::Check {
-            map,
-            points,
-            seed,
-            csv,
-            threads,
-            tolerance_factor,
-        } => check(
-            map,
-            *points,
-            *seed,
-            csv.as_deref(),
-            *threads,
-            *tolerance_factor,
-        ),
+        LawMapCommand::Check(args) => check(args),
     }
 }
 
@@ -322,31 +320,78 @@ fn info(maps: &[PathBuf], json: bool) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// `law-map check`: compare the map file `map` with direct characterizations at `points`
-/// random points (seed `seed`), their tolerances times `tolerance_factor`, write one CSV row
-/// per point to `csv` if given, and print the error quantiles.
-fn check(
-    map: &Path,
-    points: usize,
-    seed: u64,
-    csv: Option<&Path>,
-    threads: Option<usize>,
-    tolerance_factor: f64,
-) -> anyhow::Result<()> {
-    let m = read_map(map)?;
+/// `law-map check`: compare the map file `a.map` with direct characterizations at `a.points`
+/// random points (seed `a.seed`), their tolerances times `a.tolerance_factor`, kept in
+/// `a.references` if given; write one CSV row per point to `a.csv` if given, and print the error
+/// quantiles. Given a spec (.toml) instead of a map, compute only the references.
+fn check(a: &CheckArgs) -> anyhow::Result<()> {
+    let spec_only = a.map.extension().and_then(|e| e.to_str()) == Some("toml");
+    let store = match &a.references {
+        Some(dir) => Some(FsStore::create(dir)?),
+        None if spec_only => anyhow::bail!(
+            "{}: a spec, not a map: give --references DIR to compute the direct characterizations \
+             into (a later `law-map check MAP --references DIR` compares the map with them)",
+            a.map.display()
+        ),
+        None => None,
+    };
+    let map = if spec_only {
+        None
+    } else {
+        Some(read_map(&a.map)?)
+    };
+    let spec = match &map {
+        Some(m) => m.spec.clone(),
+        None => read_spec(&a.map)?,
+    };
     let t0 = Instant::now();
-    let r = pool(threads)?
-        .install(|| held_out_check_with(&m, points, seed, tolerance_factor))
-        .context("--tolerance-factor")?;
-    anyhow::ensure!(!r.is_empty(), "no held-out point could be characterized");
-    if let Some(p) = csv {
-        write_check_csv(p, &r)?;
-    }
+    let quiet = !std::io::IsTerminal::is_terminal(&std::io::stderr());
+    let on_point = |r: &NodeRecord| {
+        if !quiet || r.law.is_none() {
+            eprintln!(
+                "held-out point {} M = {:.4} L = {:.4} Ry/Rx = {:.4}: {} ({:.2} s)",
+                r.index,
+                r.groups.m,
+                r.groups.l,
+                r.groups.ry_over_rx,
+                r.error.as_deref().unwrap_or("ok"),
+                r.seconds
+            )
+        }
+    };
+    let store_ref = store.as_ref().map(|s| s as &dyn PointStore);
+    let refs = pool(a.threads)?
+        .install(|| {
+            held_out_references(
+                &spec,
+                a.points,
+                a.seed,
+                a.tolerance_factor,
+                store_ref,
+                &on_point,
+            )
+        })
+        .context("--tolerance-factor, --references")?;
+    let failed = refs.records.iter().filter(|r| r.law.is_none()).count();
+    let read = match &a.references {
+        Some(dir) => format!(", {} read from {}", a.points - refs.computed, dir.display()),
+        None => String::new(),
+    };
     println!(
-        "{} of {points} held-out points characterized ({:.1} s wall)",
-        r.len(),
+        "{} direct characterizations: {} computed{read}, {failed} failed ({:.1} s wall)",
+        a.points,
+        refs.computed,
         t0.elapsed().as_secs_f64()
     );
+    let Some(m) = map else {
+        return Ok(());
+    };
+    let r = held_out_compare(&m, &refs.records);
+    anyhow::ensure!(!r.is_empty(), "no held-out point could be characterized");
+    if let Some(p) = &a.csv {
+        write_check_csv(p, &r)?;
+    }
+    println!("{} of {} held-out points characterized", r.len(), a.points);
     print_check_summary(&r);
     Ok(())
 }

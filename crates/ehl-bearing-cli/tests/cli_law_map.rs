@@ -98,6 +98,9 @@ fn shards_assemble_and_check() {
         o.status.success() && text.contains("2 of 2 held-out points"),
         "{text}"
     );
+    // The references (direct characterizations) kept in a folder: computed from the spec alone
+    // (as beside a map's generation), then the map's check reads them — the same CSV.
+    references_from_the_spec(dir.path(), &spec, &map, &csv);
     // One row per point, with the rheology groups of the point (the spec's fixed values here).
     let rows = std::fs::read_to_string(&csv).unwrap();
     let lines: Vec<&str> = rows.lines().collect();
@@ -624,6 +627,59 @@ fn info_lists_the_embedded_maps() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
         !o.status.success() && err.contains("junk.json") && err.contains("law map:"),
+        "{err}"
+    );
+}
+
+/// `law-map check SPEC --references DIR` computes the 2 held-out points' direct
+/// characterizations into DIR; `law-map check MAP --references DIR` then reads them, computes
+/// none and writes the same CSV as `check_csv` (made without a folder); a spec without
+/// --references, or a folder holding another spec's references, is refused naming the reason.
+fn references_from_the_spec(
+    dir: &std::path::Path,
+    spec: &std::path::Path,
+    map: &std::path::Path,
+    check_csv: &std::path::Path,
+) {
+    let refs = dir.join("refs");
+    let check = |what: &std::path::Path, extra: &[&str]| {
+        bin()
+            .args(["law-map", "check"])
+            .arg(what)
+            .args(["--points", "2", "--threads", "1"])
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let o = check(spec, &[]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("--references"), "{err}");
+    let r = refs.to_str().unwrap();
+    let o = check(spec, &["--references", r]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success() && out.contains("2 computed, 0 read"),
+        "{out}"
+    );
+    let csv = dir.join("check_refs.csv");
+    let o = check(map, &["--references", r, "--csv", csv.to_str().unwrap()]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success() && out.contains("0 computed, 2 read"),
+        "{out}"
+    );
+    assert_eq!(
+        std::fs::read(&csv).unwrap(),
+        std::fs::read(check_csv).unwrap()
+    );
+    // Another spec's references under the same names: refused, nothing overwritten.
+    let other = dir.join("other.toml");
+    let text = std::fs::read_to_string(spec).unwrap();
+    std::fs::write(&other, text.replace("amplitude = 0.2", "amplitude = 0.15")).unwrap();
+    let o = check(&other, &["--references", r]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("different map"),
         "{err}"
     );
 }

@@ -7,8 +7,8 @@
 use super::{PointStore, Shard, StoreError};
 use crate::contact::{characterize_harmonic, characterize_quasi_static};
 use crate::law_map::{
-    mass_for_group, tightened, DimensionlessLaw, Group, LawGroups, LawKind, LawMap, LawMapError,
-    LawMapSpec, MapQuery, NodeQuality, FORMAT,
+    mass_for_group, tightened, DimensionlessLaw, LawGroups, LawKind, LawMap, LawMapError,
+    LawMapSpec, NodeQuality, FORMAT,
 };
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -344,104 +344,4 @@ pub fn assemble_map(
         quality,
         cpu_seconds: cpu,
     })
-}
-
-/// One held-out point: the map's law against a direct characterization at the same groups.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct HeldOutPoint {
-    /// The groups.
-    pub groups: LawGroups,
-    /// The mass group Ψ_H (harmonic maps).
-    pub psi_h: Option<f64>,
-    /// The map's law and error estimate.
-    pub map: MapQuery,
-    /// The direct characterization's law.
-    pub direct: DimensionlessLaw,
-    /// Relative error of the map's force at the direct nominal approach: |Q̂_map(δ̂0) −
-    /// Q̂_direct(δ̂0)|/Q̂_direct(δ̂0).
-    pub force_error: f64,
-    /// |d_map − d_direct|.
-    pub d_error: f64,
-    /// |ΔF̂_map − ΔF̂_direct|/|ΔF̂_direct|.
-    pub delta_f_error: f64,
-    /// |ΔF̂_map − ΔF̂_direct| (ΔF error over the load).
-    pub delta_f_error_hat: f64,
-    /// |ĉ_map − ĉ_direct|/|ĉ_direct| (harmonic maps).
-    pub c_error: Option<f64>,
-    /// Whether every solution of the direct characterization met its tolerances.
-    pub direct_converged: bool,
-}
-
-/// `count` points drawn uniformly in the axes' coordinates inside the map's envelope
-/// (splitmix64 from `seed`), each characterized directly with the map's settings and compared
-/// with the map. Points whose direct characterization fails are left out (the count returned
-/// says how many remain).
-pub fn held_out_check(map: &LawMap, count: usize, seed: u64) -> Vec<HeldOutPoint> {
-    held_out_check_with(map, count, seed, 1.0).expect("the tolerance factor 1 is valid")
-}
-
-/// [`held_out_check`] against direct characterizations with the map's steady tolerances (its
-/// spec's `tolerance_factor` included) times `tolerance_factor` ([`tightened`]; the fitted ΔF
-/// of heavy contacts follows the steady solutions' iteration error, docs/law_map.md §5). Points
-/// whose direct characterization fails are left out; a factor outside (0, 1] is an error before
-/// any point is drawn.
-pub fn held_out_check_with(
-    map: &LawMap,
-    count: usize,
-    seed: u64,
-    tolerance_factor: f64,
-) -> Result<Vec<HeldOutPoint>, LawMapError> {
-    tightened(map.spec.settings().ehl, tolerance_factor)?;
-    let spec = &map.spec;
-    let mut state = seed;
-    let mut next = move || {
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let points: Vec<(LawGroups, Option<f64>)> = (0..count)
-        .map(|_| {
-            let mut values = Vec::with_capacity(spec.axes.len());
-            let mut psi_h = None;
-            for a in &spec.axes {
-                let v = a.at_fraction(next());
-                if a.group == Group::PsiH {
-                    psi_h = Some(v);
-                }
-                values.push(v);
-            }
-            (spec.groups_at(&values), psi_h)
-        })
-        .collect();
-    Ok(points
-        .par_iter()
-        .filter_map(|(g, psi_h)| {
-            let q = match psi_h {
-                Some(p) => map.query_harmonic(g, *p).ok()?,
-                None => map.query(g).ok()?,
-            };
-            let (direct, quality) =
-                characterize_node_with(g, *psi_h, spec, tolerance_factor).ok()?;
-            let a0 = direct.approach_hat;
-            let qd = direct.force_hat(a0);
-            Some(HeldOutPoint {
-                groups: *g,
-                psi_h: *psi_h,
-                map: q,
-                direct,
-                force_error: (q.law.force_hat(a0) - qd).abs() / qd,
-                d_error: (q.law.d - direct.d).abs(),
-                delta_f_error: (q.law.delta_f_hat - direct.delta_f_hat).abs()
-                    / direct.delta_f_hat.abs(),
-                delta_f_error_hat: (q.law.delta_f_hat - direct.delta_f_hat).abs(),
-                c_error: match (q.law.c_hat, direct.c_hat) {
-                    (Some(a), Some(b)) => Some((a - b).abs() / b.abs()),
-                    _ => None,
-                },
-                direct_converged: quality.converged,
-            })
-        })
-        .collect())
 }

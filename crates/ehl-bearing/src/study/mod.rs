@@ -18,6 +18,7 @@
 //! The library prints nothing: progress goes through a callback ([`StudyEvent`]). Forms, fits
 //! and measured figures: `docs/study.md`.
 
+mod held_out;
 mod law_map;
 mod point;
 mod runner;
@@ -30,10 +31,14 @@ mod trends;
 pub use crate::force_element::{JacobianMode, TrendEvalOptions, TrendForce, TrendForceElement};
 pub use crate::law_map::tightened;
 pub use crate::trends::{RaceTrends, TrendBearing, TrendCurve, TrendModel, TREND_VERSION};
+pub use held_out::{
+    held_out_check, held_out_check_with, held_out_compare, held_out_points, held_out_references,
+    HeldOutPoint, HeldOutReferences,
+};
 pub use law_map::{
     assemble_map, characterize_groups, characterize_node, characterize_node_with, generate_map,
-    held_out_check, held_out_check_with, node_film_resolution, shards_with_nodes_left,
-    under_resolved_nodes, HeldOutPoint, MapGeneration, MapGenerationError, NodeRecord,
+    node_film_resolution, shards_with_nodes_left, under_resolved_nodes, MapGeneration,
+    MapGenerationError, NodeRecord,
 };
 pub use point::{
     points_csv, results_csv, ContactLubrication, PointRecord, PointSpec, ResultRow,
