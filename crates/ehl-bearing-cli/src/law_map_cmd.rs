@@ -326,15 +326,11 @@ fn info(maps: &[PathBuf], json: bool) -> anyhow::Result<()> {
 /// quantiles. Given a spec (.toml) instead of a map, compute only the references.
 fn check(a: &CheckArgs) -> anyhow::Result<()> {
     let spec_only = a.map.extension().and_then(|e| e.to_str()) == Some("toml");
-    let store = match &a.references {
-        Some(dir) => Some(FsStore::create(dir)?),
-        None if spec_only => anyhow::bail!(
-            "{}: a spec, not a map: give --references DIR to compute the direct characterizations \
-             into (a later `law-map check MAP --references DIR` compares the map with them)",
-            a.map.display()
-        ),
-        None => None,
-    };
+    anyhow::ensure!(
+        !(spec_only && a.csv.is_some()),
+        "--csv: {} is a spec, not a map: no map to compare, so no CSV (give the map file)",
+        a.map.display()
+    );
     let map = if spec_only {
         None
     } else {
@@ -343,6 +339,15 @@ fn check(a: &CheckArgs) -> anyhow::Result<()> {
     let spec = match &map {
         Some(m) => m.spec.clone(),
         None => read_spec(&a.map)?,
+    };
+    let store = match &a.references {
+        Some(dir) => Some(FsStore::create(dir)?),
+        None if spec_only => anyhow::bail!(
+            "{}: a spec, not a map: give --references DIR to compute the direct characterizations \
+             into (a later `law-map check MAP --references DIR` compares the map with them)",
+            a.map.display()
+        ),
+        None => None,
     };
     let t0 = Instant::now();
     let quiet = !std::io::IsTerminal::is_terminal(&std::io::stderr());

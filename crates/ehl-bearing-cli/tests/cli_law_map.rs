@@ -651,10 +651,20 @@ fn references_from_the_spec(
             .output()
             .unwrap()
     };
+    let r = refs.to_str().unwrap();
     let o = check(spec, &[]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && err.contains("--references"), "{err}");
-    let r = refs.to_str().unwrap();
+    let o = check(
+        spec,
+        &["--references", "/nonexistent-never", "--csv", "x.csv"],
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("--csv") && err.contains("a spec, not a map"),
+        "{err}"
+    );
+    assert!(!refs.exists(), "nothing created on a refused run");
     let o = check(spec, &["--references", r]);
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(
