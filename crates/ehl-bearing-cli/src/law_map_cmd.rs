@@ -183,14 +183,15 @@ fn generate(
         let k = done.fetch_add(1, Ordering::Relaxed) + 1;
         if !quiet || r.law.is_none() {
             eprintln!(
-                "node {} ({k} of ≤ {total}) M = {:.4} L = {:.4} Ry/Rx = {:.4}{}: {} ({:.2} s)",
+                "node {} ({k} of ≤ {total}) M = {:.4} L = {:.4} Ry/Rx = {:.4}{}: {} ({:.2} s, {:.2} CPU s)",
                 r.index,
                 r.groups.m,
                 r.groups.l,
                 r.groups.ry_over_rx,
                 r.psi_h.map_or(String::new(), |p| format!(" Ψ_H = {p:.4}")),
                 r.error.as_deref().unwrap_or("ok"),
-                r.seconds
+                r.seconds,
+                r.cost_seconds()
             );
         }
     };
@@ -354,13 +355,14 @@ fn check(a: &CheckArgs) -> anyhow::Result<()> {
     let on_point = |r: &NodeRecord| {
         if !quiet || r.law.is_none() {
             eprintln!(
-                "held-out point {} M = {:.4} L = {:.4} Ry/Rx = {:.4}: {} ({:.2} s)",
+                "held-out point {} M = {:.4} L = {:.4} Ry/Rx = {:.4}: {} ({:.2} s, {:.2} CPU s)",
                 r.index,
                 r.groups.m,
                 r.groups.l,
                 r.groups.ry_over_rx,
                 r.error.as_deref().unwrap_or("ok"),
-                r.seconds
+                r.seconds,
+                r.cost_seconds()
             )
         }
     };

@@ -442,6 +442,34 @@ mod map {
         let again = generate_map(&spec, &store, Shard::ALL, false, &none).unwrap();
         assert_eq!((again.computed, again.loaded), (0, 27));
         let map = assemble_map(&spec, &store).unwrap();
+        // Each node records its thread's CPU time (at most its wall time: one thread), and the
+        // map's cost is their sum; a record of an earlier version (no CPU time) counts its wall
+        // time.
+        let records: Vec<ehl_bearing::study::NodeRecord> = store
+            .points
+            .lock()
+            .unwrap()
+            .values()
+            .map(|t| serde_json::from_str(t).unwrap())
+            .collect();
+        let mut sum = 0.0;
+        for r in &records {
+            let c = r.cpu_seconds.expect("a thread clock on this platform");
+            assert!(c > 0.0 && c <= r.seconds + 1e-3, "{c} vs {}", r.seconds);
+            sum += c;
+        }
+        assert!(
+            (map.cpu_seconds - sum).abs() <= 1e-9 * sum,
+            "{} vs {sum}",
+            map.cpu_seconds
+        );
+        let old = ehl_bearing::study::NodeRecord {
+            cpu_seconds: None,
+            ..records[0].clone()
+        };
+        assert_eq!(old.cost_seconds(), records[0].seconds);
+        let text = serde_json::to_string(&old).unwrap();
+        assert!(!text.contains("cpu_seconds"), "{text}");
         let other = LawMapSpec {
             amplitude: 0.1,
             ..spec.clone()

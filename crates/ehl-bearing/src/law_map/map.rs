@@ -669,7 +669,8 @@ pub struct LawMap {
     pub laws: Vec<DimensionlessLaw>,
     /// The fit's quality at every node.
     pub quality: Vec<NodeQuality>,
-    /// Sum of the nodes' characterization times, s (one core each).
+    /// Sum of the nodes' characterization costs, s: each node's thread CPU time where its file
+    /// records it, else its wall time on one core (node files of earlier versions).
     pub cpu_seconds: f64,
 }
 

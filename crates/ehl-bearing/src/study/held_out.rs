@@ -5,7 +5,7 @@
 //! rerun reuses them (resumable), and they can be computed from the spec before the map exists
 //! ([`held_out_references`]), so a slow map's check runs beside its generation.
 
-use super::law_map::{characterize_node_with, NodeRecord};
+use super::law_map::{characterize_node_with, thread_cpu_seconds, NodeRecord};
 use super::{MapGenerationError, PointStore};
 use crate::law_map::{
     tightened, DimensionlessLaw, Group, LawGroups, LawMap, LawMapError, LawMapSpec, MapQuery,
@@ -134,6 +134,7 @@ pub fn held_out_references(
         .map(|&k| {
             let (g, psi_h) = points[k];
             let t0 = Instant::now();
+            let c0 = thread_cpu_seconds();
             let (law, quality, error) =
                 match characterize_node_with(&g, psi_h, spec, tolerance_factor) {
                     Ok((l, q)) => (Some(l), Some(q), None),
@@ -148,6 +149,7 @@ pub fn held_out_references(
                 quality,
                 error,
                 seconds: t0.elapsed().as_secs_f64(),
+                cpu_seconds: thread_cpu_seconds().zip(c0).map(|(c1, c0)| c1 - c0),
             };
             if let Some(store) = store {
                 let text = serde_json::to_string_pretty(&r).expect("record serializes");

@@ -51,6 +51,37 @@ pub struct NodeRecord {
     pub error: Option<String>,
     /// Wall time of the characterization (one thread), s.
     pub seconds: f64,
+    /// CPU time of the characterization's thread, s (it runs on one thread): what the node cost
+    /// even where the machine was shared or the run paused. None in files of earlier versions
+    /// and where the platform has no thread clock; [`NodeRecord::cost_seconds`] then uses the
+    /// wall time.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cpu_seconds: Option<f64>,
+}
+
+impl NodeRecord {
+    /// What the node cost, s: its thread's CPU time where recorded, else its wall time.
+    pub fn cost_seconds(&self) -> f64 {
+        self.cpu_seconds.unwrap_or(self.seconds)
+    }
+}
+
+/// The CPU time of the calling thread, s (None where the platform has no thread clock).
+pub(crate) fn thread_cpu_seconds() -> Option<f64> {
+    #[cfg(unix)]
+    {
+        let mut t = libc::timespec {
+            tv_sec: 0,
+            tv_nsec: 0,
+        };
+        // SAFETY: `t` is a valid timespec for the call to write.
+        let r = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) };
+        (r == 0).then_some(t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9)
+    }
+    #[cfg(not(unix))]
+    {
+        None
+    }
 }
 
 fn stem(index: usize) -> String {
@@ -156,6 +187,7 @@ pub fn under_resolved_nodes(spec: &LawMapSpec) -> Result<Vec<(usize, f64)>, LawM
 
 fn compute(index: usize, spec: &LawMapSpec) -> NodeRecord {
     let t0 = Instant::now();
+    let c0 = thread_cpu_seconds();
     let groups = spec.node_groups(index);
     let psi_h = spec.node_psi_h(index);
     let (law, quality, error) = match characterize_node(&groups, psi_h, spec) {
@@ -171,6 +203,7 @@ fn compute(index: usize, spec: &LawMapSpec) -> NodeRecord {
         quality,
         error,
         seconds: t0.elapsed().as_secs_f64(),
+        cpu_seconds: thread_cpu_seconds().zip(c0).map(|(c1, c0)| c1 - c0),
     }
 }
 
@@ -185,7 +218,7 @@ pub struct MapGeneration {
     pub loaded: usize,
     /// Nodes (computed in this run) whose characterization failed.
     pub failed: usize,
-    /// Sum of the computed nodes' times, s.
+    /// Sum of the computed nodes' costs ([`NodeRecord::cost_seconds`]), s.
     pub cpu_seconds: f64,
 }
 
@@ -249,7 +282,7 @@ pub fn generate_map(
     for r in results {
         let r = r?;
         failed += r.law.is_none() as usize;
-        cpu += r.seconds;
+        cpu += r.cost_seconds();
     }
     Ok(MapGeneration {
         nodes: mine.len(),
@@ -304,15 +337,16 @@ pub fn assemble_map(
             .and_then(|t| serde_json::from_str::<NodeRecord>(&t).ok())
             .filter(|r| r.spec == *spec && r.index == k);
         match rec {
-            Some(NodeRecord {
-                law: Some(l),
-                quality: Some(q),
-                seconds,
-                ..
-            }) => {
-                laws.push(l);
-                quality.push(q);
-                cpu += seconds;
+            Some(
+                r @ NodeRecord {
+                    law: Some(_),
+                    quality: Some(_),
+                    ..
+                },
+            ) => {
+                cpu += r.cost_seconds();
+                laws.push(r.law.expect("matched"));
+                quality.push(r.quality.expect("matched"));
             }
             other => {
                 let why = match other {
