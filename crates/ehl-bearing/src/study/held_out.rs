@@ -5,14 +5,13 @@
 //! rerun reuses them (resumable), and they can be computed from the spec before the map exists
 //! ([`held_out_references`]), so a slow map's check runs beside its generation.
 
-use super::law_map::{characterize_node_with, thread_cpu_seconds, NodeRecord};
+use super::law_map::{characterize_record, NodeRecord};
 use super::{MapGenerationError, PointStore};
 use crate::law_map::{
     tightened, DimensionlessLaw, Group, LawGroups, LawMap, LawMapError, LawMapSpec, MapQuery,
 };
 use rayon::prelude::*;
 use serde::Serialize;
-use std::time::Instant;
 
 /// One held-out point: the map's law against a direct characterization at the same groups.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -133,24 +132,7 @@ pub fn held_out_references(
         .par_iter()
         .map(|&k| {
             let (g, psi_h) = points[k];
-            let t0 = Instant::now();
-            let c0 = thread_cpu_seconds();
-            let (law, quality, error) =
-                match characterize_node_with(&g, psi_h, spec, tolerance_factor) {
-                    Ok((l, q)) => (Some(l), Some(q), None),
-                    Err(e) => (None, None, Some(e.to_string())),
-                };
-            let r = NodeRecord {
-                index: k,
-                spec: spec.clone(),
-                groups: g,
-                psi_h,
-                law,
-                quality,
-                error,
-                seconds: t0.elapsed().as_secs_f64(),
-                cpu_seconds: thread_cpu_seconds().zip(c0).map(|(c1, c0)| c1 - c0),
-            };
+            let r = characterize_record(k, spec, g, psi_h, tolerance_factor);
             if let Some(store) = store {
                 let text = serde_json::to_string_pretty(&r).expect("record serializes");
                 store.save_point(&stem(seed, tolerance_factor, k), &text)?;

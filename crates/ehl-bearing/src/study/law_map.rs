@@ -67,7 +67,7 @@ impl NodeRecord {
 }
 
 /// The CPU time of the calling thread, s (None where the platform has no thread clock).
-pub(crate) fn thread_cpu_seconds() -> Option<f64> {
+fn thread_cpu_seconds() -> Option<f64> {
     #[cfg(unix)]
     {
         let mut t = libc::timespec {
@@ -186,11 +186,24 @@ pub fn under_resolved_nodes(spec: &LawMapSpec) -> Result<Vec<(usize, f64)>, LawM
 }
 
 fn compute(index: usize, spec: &LawMapSpec) -> NodeRecord {
+    let (groups, psi_h) = (spec.node_groups(index), spec.node_psi_h(index));
+    characterize_record(index, spec, groups, psi_h, 1.0)
+}
+
+/// The record of a direct characterization at `groups` (and `psi_h`) with the spec's settings
+/// and tolerances times `tolerance_factor` ([`characterize_node_with`]): the law and its quality,
+/// or the error; its wall and thread CPU times. `index` is the node's or held-out point's.
+pub(crate) fn characterize_record(
+    index: usize,
+    spec: &LawMapSpec,
+    groups: LawGroups,
+    psi_h: Option<f64>,
+    tolerance_factor: f64,
+) -> NodeRecord {
     let t0 = Instant::now();
     let c0 = thread_cpu_seconds();
-    let groups = spec.node_groups(index);
-    let psi_h = spec.node_psi_h(index);
-    let (law, quality, error) = match characterize_node(&groups, psi_h, spec) {
+    let (law, quality, error) = match characterize_node_with(&groups, psi_h, spec, tolerance_factor)
+    {
         Ok((l, q)) => (Some(l), Some(q), None),
         Err(e) => (None, None, Some(e.to_string())),
     };
