@@ -5,12 +5,11 @@
 //! rerun reuses them (resumable), and they can be computed from the spec before the map exists
 //! ([`held_out_references`]), so a slow map's check runs beside its generation.
 
-use super::law_map::{characterize_record, NodeRecord};
+use super::law_map::{characterize_record, compute_records, refuse_foreign, NodeRecord};
 use super::{MapGenerationError, PointStore};
 use crate::law_map::{
     tightened, DimensionlessLaw, Group, LawGroups, LawMap, LawMapError, LawMapSpec, MapQuery,
 };
-use rayon::prelude::*;
 use serde::Serialize;
 
 /// One held-out point: the map's law against a direct characterization at the same groups.
@@ -120,29 +119,14 @@ pub fn held_out_references(
             }
         }
     }
-    if let Some(first) = foreign.first() {
-        return Err(LawMapError::ForeignNodes {
-            count: foreign.len(),
-            first: first.clone(),
-        }
-        .into());
-    }
+    refuse_foreign(&foreign)?;
     let todo: Vec<usize> = (0..count).filter(|&k| known[k].is_none()).collect();
-    let computed: Vec<Result<NodeRecord, MapGenerationError>> = todo
-        .par_iter()
-        .map(|&k| {
-            let (g, psi_h) = points[k];
-            let r = characterize_record(k, spec, g, psi_h, tolerance_factor);
-            if let Some(store) = store {
-                let text = serde_json::to_string_pretty(&r).expect("record serializes");
-                store.save_point(&stem(seed, tolerance_factor, k), &text)?;
-            }
-            on_point(&r);
-            Ok(r)
-        })
-        .collect();
-    for r in computed {
-        let r = r?;
+    let compute = |k: usize| {
+        let (g, psi_h) = points[k];
+        characterize_record(k, spec, g, psi_h, tolerance_factor)
+    };
+    let name = |k: usize| stem(seed, tolerance_factor, k);
+    for r in compute_records(&todo, store, &name, &compute, on_point)? {
         let k = r.index;
         known[k] = Some(r);
     }

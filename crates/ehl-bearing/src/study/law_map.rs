@@ -220,6 +220,41 @@ pub(crate) fn characterize_record(
     }
 }
 
+/// The records of `todo` (indices), each computed by `compute` in parallel, written to `store`
+/// under `name(index)` as soon as it is done (atomically: an interrupted run keeps what was
+/// done) and then passed to `on_record`; in the order of `todo`.
+pub(crate) fn compute_records(
+    todo: &[usize],
+    store: Option<&dyn PointStore>,
+    name: &(dyn Fn(usize) -> String + Sync),
+    compute: &(dyn Fn(usize) -> NodeRecord + Sync),
+    on_record: &(dyn Fn(&NodeRecord) + Sync),
+) -> Result<Vec<NodeRecord>, MapGenerationError> {
+    todo.par_iter()
+        .map(|&k| {
+            let r = compute(k);
+            if let Some(store) = store {
+                let text = serde_json::to_string_pretty(&r).expect("record serializes");
+                store.save_point(&name(k), &text)?;
+            }
+            on_record(&r);
+            Ok(r)
+        })
+        .collect()
+}
+
+/// An error naming the first of the `foreign` record files (files of another spec or point
+/// under this run's names), none if there are none: nothing is overwritten.
+pub(crate) fn refuse_foreign(foreign: &[String]) -> Result<(), LawMapError> {
+    match foreign.first() {
+        None => Ok(()),
+        Some(first) => Err(LawMapError::ForeignNodes {
+            count: foreign.len(),
+            first: first.clone(),
+        }),
+    }
+}
+
 /// What [`generate_map`] did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MapGeneration {
@@ -273,27 +308,13 @@ pub fn generate_map(
             },
         }
     }
-    if !foreign.is_empty() && !overwrite {
-        return Err(LawMapError::ForeignNodes {
-            count: foreign.len(),
-            first: foreign[0].clone(),
-        }
-        .into());
+    if !overwrite {
+        refuse_foreign(&foreign)?;
     }
-    let results: Vec<Result<NodeRecord, MapGenerationError>> = todo
-        .par_iter()
-        .map(|&k| {
-            let r = compute(k, spec);
-            let text = serde_json::to_string_pretty(&r).expect("record serializes");
-            store.save_point(&stem(k), &text)?;
-            on_node(&r);
-            Ok(r)
-        })
-        .collect();
+    let results = compute_records(&todo, Some(store), &stem, &|k| compute(k, spec), on_node)?;
     let mut failed = 0;
     let mut cpu = 0.0;
     for r in results {
-        let r = r?;
         failed += r.law.is_none() as usize;
         cpu += r.cost_seconds();
     }
