@@ -418,6 +418,7 @@ mod map {
             law: Default::default(),
             frequency_fraction: None,
             tolerance_factor: 1.0,
+            sparse_level: None,
         }
     }
 

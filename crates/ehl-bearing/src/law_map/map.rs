@@ -10,6 +10,7 @@
 //! error of the coarser interpolant and so, where the interpolation converges, bounds that of
 //! the finer one from above (measured against direct characterizations in the docs).
 
+use super::sparse::{self, Smolyak};
 use super::{DimensionlessLaw, LawGroups, LawMapError};
 use crate::contact::{ExcitationFrequency, HarmonicSettings, QuasiStaticSettings};
 use crate::ehl::EhlSettings;
@@ -195,15 +196,29 @@ impl MapAxis {
     /// Barycentric Lagrange basis at coordinate `t` on every `step`-th node (1: all, 2: the
     /// nested half set); zero on the skipped nodes.
     fn basis(&self, t: f64, step: usize) -> Vec<f64> {
+        let idx: Vec<usize> = (0..self.nodes).step_by(step).collect();
+        let mut out = vec![0.0; self.nodes];
+        for (&j, w) in idx.iter().zip(self.basis_on(t, &idx)) {
+            out[j] = w;
+        }
+        out
+    }
+
+    /// Barycentric Lagrange basis at coordinate `t` on the nodes `idx` (ascending, a
+    /// Chebyshev–Gauss–Lobatto set of its own: all nodes, every 2^k-th, or one), aligned with
+    /// `idx`.
+    pub(super) fn basis_on(&self, t: f64, idx: &[usize]) -> Vec<f64> {
         let x = self.node_coords();
-        let n = x.len();
-        let mut out = vec![0.0; n];
-        let idx: Vec<usize> = (0..n).step_by(step).collect();
-        let last = idx.len() - 1;
-        if let Some(&hit) = idx.iter().find(|&&j| t == x[j]) {
+        let mut out = vec![0.0; idx.len()];
+        if idx.len() == 1 {
+            out[0] = 1.0;
+            return out;
+        }
+        if let Some(hit) = idx.iter().position(|&j| t == x[j]) {
             out[hit] = 1.0;
             return out;
         }
+        let last = idx.len() - 1;
         let mut sum = 0.0;
         for (i, &j) in idx.iter().enumerate() {
             let mut w = if i % 2 == 0 { 1.0 } else { -1.0 };
@@ -211,13 +226,21 @@ impl MapAxis {
                 w *= 0.5;
             }
             let v = w / (t - x[j]);
-            out[j] = v;
+            out[i] = v;
             sum += v;
         }
         for v in &mut out {
             *v /= sum;
         }
         out
+    }
+
+    /// The nodes bracketing coordinate `t` among the nodes `idx` (ascending): the last at or
+    /// below `t` and the next.
+    pub(super) fn bracket(&self, t: f64, idx: &[usize]) -> [usize; 2] {
+        let x = self.node_coords();
+        let i = idx.iter().rposition(|&j| x[j] <= t).unwrap_or(0);
+        [idx[i], idx[(i + 1).min(idx.len() - 1)]]
     }
 }
 
@@ -296,6 +319,12 @@ pub struct LawMapSpec {
     /// (docs/law_map.md §5, "ΔF of heavy contacts").
     #[serde(default = "unit_factor", skip_serializing_if = "is_unit_factor")]
     pub tolerance_factor: f64,
+    /// A sparse map's level q (Smolyak): only the tensor nodes whose axes' levels add up to at
+    /// most q, each axis of 2^m + 1 nodes (3, 5, 9, 17, 33 or 65) with levels 0 (its middle
+    /// node), 1 (ends and middle), … m (all). None (the default, not written): every tensor node.
+    /// docs/law_map.md §5, "Sparse maps".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sparse_level: Option<u32>,
 }
 
 fn unit_factor() -> f64 {
@@ -426,6 +455,27 @@ impl LawMapSpec {
                     "odd, 3 to 65 (every other node is the nested set of the error estimate)",
                 ));
             }
+            if self.sparse_level.is_some() && sparse::depth(a.nodes).is_none() {
+                return Err(inv(
+                    &format!("{name}.nodes"),
+                    a.nodes as f64,
+                    "3, 5, 9, 17, 33 or 65 in a sparse map (2^m + 1: the nested levels)",
+                ));
+            }
+        }
+        if let Some(q) = self.sparse_level {
+            let nodes: Vec<usize> = self.axes.iter().map(|a| a.nodes).collect();
+            let full = Smolyak::full_level(&nodes).unwrap_or(0);
+            if !(1..=full).contains(&q) {
+                return Err(inv(
+                    "sparse_level",
+                    f64::from(q),
+                    &format!(
+                        "1 to {full}, the sum of the axes' depths m (nodes = 2^m + 1), at which \
+                         every tensor node is kept"
+                    ),
+                ));
+            }
         }
         if self.node_count() > 200_000 {
             return Err(inv(
@@ -439,9 +489,11 @@ impl LawMapSpec {
             return Err(inv("amplitude", self.amplitude, "0 < ε ≤ 0.9"));
         }
         self.validate_law()?;
-        // Every node's groups valid (ranges of M, L, Ry/Rx).
-        self.node_groups(0).validate()?;
-        self.node_groups(self.node_count() - 1).validate()?;
+        // Every node's groups valid (ranges of M, L, Ry/Rx): those of the box's two corners.
+        let lows: Vec<f64> = self.axes.iter().map(|a| a.min).collect();
+        let highs: Vec<f64> = self.axes.iter().map(|a| a.max).collect();
+        self.groups_at(&lows).validate()?;
+        self.groups_at(&highs).validate()?;
         Ok(())
     }
 
@@ -516,13 +568,43 @@ impl LawMapSpec {
         Ok(())
     }
 
-    /// Number of nodes (the product of the axes' node counts).
+    /// Number of nodes: the product of the axes' node counts, or for a sparse map the tensor
+    /// nodes its level keeps.
     pub fn node_count(&self) -> usize {
+        match self.sparse() {
+            Some(s) => s.node_count(),
+            None => self.tensor_node_count(),
+        }
+    }
+
+    fn tensor_node_count(&self) -> usize {
         self.axes.iter().map(|a| a.nodes).product()
     }
 
-    /// Node multi-index of node `index` (the last axis fastest).
-    fn multi_index(&self, mut index: usize) -> Vec<usize> {
+    /// A sparse map's grid (None for a tensor map, or a sparse one whose node counts are not all
+    /// 2^m + 1, which [`LawMapSpec::validate`] refuses).
+    pub(super) fn sparse(&self) -> Option<Smolyak> {
+        let nodes: Vec<usize> = self.axes.iter().map(|a| a.nodes).collect();
+        Smolyak::new(&nodes, self.sparse_level?)
+    }
+
+    /// Node multi-index of node `index` (tensor maps: the last axis fastest; sparse maps: the
+    /// hierarchical order of [`Smolyak`]).
+    fn multi_index(&self, index: usize) -> Vec<usize> {
+        match self.sparse() {
+            Some(s) => s.multi_index(index),
+            None => self.tensor_multi_index(index),
+        }
+    }
+
+    /// The tensor node number of multi-index `j` (the last axis fastest).
+    pub(super) fn tensor_index(&self, j: &[usize]) -> usize {
+        j.iter()
+            .zip(&self.axes)
+            .fold(0, |acc, (&j, a)| acc * a.nodes + j)
+    }
+
+    fn tensor_multi_index(&self, mut index: usize) -> Vec<usize> {
         let mut out = vec![0; self.axes.len()];
         for (k, a) in self.axes.iter().enumerate().rev() {
             out[k] = index % a.nodes;
@@ -906,42 +988,11 @@ impl LawMap {
             a.check(value(a))?;
         }
         let t: Vec<f64> = axes.iter().map(|a| a.coord(value(a))).collect();
-        let full: Vec<Vec<f64>> = axes.iter().zip(&t).map(|(a, &t)| a.basis(t, 1)).collect();
-        let half: Vec<Vec<f64>> = axes.iter().zip(&t).map(|(a, &t)| a.basis(t, 2)).collect();
-        // The nodes next to the query on each axis (for the fit quality there).
-        let near: Vec<[usize; 2]> = axes
-            .iter()
-            .zip(&t)
-            .map(|(a, &t)| {
-                let x = a.node_coords();
-                let j = x.iter().rposition(|&xj| xj <= t).unwrap_or(0);
-                [j, (j + 1).min(x.len() - 1)]
-            })
-            .collect();
-        let mut vf = [0.0; 7];
-        let mut vh = [0.0; 7];
-        let mut rms = 0.0_f64;
-        let mut r2 = 1.0_f64;
-        let mut conv = true;
-        for index in 0..self.spec.node_count() {
-            let mi = self.spec.multi_index(index);
-            let wf: f64 = mi.iter().enumerate().map(|(k, &j)| full[k][j]).product();
-            let wh: f64 = mi.iter().enumerate().map(|(k, &j)| half[k][j]).product();
-            if wf == 0.0 && wh == 0.0 {
-                continue;
-            }
-            let v = values_of(&self.laws[index]);
-            for c in 0..7 {
-                vf[c] += wf * v[c];
-                vh[c] += wh * v[c];
-            }
-            if mi.iter().zip(&near).all(|(&j, n)| n.contains(&j)) {
-                let q = &self.quality[index];
-                rms = rms.max(q.rms_hat);
-                r2 = r2.min(q.r_squared);
-                conv &= q.converged;
-            }
-        }
+        let sums = match self.spec.sparse() {
+            Some(grid) => self.sparse_sums(&grid, &t),
+            None => self.tensor_sums(&t),
+        };
+        let (vf, vh) = (sums.fine, sums.coarse);
         let law = law_of(&vf, harmonic);
         let coarse = law_of(&vh, harmonic);
         let mut err = [0.0; 7];
@@ -953,9 +1004,136 @@ impl LawMap {
             law,
             error: law_of(&err, harmonic),
             force_error: (law.force_hat(a0) - coarse.force_hat(a0)).abs(),
-            node_rms_hat: rms,
-            node_r_squared: r2,
-            nodes_converged: conv,
+            node_rms_hat: sums.rms_hat,
+            node_r_squared: sums.r_squared,
+            nodes_converged: sums.converged,
         })
+    }
+
+    /// The tensor interpolants on all nodes and on the nested half set at coordinates `t`, and
+    /// the fit quality of the nodes of the cell holding `t`.
+    fn tensor_sums(&self, t: &[f64]) -> Sums {
+        let axes = &self.spec.axes;
+        let full: Vec<Vec<f64>> = axes.iter().zip(t).map(|(a, &t)| a.basis(t, 1)).collect();
+        let half: Vec<Vec<f64>> = axes.iter().zip(t).map(|(a, &t)| a.basis(t, 2)).collect();
+        // The nodes next to the query on each axis (for the fit quality there).
+        let near: Vec<[usize; 2]> = axes
+            .iter()
+            .zip(t)
+            .map(|(a, &t)| a.bracket(t, &(0..a.nodes).collect::<Vec<_>>()))
+            .collect();
+        let mut sums = Sums::new();
+        for index in 0..self.spec.node_count() {
+            let mi = self.spec.multi_index(index);
+            let wf: f64 = mi.iter().enumerate().map(|(k, &j)| full[k][j]).product();
+            let wh: f64 = mi.iter().enumerate().map(|(k, &j)| half[k][j]).product();
+            if wf == 0.0 && wh == 0.0 {
+                continue;
+            }
+            sums.add(&self.laws[index], wf, wh);
+            if mi.iter().zip(&near).all(|(&j, n)| n.contains(&j)) {
+                sums.quality(&self.quality[index]);
+            }
+        }
+        sums
+    }
+
+    /// A sparse map's combinations of level q and q − 1 at coordinates `t`, and the fit
+    /// quality of the nodes of the cells holding `t` in its tensor terms.
+    fn sparse_sums(&self, grid: &Smolyak, t: &[f64]) -> Sums {
+        let axes = &self.spec.axes;
+        let q = self.spec.sparse_level.unwrap_or(1);
+        let index = grid.index();
+        // Each tensor term with its coefficients in the two combinations.
+        let mut terms: Vec<(Vec<u32>, f64, f64)> = grid
+            .terms(q)
+            .into_iter()
+            .map(|(l, c)| (l, c, 0.0))
+            .collect();
+        for (l, c) in grid.terms(q.saturating_sub(1)) {
+            match terms.iter_mut().find(|(m, _, _)| *m == l) {
+                Some(term) => term.2 = c,
+                None => terms.push((l, 0.0, c)),
+            }
+        }
+        let mut sums = Sums::new();
+        for (l, cf, ch) in terms {
+            let nodes: Vec<Vec<usize>> = axes
+                .iter()
+                .zip(&l)
+                .map(|(a, &i)| sparse::level_nodes(i, sparse::depth(a.nodes).unwrap_or(1)))
+                .collect();
+            let basis: Vec<Vec<f64>> = axes
+                .iter()
+                .zip(t)
+                .zip(&nodes)
+                .map(|((a, &t), idx)| a.basis_on(t, idx))
+                .collect();
+            let near: Vec<[usize; 2]> = axes
+                .iter()
+                .zip(t)
+                .zip(&nodes)
+                .map(|((a, &t), idx)| a.bracket(t, idx))
+                .collect();
+            // Every node of the term's tensor grid (the last axis fastest).
+            let count: usize = nodes.iter().map(Vec::len).product();
+            let mut at = vec![0usize; axes.len()];
+            for _ in 0..count {
+                let j: Vec<usize> = at.iter().zip(&nodes).map(|(&i, n)| n[i]).collect();
+                let w: f64 = at.iter().zip(&basis).map(|(&i, b)| b[i]).product();
+                // Every node of a term of the set is a node of the sparse grid.
+                if let Some(node) = index.of(&j) {
+                    if w != 0.0 {
+                        sums.add(&self.laws[node], cf * w, ch * w);
+                    }
+                    if cf != 0.0 && j.iter().zip(&near).all(|(j, n)| n.contains(j)) {
+                        sums.quality(&self.quality[node]);
+                    }
+                }
+                for k in (0..at.len()).rev() {
+                    at[k] += 1;
+                    if at[k] < nodes[k].len() {
+                        break;
+                    }
+                    at[k] = 0;
+                }
+            }
+        }
+        sums
+    }
+}
+
+/// A query's two interpolants (the map's and the coarser one of its error estimate) and the
+/// fit quality of the nodes around it.
+struct Sums {
+    fine: [f64; 7],
+    coarse: [f64; 7],
+    rms_hat: f64,
+    r_squared: f64,
+    converged: bool,
+}
+
+impl Sums {
+    fn new() -> Sums {
+        Sums {
+            fine: [0.0; 7],
+            coarse: [0.0; 7],
+            rms_hat: 0.0,
+            r_squared: 1.0,
+            converged: true,
+        }
+    }
+
+    fn add(&mut self, law: &DimensionlessLaw, w_fine: f64, w_coarse: f64) {
+        for ((f, c), v) in self.fine.iter_mut().zip(&mut self.coarse).zip(values_of(law)) {
+            *f += w_fine * v;
+            *c += w_coarse * v;
+        }
+    }
+
+    fn quality(&mut self, q: &NodeQuality) {
+        self.rms_hat = self.rms_hat.max(q.rms_hat);
+        self.r_squared = self.r_squared.min(q.r_squared);
+        self.converged &= q.converged;
     }
 }

@@ -463,6 +463,7 @@ impl DimensionlessLaw {
 
 mod file;
 mod map;
+mod sparse;
 mod summary;
 
 pub use file::BINARY_MAGIC;

@@ -55,6 +55,9 @@ impl std::fmt::Display for MapSummary {
         if s.tolerance_factor != 1.0 {
             write!(f, ", tolerances × {}", s.tolerance_factor)?;
         }
+        if let Some(q) = s.sparse_level {
+            write!(f, ", sparse level {q}")?;
+        }
         writeln!(
             f,
             "; {} nodes, {:.2} CPU hours ({:.0} s), {} flagged not converged, worst node fit RMS/w0 {:.2e}",

@@ -100,6 +100,12 @@ pub fn held_out_references(
 ) -> Result<HeldOutReferences, MapGenerationError> {
     tightened(spec.settings().ehl, tolerance_factor)?;
     spec.validate()?;
+    // The references depend on the envelope and the method's settings, not on which nodes a
+    // map keeps: a sparse map and the tensor map of its axes share them.
+    let spec = &LawMapSpec {
+        sparse_level: None,
+        ..spec.clone()
+    };
     let points = held_out_points(spec, count, seed);
     let mut known: Vec<Option<NodeRecord>> = vec![None; count];
     let mut foreign = Vec::new();
