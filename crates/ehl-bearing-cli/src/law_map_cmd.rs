@@ -1,5 +1,6 @@
 //! `ehl-bearing law-map generate SPEC.toml -o DIR [--shard i/N]`, `law-map assemble SPEC.toml -o
-//! DIR --map FILE`, `law-map convert IN OUT` (JSON text ⇄ the compact binary form), `law-map info
+//! DIR --map FILE`, `law-map convert IN OUT [--sparse-level Q]` (JSON text ⇄ the compact binary
+//! form; a tensor map's sparse subset), `law-map info
 //! [FILE…]` (what map files or the embedded maps hold), `law-map sbatch
 //! SPEC.toml -o DIR --map FILE` (a Slurm job array of the
 //! shards and the assemble job: `law_map_slurm`) and `law-map check FILE --points N`: the map of the dimensionless quasi-static
@@ -68,12 +69,18 @@ pub enum LawMapCommand {
         json: bool,
     },
     /// Write a map file in the other form: JSON text (.json) or the compact binary form (.bin),
-    /// by the output's extension; the numbers are the same, bit for bit.
+    /// by the output's extension; the numbers are the same, bit for bit. With --sparse-level,
+    /// the sparse map of that level on a tensor map's nodes (a subset of them, e.g. to measure
+    /// how a sparse map of the same axes would do: docs/law_map.md §5, "Sparse maps").
     Convert {
         /// The map file to read (either form).
         input: PathBuf,
         /// The map file to write (.json or .bin).
         output: PathBuf,
+        /// Keep only the nodes of the sparse map of this level (1 to the sum of the axes'
+        /// depths m, nodes = 2^m + 1 on every axis).
+        #[arg(long)]
+        sparse_level: Option<u32>,
     },
     /// Write (and with --submit, submit) a Slurm job array that generates the nodes, one shard
     /// per task, and the dependent job that assembles the map file.
@@ -155,7 +162,11 @@ pub fn run(a: &LawMapArgs) -> anyhow::Result<()> {
             *threads,
         ),
         LawMapCommand::Assemble { spec, output, map } => assemble(spec, output, map),
-        LawMapCommand::Convert { input, output } => convert(input, output),
+        LawMapCommand::Convert {
+            input,
+            output,
+            sparse_level,
+        } => convert(input, output, *sparse_level),
         LawMapCommand::Info { maps, json } => info(maps, *json),
         LawMapCommand::Sbatch(args) => crate::law_map_slurm::run(args),
         LawMapCommand::Check(args) => check(args),
@@ -278,9 +289,15 @@ fn map_file_bytes(m: &LawMap, p: &Path) -> anyhow::Result<Vec<u8>> {
     })
 }
 
-/// `law-map convert`: write the map file `input` in the form of `output`'s extension.
-fn convert(input: &Path, output: &Path) -> anyhow::Result<()> {
-    let m = read_map(input)?;
+/// `law-map convert`: write the map file `input` (or its sparse subset of level
+/// `sparse_level`) in the form of `output`'s extension.
+fn convert(input: &Path, output: &Path, sparse_level: Option<u32>) -> anyhow::Result<()> {
+    let mut m = read_map(input)?;
+    if let Some(q) = sparse_level {
+        m = m
+            .sparse_subset(q)
+            .with_context(|| format!("{}: its sparse map of level {q}", input.display()))?;
+    }
     let bytes = map_file_bytes(&m, output)?;
     ehl_bearing::io::write_atomic(output, &bytes)?;
     println!(

@@ -163,7 +163,8 @@ fn a_sparse_spec_goes_through_the_study_machinery() {
 }
 
 /// A sparse level on an axis of 7 nodes, a level of 0 or past the full level, and a subset of a
-/// sparse map are refused naming the field, the value and the valid range.
+/// sparse map at a higher level than its own are refused naming the field, the value and the
+/// valid range; a lower level's subset is the first nodes.
 #[test]
 fn invalid_sparse_specs_are_refused() {
     let tensor = LawMap::embedded();
@@ -183,11 +184,16 @@ fn invalid_sparse_specs_are_refused() {
         assert!(e.contains("sparse_level") && e.contains("1 to 9"), "{e}");
     }
     let sparse = tensor.sparse_subset(5).unwrap();
-    let e = sparse.sparse_subset(4).unwrap_err().to_string();
+    let e = sparse.sparse_subset(6).unwrap_err().to_string();
     assert!(
-        e.contains("sparse_level") && e.contains("tensor map"),
+        e.contains("sparse_level = 6") && e.contains("at most 5"),
         "{e}"
     );
+    // A lower level of a sparse map is the same as of the tensor map (its first nodes: the
+    // node order is by level).
+    let lower = sparse.sparse_subset(4).unwrap();
+    assert_eq!(lower.laws, tensor.sparse_subset(4).unwrap().laws);
+    assert_eq!(lower.laws[..], sparse.laws[..lower.laws.len()]);
     // The map of a 7-node axis has no sparse subset.
     let oils = LawMap::embedded_maps()[4];
     let e = oils.sparse_subset(4).unwrap_err().to_string();

@@ -8,7 +8,10 @@
 //! the Chebyshev–Gauss–Lobatto set of order (n − 1)/2: the error estimate of a query is the
 //! difference between the interpolants on all nodes and on that nested half set. It estimates the
 //! error of the coarser interpolant and so, where the interpolation converges, bounds that of
-//! the finer one from above (measured against direct characterizations in the docs).
+//! the finer one from above (measured against direct characterizations in the docs). A sparse
+//! map (`sparse_level`) keeps a subset of the tensor nodes and combines small tensor
+//! interpolants on them (Smolyak; [`super::sparse`]), its estimate the difference from the
+//! combination one level lower.
 
 use super::sparse::{self, Smolyak};
 use super::{DimensionlessLaw, LawGroups, LawMapError};
@@ -1125,7 +1128,12 @@ impl Sums {
     }
 
     fn add(&mut self, law: &DimensionlessLaw, w_fine: f64, w_coarse: f64) {
-        for ((f, c), v) in self.fine.iter_mut().zip(&mut self.coarse).zip(values_of(law)) {
+        for ((f, c), v) in self
+            .fine
+            .iter_mut()
+            .zip(&mut self.coarse)
+            .zip(values_of(law))
+        {
             *f += w_fine * v;
             *c += w_coarse * v;
         }

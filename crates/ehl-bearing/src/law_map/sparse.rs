@@ -17,17 +17,22 @@
 use super::{LawMap, LawMapError, LawMapSpec};
 
 impl LawMap {
-    /// The sparse map of level `level` on this tensor map's nodes: the same spec with
-    /// `sparse_level`, the laws and fit quality of the nodes it keeps (a subset of this map's).
-    /// Its `cpu_seconds` is this map's times the share of nodes kept (map files keep no cost per
-    /// node). Errors: a map already sparse, an axis whose node count is not 2^m + 1, or a level
-    /// outside 1 to the sum of the depths, naming the field, the value and the valid range.
+    /// The sparse map of level `level` on this map's nodes: the same spec with `sparse_level`,
+    /// the laws and fit quality of the nodes it keeps (a subset of this map's: of a tensor map,
+    /// or of a sparse map of the same axes and a level at least `level`). Its `cpu_seconds` is
+    /// this map's times the share of nodes kept (map files keep no cost per node). Errors: a
+    /// sparse map of a lower level, an axis whose node count is not 2^m + 1, or a level outside
+    /// 1 to the sum of the depths, naming the field, the value and the valid range.
     pub fn sparse_subset(&self, level: u32) -> Result<LawMap, LawMapError> {
-        if let Some(q) = self.spec.sparse_level {
+        let source = self.spec.sparse();
+        if let Some(q) = self.spec.sparse_level.filter(|&q| q < level) {
             return Err(LawMapError::Invalid {
                 field: "sparse_level".into(),
-                value: f64::from(q),
-                expected: "none: the subset is taken of a tensor map".into(),
+                value: f64::from(level),
+                expected: format!(
+                    "at most {q}: a subset is taken of a tensor map or a sparse map of a level at \
+                     least its own"
+                ),
             });
         }
         let spec = LawMapSpec {
@@ -35,20 +40,30 @@ impl LawMap {
             ..self.spec.clone()
         };
         spec.validate()?;
-        let nodes: Vec<usize> = spec.axes.iter().map(|a| a.nodes).collect();
-        let grid = Smolyak::new(&nodes, level).ok_or_else(|| LawMapError::Invalid {
+        let grid = spec.sparse().ok_or_else(|| LawMapError::Invalid {
             field: "axis nodes".into(),
             value: f64::NAN,
             expected: "2^m + 1 on every axis".into(),
         })?;
+        let source_index = source.map(|s| s.index());
         let n = grid.node_count();
-        let tensor: Vec<usize> = (0..n)
-            .map(|i| self.spec.tensor_index(&grid.multi_index(i)))
-            .collect();
+        let mut kept = Vec::with_capacity(n);
+        for i in 0..n {
+            let j = grid.multi_index(i);
+            kept.push(match &source_index {
+                // A node of a sparse grid is a node of every higher level's.
+                Some(index) => index.of(&j).ok_or_else(|| LawMapError::Invalid {
+                    field: "sparse_level".into(),
+                    value: f64::from(level),
+                    expected: "a level whose nodes the source map has".into(),
+                })?,
+                None => self.spec.tensor_index(&j),
+            });
+        }
         Ok(LawMap {
             format: self.format.clone(),
-            laws: tensor.iter().map(|&i| self.laws[i]).collect(),
-            quality: tensor.iter().map(|&i| self.quality[i]).collect(),
+            laws: kept.iter().map(|&i| self.laws[i]).collect(),
+            quality: kept.iter().map(|&i| self.quality[i]).collect(),
             cpu_seconds: self.cpu_seconds * n as f64 / self.laws.len() as f64,
             spec,
         })
