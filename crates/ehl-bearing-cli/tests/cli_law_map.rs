@@ -230,6 +230,32 @@ fn binary_form_round_trips(
             && err.contains(".bin"),
         "{err}"
     );
+    // The sparse subset of level 2 (3 × 3 × 3 nodes: depths 1, 1, 1): 19 nodes, the library's.
+    let sparse = dir.join("sparse.bin");
+    let level = |q: &str| {
+        run(&[
+            "law-map".as_ref(),
+            "convert".as_ref(),
+            map.as_os_str(),
+            sparse.as_os_str(),
+            "--sparse-level".as_ref(),
+            q.as_ref(),
+        ])
+    };
+    let o = level("2");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("19 nodes"));
+    let read = ehl_bearing::law_map::LawMap::parse(&std::fs::read(&sparse).unwrap()).unwrap();
+    assert_eq!(read, m.sparse_subset(2).unwrap());
+    let o = run(&["law-map".as_ref(), "info".as_ref(), sparse.as_os_str()]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("sparse level 2; 19 nodes"), "{text}");
+    let o = level("4");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("sparse_level = 4") && err.contains("1 to 3"),
+        "{err}"
+    );
     let mut damaged = bytes.clone();
     damaged.truncate(bytes.len() - 3);
     std::fs::write(&converted, &damaged).unwrap();

@@ -756,8 +756,8 @@ impl HarmonicSettings {
             ("step_tol_film", self.step_tol_film),
             ("settling_tol_film", self.settling_tol_film),
         ] {
-            if !positive(v) {
-                return bad(k, k, v.to_string(), "a finite number > 0");
+            if !(positive(v) && v <= 0.01) {
+                return bad(k, k, v.to_string(), "a relative film change in (0, 0.01]");
             }
         }
         let n = self.step_coarsest;

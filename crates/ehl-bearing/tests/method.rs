@@ -33,7 +33,7 @@ fn names_defaults_and_options() {
     assert_eq!((q.amplitude, q.points, q.ehl.grid), (0.1, 9, 257));
     let Method::Harmonic(h) = parse(
         "harmonic",
-        "frequency_fraction = 0.2\nsteps_per_period = 32\nsettling_periods = 1\nmass_kg = 1e-3\ndamping_term = false",
+        "frequency_fraction = 0.2\nsteps_per_period = 32\nsettling_periods = 1\nmass_kg = 1e-3\ndamping_term = false\nstep_tol_film = 7e-7",
     )
     .unwrap() else {
         panic!()
@@ -42,6 +42,7 @@ fn names_defaults_and_options() {
     assert_eq!(h.settling_periods, 1);
     assert_eq!(h.mass, Some(1e-3));
     assert!(!h.damping_term);
+    assert_eq!(h.step_tol_film, 7e-7);
 }
 
 #[test]
@@ -95,6 +96,13 @@ fn errors_name_the_key_the_value_and_the_range() {
             "method_options.frequency_fraction",
             "0",
             "≤ 10",
+        ),
+        (
+            "harmonic",
+            "step_tol_film = 0.05",
+            "method_options.step_tol_film",
+            "0.05",
+            "(0, 0.01]",
         ),
         (
             "harmonic",

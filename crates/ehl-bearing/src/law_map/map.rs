@@ -584,6 +584,22 @@ impl LawMapSpec {
         self.axes.iter().map(|a| a.nodes).product()
     }
 
+    /// Whether node k of `other` is node k of this spec: the specs are equal, or both are sparse
+    /// and differ only in their level (sparse nodes are numbered by level, so the nodes two
+    /// levels share have the same numbers: a map's nodes serve a higher level's generation).
+    pub fn same_nodes(&self, other: &LawMapSpec) -> bool {
+        match (self.sparse_level, other.sparse_level) {
+            (Some(_), Some(_)) => {
+                *self
+                    == LawMapSpec {
+                        sparse_level: self.sparse_level,
+                        ..other.clone()
+                    }
+            }
+            _ => self == other,
+        }
+    }
+
     /// A sparse map's grid (None for a tensor map, or a sparse one whose node counts are not all
     /// 2^m + 1, which [`LawMapSpec::validate`] refuses).
     pub(super) fn sparse(&self) -> Option<Smolyak> {

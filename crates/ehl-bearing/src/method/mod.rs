@@ -803,6 +803,7 @@ struct HarmonicOptions {
     periodicity_tol: Option<f64>,
     recorded_periods: Option<usize>,
     steps_per_period: Option<usize>,
+    step_tol_film: Option<f64>,
     mass_kg: Option<f64>,
     damping_term: Option<bool>,
 }
@@ -920,6 +921,7 @@ impl Method {
                 s.periodicity_tol = o.periodicity_tol.unwrap_or(s.periodicity_tol);
                 s.recorded_periods = o.recorded_periods.unwrap_or(s.recorded_periods);
                 s.steps_per_period = o.steps_per_period.unwrap_or(s.steps_per_period);
+                s.step_tol_film = o.step_tol_film.unwrap_or(s.step_tol_film);
                 if o.mass_kg.is_some() {
                     s.mass = o.mass_kg;
                 }

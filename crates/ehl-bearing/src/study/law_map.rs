@@ -292,7 +292,7 @@ pub fn generate_map(
         match store.load_point(&stem(k))? {
             None => todo.push(k),
             Some(text) => match serde_json::from_str::<NodeRecord>(&text) {
-                Ok(r) if r.spec == *spec && r.index == k => {
+                Ok(r) if r.spec.same_nodes(spec) && r.index == k => {
                     if r.law.is_some() {
                         loaded += 1;
                     } else {
@@ -346,7 +346,7 @@ pub fn shards_with_nodes_left(
         let done = store
             .load_point(&stem(k))?
             .and_then(|t| serde_json::from_str::<NodeRecord>(&t).ok())
-            .is_some_and(|r| r.spec == *spec && r.index == k && r.law.is_some());
+            .is_some_and(|r| r.spec.same_nodes(spec) && r.index == k && r.law.is_some());
         if !done {
             left[k % shards] = true;
         }
@@ -369,7 +369,7 @@ pub fn assemble_map(
         let rec = store
             .load_point(&stem(k))?
             .and_then(|t| serde_json::from_str::<NodeRecord>(&t).ok())
-            .filter(|r| r.spec == *spec && r.index == k);
+            .filter(|r| r.spec.same_nodes(spec) && r.index == k);
         match rec {
             Some(
                 r @ NodeRecord {
