@@ -61,6 +61,11 @@ pub struct ContactArgs {
     /// Harmonic method: time steps per period (default 64).
     #[arg(long)]
     pub steps_per_period: Option<usize>,
+    /// Harmonic method: per-step film tolerance, a relative change in (0, 0.01] (default 7e-5;
+    /// about 7e-6·Ψ_H for contacts of small mass group Ψ_H, whose damping c the default biases
+    /// upward: docs/contact.md, "Known limits").
+    #[arg(long)]
+    pub step_tol_film: Option<f64>,
     /// Harmonic method: mass on the contact in kg (default: the ball's mass from the contact
     /// file's ball_mass_kg or ball_diameter_mm).
     #[arg(long)]
@@ -244,6 +249,7 @@ fn method_of(args: &ContactArgs) -> Result<ehl_bearing::method::Method> {
             );
             put("recorded_periods", int(args.recorded_periods));
             put("steps_per_period", int(args.steps_per_period));
+            put("step_tol_film", args.step_tol_film.map(toml::Value::Float));
             put("mass_kg", args.mass_kg.map(toml::Value::Float));
             put(
                 "damping_term",
@@ -327,6 +333,7 @@ pub fn run(args: &ContactArgs) -> Result<()> {
                     (args.periodicity_tol.is_some(), "--periodicity-tol"),
                     (args.recorded_periods.is_some(), "--recorded-periods"),
                     (args.steps_per_period.is_some(), "--steps-per-period"),
+                    (args.step_tol_film.is_some(), "--step-tol-film"),
                     (args.mass_kg.is_some(), "--mass-kg"),
                     (args.no_damping_term, "--no-damping-term"),
                 ],

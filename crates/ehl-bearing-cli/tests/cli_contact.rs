@@ -44,6 +44,7 @@ fn harmonic_json_history_and_plots() {
     let out = Command::cargo_bin("ehl-bearing")
         .unwrap()
         .args(fast_harmonic())
+        .args(["--step-tol-film", "2e-5"])
         .arg("--json")
         .arg("-o")
         .arg(&dir)
@@ -79,6 +80,7 @@ fn harmonic_json_history_and_plots() {
     let e = &v["excitation"];
     assert_eq!(e["steps_per_period"], 16);
     assert_eq!(e["settling_periods"], 1);
+    assert_eq!(e["step_tol_film"], 2e-5);
     // 7 mm AISI 52100 ball: 7850·π/6·(7e-3)³ kg.
     let m = 7850.0 * std::f64::consts::PI / 6.0 * 7e-3f64.powi(3);
     assert!((e["mass_kg"].as_f64().unwrap() / m - 1.0).abs() < 1e-12);
@@ -183,6 +185,19 @@ fn invalid_harmonic_setting_names_the_setting() {
     let err = failure(args);
     assert!(
         err.contains("--frequency-fraction") && err.contains("-0.5"),
+        "{err}"
+    );
+    // The step tolerance: named with its value and range; refused for the quasi-static method.
+    let mut args = fast_harmonic();
+    args.push("--step-tol-film=0.5");
+    let err = failure(args);
+    assert!(
+        err.contains("--step-tol-film = 0.5") && err.contains("(0, 0.01]"),
+        "{err}"
+    );
+    let err = failure(["contact", SEED, "--step-tol-film", "1e-6"]);
+    assert!(
+        err.contains("--step-tol-film applies to --method harmonic only"),
         "{err}"
     );
 }
