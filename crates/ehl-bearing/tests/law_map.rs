@@ -10,6 +10,8 @@
 //! tolerance 1e-4), so 1e-9 separates round-off from a different solution. Grid 65² keeps the
 //! test to seconds; the invariance does not depend on the grid.
 
+#[path = "small_map/mod.rs"]
+mod small_map;
 #[path = "splitmix/mod.rs"]
 mod splitmix;
 use ehl_bearing::contact::{characterize_quasi_static, ContactFit, QuasiStaticSettings};
@@ -390,37 +392,7 @@ mod map {
     use ehl_bearing::material::{DensityModel, ViscosityModel};
     use ehl_bearing::study::{assemble_map, generate_map, MapGenerationError, MemoryStore, Shard};
 
-    /// A 3 × 3 × 3 map on grid 33 (seconds): the machinery, not the accuracy.
-    fn small() -> LawMapSpec {
-        let axis = |group, min, max, log| MapAxis {
-            group,
-            min,
-            max,
-            nodes: 3,
-            log,
-        };
-        LawMapSpec {
-            viscosity_model: ViscosityModel::Roelands,
-            density_model: DensityModel::DowsonHigginson,
-            m: None,
-            l: None,
-            ry_over_rx: None,
-            alpha_p0: Some(4.312),
-            ln_eta0_ratio: Some(0.04_f64.ln() + 9.67),
-            axes: vec![
-                axis(Group::M, 300.0, 1000.0, true),
-                axis(Group::L, 20.0, 24.0, false),
-                axis(Group::RyOverRx, 10.0, 20.0, true),
-            ],
-            amplitude: 0.2,
-            points: Some(7),
-            grid: 33,
-            law: Default::default(),
-            frequency_fraction: None,
-            tolerance_factor: 1.0,
-            sparse_level: None,
-        }
-    }
+    use crate::small_map::small;
 
     /// Two shards into one store give the map; a rerun computes nothing; another spec's files are
     /// refused; at a node of the nested half set the map returns the node's law with a zero error

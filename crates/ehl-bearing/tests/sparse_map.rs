@@ -4,8 +4,9 @@
 //! study machinery (generate, assemble, query, map files), and invalid sparse specs are refused
 //! naming the field, the value and the range.
 
-use ehl_bearing::law_map::{Group, LawGroups, LawMap, LawMapSpec, MapAxis};
-use ehl_bearing::material::{DensityModel, ViscosityModel};
+#[path = "small_map/mod.rs"]
+mod small_map;
+use ehl_bearing::law_map::{LawGroups, LawMap, LawMapSpec};
 use ehl_bearing::study::{assemble_map, generate_map, held_out_points, MemoryStore, Shard};
 
 /// Relative difference, against a floor of 1 (the dimensionless laws' components are O(1)).
@@ -102,33 +103,9 @@ fn exact_on_its_polynomial_space() {
 /// Level 2 of the same axes reuses the 7 nodes and adds 12.
 #[test]
 fn a_sparse_spec_goes_through_the_study_machinery() {
-    let axis = |group, min, max, log| MapAxis {
-        group,
-        min,
-        max,
-        nodes: 3,
-        log,
-    };
     let spec = LawMapSpec {
-        viscosity_model: ViscosityModel::Roelands,
-        density_model: DensityModel::DowsonHigginson,
-        m: None,
-        l: None,
-        ry_over_rx: None,
-        alpha_p0: Some(4.312),
-        ln_eta0_ratio: Some(0.04_f64.ln() + 9.67),
-        axes: vec![
-            axis(Group::M, 300.0, 1000.0, true),
-            axis(Group::L, 20.0, 24.0, false),
-            axis(Group::RyOverRx, 10.0, 20.0, true),
-        ],
-        amplitude: 0.2,
-        points: Some(7),
-        grid: 33,
-        law: Default::default(),
-        frequency_fraction: None,
-        tolerance_factor: 1.0,
         sparse_level: Some(1),
+        ..small_map::small()
     };
     spec.validate().unwrap();
     assert_eq!(spec.node_count(), 7);
