@@ -111,7 +111,7 @@ fn table(f: &ContactFit) -> String {
         let _ = writeln!(
             s,
             "excitation: ε = {}, Ω = {:.5e} rad/s = {:.3}·ω_n (ω_n = {:.5e} rad/s; dry Hertz {:.5e}), \
-             m = {:.4e} kg, {} (at most {}) + {} × {} steps; periodicity {:.1e} (bound {:.0e}: \
+             m = {:.4e} kg (Ψ_H = {:.3}), {} (at most {}) + {} × {} steps; periodicity {:.1e} (bound {:.0e}: \
              {}); {} not converged",
             h.amplitude,
             h.frequency_rad_s,
@@ -119,6 +119,7 @@ fn table(f: &ContactFit) -> String {
             h.natural_frequency_rad_s,
             h.natural_frequency_hertz_rad_s,
             h.mass_kg,
+            h.mass_group_psi_h,
             count(h.settling_steps, "settling step"),
             count(h.settling_periods, "period"),
             count(h.recorded_periods, "recorded period"),

@@ -84,6 +84,15 @@ fn harmonic_json_history_and_plots() {
     // 7 mm AISI 52100 ball: 7850·π/6·(7e-3)³ kg.
     let m = 7850.0 * std::f64::consts::PI / 6.0 * 7e-3f64.powi(3);
     assert!((e["mass_kg"].as_f64().unwrap() / m - 1.0).abs() < 1e-12);
+    // Its mass group Ψ_H, as the law maps compute it.
+    let file =
+        ehl_bearing::io::contact::parse_contact_file(&std::fs::read_to_string(SEED).unwrap())
+            .unwrap();
+    let psi = ehl_bearing::law_map::mass_group(&file.contact, m).unwrap();
+    assert!(
+        (e["mass_group_psi_h"].as_f64().unwrap() / psi - 1.0).abs() < 1e-9,
+        "{e}"
+    );
     // The default excitation (inside the rotor band).
     assert!((e["frequency_over_natural"].as_f64().unwrap() - 0.005).abs() < 1e-12);
     let [lo, hi] = [&v["delta_range"][0], &v["delta_range"][1]].map(|x| x.as_f64().unwrap());
