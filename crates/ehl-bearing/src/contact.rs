@@ -1119,6 +1119,14 @@ impl HarmonicRun<'_> {
     }
 }
 
+/// The harmonic law's mass group Ψ_H = (b/u_s)·√(w0/(δ_H·m)) (dimensionless) from the Hertz
+/// semi-width b along the rolling direction (m) and deflection δ_H (m) at the load w0 (N), the
+/// sum velocity u_s (m/s) and the mass m (kg): the natural frequency of the mass on the Hertz
+/// secant stiffness times the time the oil takes to cross b (docs/law_map.md §7).
+pub(crate) fn mass_group(b: f64, delta_h: f64, w0: f64, u_s: f64, mass: f64) -> f64 {
+    b / u_s * (w0 / (delta_h * mass)).sqrt()
+}
+
 /// Characterize a contact by the harmonic method (see the module documentation). `ball_mass` is
 /// the mass of the ball in kg (used unless `s.mass` overrides it).
 ///
@@ -1181,7 +1189,10 @@ pub fn characterize_harmonic_within(
     let (fit, law) = run.fit_recorded(&rec, centre)?;
     let excitation = run.excitation(
         omega_n_hertz,
-        crate::law_map::mass_group(c, mass).unwrap_or(f64::NAN),
+        crate::hertz::HertzGeometry::new(c.rx, c.ry, c.e_reduced).map_or(f64::NAN, |g| {
+            let h = g.contact(c.load);
+            mass_group(h.semi_minor, h.deflection, c.load, c.sum_velocity, mass)
+        }),
         &step_settings,
         solver.dt_dimensionless(),
         &rec,

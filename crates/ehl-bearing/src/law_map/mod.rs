@@ -368,10 +368,14 @@ pub fn damping_scale(c: &EhlContact) -> Result<f64, LawMapError> {
 pub fn mass_group(c: &EhlContact, mass: f64) -> Result<f64, LawMapError> {
     let m = positive("ball mass [kg]", mass)?;
     let h = hertz_at_load(c)?;
-    Ok(
-        h.semi_minor / positive("sum_velocity [m/s]", c.sum_velocity)?
-            * (c.load / (h.deflection * m)).sqrt(),
-    )
+    let u_s = positive("sum_velocity [m/s]", c.sum_velocity)?;
+    Ok(crate::contact::mass_group(
+        h.semi_minor,
+        h.deflection,
+        c.load,
+        u_s,
+        m,
+    ))
 }
 
 /// The mass (kg) that gives contact `c` the mass group `psi_h` ([`mass_group`] inverted):
