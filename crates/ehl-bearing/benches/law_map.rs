@@ -1,7 +1,9 @@
 //! Reading the law maps: all embedded map files parsed from their compact binary form (what the
 //! library embeds) against the same maps parsed from JSON text (what `law-map assemble` writes
 //! for a `.json` file), side by side in one run. The first query of the `map` method that
-//! reaches a map pays its parse once (docs/law_map.md §5).
+//! reaches a map pays its parse once (docs/law_map.md §5). And one query of the first embedded map
+//! (17 × 5 × 9 tensor nodes) against its sparse subsets of levels 5 and 9 (the full level, the
+//! same interpolant by the combination technique), at the same 64 points.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use ehl_bearing::law_map::LawMap;
@@ -38,5 +40,33 @@ fn parse(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, parse);
+fn query(c: &mut Criterion) {
+    let tensor = LawMap::embedded();
+    let points: Vec<_> = ehl_bearing::study::held_out_points(&tensor.spec, 64, 11)
+        .into_iter()
+        .map(|(g, _)| g)
+        .collect();
+    let mut g = c.benchmark_group("law_map_query_64_points");
+    let mut run = |name: &str, map: &LawMap| {
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                for p in &points {
+                    black_box(map.query(black_box(p)).unwrap());
+                }
+            })
+        });
+    };
+    run("tensor_765_nodes", tensor);
+    run(
+        "sparse_level_5_261_nodes",
+        &tensor.sparse_subset(5).unwrap(),
+    );
+    run(
+        "sparse_level_9_765_nodes",
+        &tensor.sparse_subset(9).unwrap(),
+    );
+    g.finish();
+}
+
+criterion_group!(benches, parse, query);
 criterion_main!(benches);

@@ -1075,30 +1075,41 @@ impl LawMap {
                 None => terms.push((l, 0.0, c)),
             }
         }
+        // Per axis and level: its nodes, the basis at the query and the bracketing nodes (the
+        // terms share them).
+        let per_level: Vec<Vec<(Vec<usize>, Vec<f64>, [usize; 2])>> = axes
+            .iter()
+            .zip(t)
+            .map(|(a, &t)| {
+                let m = sparse::depth(a.nodes).unwrap_or(1);
+                (0..=m)
+                    .map(|i| {
+                        let idx = sparse::level_nodes(i, m);
+                        let basis = a.basis_on(t, &idx);
+                        let near = a.bracket(t, &idx);
+                        (idx, basis, near)
+                    })
+                    .collect()
+            })
+            .collect();
         let mut sums = Sums::new();
+        let mut j = vec![0usize; axes.len()];
         for (l, cf, ch) in terms {
-            let nodes: Vec<Vec<usize>> = axes
+            let at_level: Vec<&(Vec<usize>, Vec<f64>, [usize; 2])> = per_level
                 .iter()
                 .zip(&l)
-                .map(|(a, &i)| sparse::level_nodes(i, sparse::depth(a.nodes).unwrap_or(1)))
+                .map(|(levels, &i)| &levels[i as usize])
                 .collect();
-            let basis: Vec<Vec<f64>> = axes
-                .iter()
-                .zip(t)
-                .zip(&nodes)
-                .map(|((a, &t), idx)| a.basis_on(t, idx))
-                .collect();
-            let near: Vec<[usize; 2]> = axes
-                .iter()
-                .zip(t)
-                .zip(&nodes)
-                .map(|((a, &t), idx)| a.bracket(t, idx))
-                .collect();
+            let nodes: Vec<&Vec<usize>> = at_level.iter().map(|x| &x.0).collect();
+            let basis: Vec<&Vec<f64>> = at_level.iter().map(|x| &x.1).collect();
+            let near: Vec<[usize; 2]> = at_level.iter().map(|x| x.2).collect();
             // Every node of the term's tensor grid (the last axis fastest).
-            let count: usize = nodes.iter().map(Vec::len).product();
+            let count: usize = nodes.iter().map(|n| n.len()).product();
             let mut at = vec![0usize; axes.len()];
             for _ in 0..count {
-                let j: Vec<usize> = at.iter().zip(&nodes).map(|(&i, n)| n[i]).collect();
+                for ((x, &i), n) in j.iter_mut().zip(&at).zip(&nodes) {
+                    *x = n[i];
+                }
                 let w: f64 = at.iter().zip(&basis).map(|(&i, b)| b[i]).product();
                 // Every node of a term of the set is a node of the sparse grid.
                 if let Some(node) = index.of(&j) {

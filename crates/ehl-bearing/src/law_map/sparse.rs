@@ -255,21 +255,28 @@ impl SparseIndex {
     /// The sparse index of the node at tensor multi-index `j`; None if the sparse grid has no
     /// such node.
     pub(crate) fn of(&self, j: &[usize]) -> Option<usize> {
-        let l: Vec<u32> = j
-            .iter()
-            .zip(&self.depths)
-            .map(|(&j, &m)| level_of(j, m))
-            .collect();
-        let offset = *self.offsets.get(mixed(&l, &self.radix))?;
-        if offset == usize::MAX {
-            return None;
-        }
+        // The block of the node's levels, then its place among the nodes new at those levels
+        // (no allocation: a query looks up every node of every term).
+        let mut block = 0;
         let mut local = 0;
-        for k in 0..j.len() {
-            let new = new_nodes(l[k], self.depths[k]);
-            local = local * new.len() + new.iter().position(|&x| x == j[k])?;
+        for ((&j, &m), &r) in j.iter().zip(&self.depths).zip(&self.radix) {
+            let i = level_of(j, m);
+            block = block * r + i as usize;
+            local = local * new_count(i) + new_position(j, i, m);
         }
-        Some(offset + local)
+        match *self.offsets.get(block)? {
+            usize::MAX => None,
+            offset => Some(offset + local),
+        }
+    }
+}
+
+/// The place of node `j` (of level `i` on an axis of depth `m`) among [`new_nodes`]`(i, m)`.
+fn new_position(j: usize, i: u32, m: u32) -> usize {
+    match i {
+        0 => 0,
+        1 => usize::from(j != 0),
+        _ => (j >> (m - i)) / 2,
     }
 }
 
@@ -345,5 +352,12 @@ mod tests {
         assert_eq!(new_nodes(3, 3), vec![1, 3, 5, 7]);
         let lv: Vec<u32> = (0..9).map(|j| level_of(j, 3)).collect();
         assert_eq!(lv, vec![1, 3, 2, 3, 0, 3, 2, 3, 1]);
+        for m in 1..=6 {
+            for i in 0..=m {
+                for (p, &j) in new_nodes(i, m).iter().enumerate() {
+                    assert_eq!(new_position(j, i, m), p, "node {j}, level {i}, depth {m}");
+                }
+            }
+        }
     }
 }
