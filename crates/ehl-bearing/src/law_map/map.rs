@@ -1077,17 +1077,19 @@ impl LawMap {
         }
         // Per axis and level: its nodes, the basis at the query and the bracketing nodes (the
         // terms share them).
-        let per_level: Vec<Vec<(Vec<usize>, Vec<f64>, [usize; 2])>> = axes
+        let per_level: Vec<Vec<AxisLevel>> = axes
             .iter()
             .zip(t)
             .map(|(a, &t)| {
                 let m = sparse::depth(a.nodes).unwrap_or(1);
                 (0..=m)
                     .map(|i| {
-                        let idx = sparse::level_nodes(i, m);
-                        let basis = a.basis_on(t, &idx);
-                        let near = a.bracket(t, &idx);
-                        (idx, basis, near)
+                        let nodes = sparse::level_nodes(i, m);
+                        AxisLevel {
+                            basis: a.basis_on(t, &nodes),
+                            near: a.bracket(t, &nodes),
+                            nodes,
+                        }
                     })
                     .collect()
             })
@@ -1095,14 +1097,14 @@ impl LawMap {
         let mut sums = Sums::new();
         let mut j = vec![0usize; axes.len()];
         for (l, cf, ch) in terms {
-            let at_level: Vec<&(Vec<usize>, Vec<f64>, [usize; 2])> = per_level
+            let at_level: Vec<&AxisLevel> = per_level
                 .iter()
                 .zip(&l)
                 .map(|(levels, &i)| &levels[i as usize])
                 .collect();
-            let nodes: Vec<&Vec<usize>> = at_level.iter().map(|x| &x.0).collect();
-            let basis: Vec<&Vec<f64>> = at_level.iter().map(|x| &x.1).collect();
-            let near: Vec<[usize; 2]> = at_level.iter().map(|x| x.2).collect();
+            let nodes: Vec<&Vec<usize>> = at_level.iter().map(|x| &x.nodes).collect();
+            let basis: Vec<&Vec<f64>> = at_level.iter().map(|x| &x.basis).collect();
+            let near: Vec<[usize; 2]> = at_level.iter().map(|x| x.near).collect();
             // Every node of the term's tensor grid (the last axis fastest).
             let count: usize = nodes.iter().map(|n| n.len()).product();
             let mut at = vec![0usize; axes.len()];
@@ -1131,6 +1133,14 @@ impl LawMap {
         }
         sums
     }
+}
+
+/// One level of one axis of a sparse map at a query: its nodes, their interpolation basis at the
+/// query's coordinate and the two nodes bracketing it.
+struct AxisLevel {
+    nodes: Vec<usize>,
+    basis: Vec<f64>,
+    near: [usize; 2],
 }
 
 /// A query's two interpolants (the map's and the coarser one of its error estimate) and the
