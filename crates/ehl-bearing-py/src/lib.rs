@@ -356,21 +356,43 @@ fn ehl(
 /// method also gives the Richardson estimate of the central film and the approach at w0
 /// (`film`, as the `contact` command; `film_extrapolation=False` skips its extra solution).
 /// `grid`: points per side of the EHL solutions (2^k + 1; default 129), as `contact --grid`.
+/// `method_options`: the method's other settings as a case file's `[method_options]` (e.g.
+/// `{"steps_per_period": 32, "step_tol_film": 7e-7}` for the harmonic method; docs/study.md),
+/// checked by the same parser: an unknown key or a value out of range is an error naming
+/// `method_options.KEY`, the value and the range.
 /// The dict has the keys of `contact --json` (docs/results.md).
 #[pyfunction]
-#[pyo3(signature = (contact_toml, method = "quasi-static", film_extrapolation = true, grid = None))]
+#[pyo3(signature = (contact_toml, method = "quasi-static", film_extrapolation = true, grid = None, method_options = None))]
 fn contact(
     py: Python<'_>,
     contact_toml: &str,
     method: &str,
     film_extrapolation: bool,
     grid: Option<usize>,
+    method_options: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<PyObject> {
     use ehl_bearing::contact::{characterize_harmonic, characterize_quasi_static};
     use ehl_bearing::io::contact::parse_contact_file;
     use ehl_bearing::method::Method;
     let file = parse_contact_file(contact_toml).map_err(err)?;
-    let mut options = toml::Table::new();
+    let mut options = match method_options
+        .map(|o| from_py(o, "method_options"))
+        .transpose()?
+    {
+        None => toml::Table::new(),
+        Some(toml::Value::Table(t)) => t,
+        Some(other) => {
+            return Err(err(format!(
+                "method_options: a dict of the method's settings, got a {}",
+                other.type_str()
+            )))
+        }
+    };
+    if grid.is_some() && options.contains_key("grid") {
+        return Err(err(
+            "grid is given twice (grid= and method_options[\"grid\"]): give it once",
+        ));
+    }
     if let Some(g) = grid {
         options.insert(
             "grid".into(),

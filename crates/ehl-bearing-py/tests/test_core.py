@@ -126,6 +126,28 @@ def test_ehl_point_contact(examples):
         eb.ehl(text.replace("load_n = 600.0", "load_n = -1.0"))
 
 
+def test_contact_takes_the_method_options(examples):
+    text = (examples / "contact_7006_inner.toml").read_text()
+    fast = {"steps_per_period": 16, "settling_periods": 1}
+    out = eb.contact(
+        text, method="harmonic", grid=33, method_options={**fast, "step_tol_film": 2e-5}
+    )
+    e = out["excitation"]
+    assert e["step_tol_film"] == 2e-5 and e["steps_per_period"] == 16
+    # The mass group that says when to tighten the step tolerance (docs/contact.md).
+    assert 0.1 < e["mass_group_psi_h"] < 100.0
+    # Out of range, unknown, twice: the key, the value and the range.
+    too_loose = r"method_options\.step_tol_film = 0\.5.*\(0, 0\.01\]"
+    with pytest.raises(eb.EhlBearingError, match=too_loose):
+        eb.contact(text, method="harmonic", grid=33, method_options={**fast, "step_tol_film": 0.5})
+    with pytest.raises(eb.EhlBearingError, match="step_tol"):
+        eb.contact(text, method="harmonic", grid=33, method_options={"step_tol": 1e-6})
+    with pytest.raises(eb.EhlBearingError, match="grid is given twice"):
+        eb.contact(text, grid=33, method_options={"grid": 65})
+    with pytest.raises(eb.EhlBearingError, match="method_options"):
+        eb.contact(text, method_options=[1, 2])
+
+
 def test_study_runs_and_reports_progress(tmp_path, examples):
     study_file = tmp_path / "s.toml"
     study_file.write_text(

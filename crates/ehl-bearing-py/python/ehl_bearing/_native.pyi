@@ -150,6 +150,7 @@ def contact(
     method: str = "quasi-static",
     film_extrapolation: bool = True,
     grid: Optional[int] = None,
+    method_options: Optional[dict[str, Any]] = None,
 ) -> dict[str, Any]: ...
 def characterize(
     case: Case,
