@@ -603,8 +603,9 @@ impl LawMapSpec {
     /// A sparse map's grid (None for a tensor map, or a sparse one whose node counts are not all
     /// 2^m + 1, which [`LawMapSpec::validate`] refuses).
     pub(super) fn sparse(&self) -> Option<Smolyak> {
+        let level = self.sparse_level?;
         let nodes: Vec<usize> = self.axes.iter().map(|a| a.nodes).collect();
-        Smolyak::new(&nodes, self.sparse_level?)
+        Smolyak::new(&nodes, level)
     }
 
     /// Node multi-index of node `index` (tensor maps: the last axis fastest; sparse maps: the
@@ -1043,7 +1044,7 @@ impl LawMap {
             .collect();
         let mut sums = Sums::new();
         for index in 0..self.spec.node_count() {
-            let mi = self.spec.multi_index(index);
+            let mi = self.spec.tensor_multi_index(index);
             let wf: f64 = mi.iter().enumerate().map(|(k, &j)| full[k][j]).product();
             let wh: f64 = mi.iter().enumerate().map(|(k, &j)| half[k][j]).product();
             if wf == 0.0 && wh == 0.0 {
