@@ -20,7 +20,7 @@ fn main() {
     s.steps_per_period = num(1, 64.0) as usize;
     s.settling_periods = num(2, 2.0) as usize;
     s.periodicity_tol = num(3, s.periodicity_tol);
-    s.step_tol_film = num(4, s.step_tol_film);
+    s.step_tol_film = a.get(4).map(|x| x.parse().expect("a number"));
     s.step_coarsest = num(7, s.step_coarsest as f64) as usize;
     s.step_coarse_sweeps = num(8, s.step_coarse_sweeps as f64) as usize;
     s.settling_tol_film = num(9, s.settling_tol_film);
@@ -49,7 +49,7 @@ fn main() {
         s.steps_per_period,
         s.settling_periods,
         s.periodicity_tol,
-        s.step_tol_film,
+        e.step_tol_film,
         s.step_coarsest,
         s.step_coarse_sweeps,
         f.k,

@@ -25,7 +25,7 @@ fn main() {
             .map(|v| v.parse::<f64>().expect("a number"))
     };
     if let Some(t) = env("STEP_TOL_FILM") {
-        s.step_tol_film = t;
+        s.step_tol_film = Some(t);
     }
     if let Some(f) = env("FREQUENCY_FRACTION") {
         s.frequency = ehl_bearing::contact::ExcitationFrequency::FractionOfNatural(f);

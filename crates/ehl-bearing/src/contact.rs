@@ -252,9 +252,9 @@ pub struct HarmonicExcitation {
     pub linearized_stiffness_n_m: f64,
     /// Mass on the contact, kg.
     pub mass_kg: f64,
-    /// The mass group Ψ_H = (b/u_s)·√(w0/(δ_H·m)) (dimensionless; `law_map::mass_group`): below
-    /// about 1 the default `step_tol_film` biases c upward, by about 3 % at 1 and 28 % at 0.1
-    /// (docs/contact.md, "Known limits"). 0 in results written before it was recorded.
+    /// The mass group Ψ_H = (b/u_s)·√(w0/(δ_H·m)) (dimensionless; `law_map::mass_group`), which
+    /// sets the default `step_tol_film` (7e-6·Ψ_H within [7e-8, 7e-5]; docs/contact.md, "Known
+    /// limits"). 0 in results written before it was recorded.
     #[serde(default)]
     pub mass_group_psi_h: f64,
     /// Largest number of settling periods (the setting).
@@ -283,7 +283,9 @@ pub struct HarmonicExcitation {
     pub damping_term: bool,
     /// EHL grid (nodes per side).
     pub grid: usize,
-    /// Per-step film convergence tolerance.
+    /// Per-step film convergence tolerance the recorded steps used: the setting, or by default
+    /// 7e-6·Ψ_H within [7e-8, 7e-5] (a fixed 7e-5 in results written before the default followed
+    /// Ψ_H).
     pub step_tol_film: f64,
     /// Film tolerance of the first quarter period's steps, which are never recorded (the
     /// setting; 0 in results written before it existed, whose steps all used `step_tol_film`).
@@ -570,12 +572,14 @@ pub struct HarmonicSettings {
     pub damping_term: bool,
     /// Largest number of FAS cycles per time step (default 20).
     pub max_cycles_per_step: usize,
-    /// Per-step convergence: relative change of h_c and H0 over the last cycle (default 7e-5,
-    /// with the steps' cubic H0 predictor: the laws of the 22 seed contacts at 3000 rpm are
-    /// within 1.1e-3 in d and 0.33 N in ΔF of steps iterated to 1e-6, as with 3e-5 and the
-    /// quadratic H0 predictor of before, in 2.16 instead of 2.53 cycles per step —
-    /// docs/contact.md).
-    pub step_tol_film: f64,
+    /// Per-step convergence: relative change of h_c and H0 over the last cycle. `None` (the
+    /// default): it follows the contact's mass group Ψ_H ([`HarmonicSettings::step_tol_film_at`]:
+    /// 7e-6·Ψ_H within [7e-8, 7e-5]), because the lag of the unconverged remainder biases c
+    /// upward by about 2.8 %/Ψ_H at a fixed 7e-5 (28 % at Ψ_H = 0.1) and by at most 0.6 % at
+    /// 7e-6·Ψ_H from Ψ_H 0.1 to 10, while d and ΔF do not move (docs/contact.md, "Known
+    /// limits"). `Some(t)`: every recorded step uses t, in (0, 0.01].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub step_tol_film: Option<f64>,
     /// Film tolerance of the steps of the first quarter period (default 1e-3, > 0), which only
     /// settle the start transient and are never recorded (the recorded period starts a quarter
     /// period in at the earliest; with `settling_periods` 0 every step uses `step_tol_film`).
@@ -634,7 +638,7 @@ impl Default for HarmonicSettings {
             mass: None,
             damping_term: true,
             max_cycles_per_step: 20,
-            step_tol_film: 7e-5,
+            step_tol_film: None,
             settling_tol_film: default_settling_tol_film(),
             step_coarsest: default_step_coarsest(),
             step_coarse_sweeps: default_step_coarse_sweeps(),
@@ -643,6 +647,34 @@ impl Default for HarmonicSettings {
                 discretization_fraction: 0.0,
                 ..EhlSettings::default()
             },
+        }
+    }
+}
+
+/// The default per-step film tolerance per unit of the mass group Ψ_H
+/// ([`HarmonicSettings::step_tol_film_at`]).
+pub const STEP_TOL_FILM_PER_PSI_H: f64 = 7e-6;
+/// The default per-step film tolerance's upper bound (reached at Ψ_H ≥ 10; the fixed default of
+/// earlier versions).
+pub const STEP_TOL_FILM_MAX: f64 = 7e-5;
+/// The default per-step film tolerance's lower bound (reached at Ψ_H ≤ 0.01; ≈ 6.4 cycles per
+/// step on the oils map's centre contact).
+pub const STEP_TOL_FILM_MIN: f64 = 7e-8;
+
+impl HarmonicSettings {
+    /// The per-step film tolerance of a contact with mass group `psi_h` (dimensionless,
+    /// [`mass_group`]): the setting if given, else [`STEP_TOL_FILM_PER_PSI_H`]·Ψ_H within
+    /// [[`STEP_TOL_FILM_MIN`], [`STEP_TOL_FILM_MAX`]] ([`STEP_TOL_FILM_MAX`] if Ψ_H is not a
+    /// finite number > 0). The rule keeps the bias of c from the steps' unconverged remainder
+    /// within ≈ 0.6 % from Ψ_H 0.1 to 10 (measured against steps iterated to 7e-8:
+    /// `cargo run --release -p ehl-bearing --example harmonic_step_tolerance`).
+    pub fn step_tol_film_at(&self, psi_h: f64) -> f64 {
+        match self.step_tol_film {
+            Some(t) => t,
+            None if psi_h.is_finite() && psi_h > 0.0 => {
+                (STEP_TOL_FILM_PER_PSI_H * psi_h).clamp(STEP_TOL_FILM_MIN, STEP_TOL_FILM_MAX)
+            }
+            None => STEP_TOL_FILM_MAX,
         }
     }
 }
@@ -759,8 +791,9 @@ impl HarmonicSettings {
         }
         for (k, v) in [
             ("step_tol_film", self.step_tol_film),
-            ("settling_tol_film", self.settling_tol_film),
+            ("settling_tol_film", Some(self.settling_tol_film)),
         ] {
+            let Some(v) = v else { continue };
             if !(positive(v) && v <= 0.01) {
                 return bad(k, k, v.to_string(), "a relative film change in (0, 0.01]");
             }
@@ -804,6 +837,10 @@ struct HarmonicRun<'a> {
     n_per: usize,
     /// Time step, s.
     dt: f64,
+    /// The contact's mass group Ψ_H ([`mass_group`]; NaN if its Hertz contact is undefined).
+    psi_h: f64,
+    /// The recorded steps' film tolerance ([`HarmonicSettings::step_tol_film_at`] at `psi_h`).
+    step_tol: f64,
     deadline: Option<Deadline>,
 }
 
@@ -873,12 +910,13 @@ fn steady_centre(
     })
 }
 
-/// The steady settings of the transient steps: the settings' `step_tol_film`, and the steps'
-/// own coarsest level only with at least two levels above it (on 33² the 33/17 pair stalls in
-/// some steps of the seed contact; there the steady solutions' levels serve).
-fn step_settings(s: &HarmonicSettings) -> EhlSettings {
+/// The steady settings of the transient steps: the film tolerance `step_tol` (the run's, from
+/// [`HarmonicSettings::step_tol_film_at`]), and the steps' own coarsest level only with at least
+/// two levels above it (on 33² the 33/17 pair stalls in some steps of the seed contact; there
+/// the steady solutions' levels serve).
+fn step_settings(s: &HarmonicSettings, step_tol: f64) -> EhlSettings {
     let mut step_settings = EhlSettings {
-        tol_film: s.step_tol_film,
+        tol_film: step_tol,
         ..s.ehl
     };
     if s.ehl.grid > 4 * (s.step_coarsest - 1) {
@@ -1019,7 +1057,7 @@ impl HarmonicRun<'_> {
                 solver.set_tol_film(if k <= loose {
                     s.settling_tol_film
                 } else {
-                    s.step_tol_film
+                    self.step_tol
                 })?;
                 history.push(solver.step(w)?);
             }
@@ -1077,7 +1115,6 @@ impl HarmonicRun<'_> {
     fn excitation(
         &self,
         omega_n_hertz: f64,
-        psi_h: f64,
         step_settings: &EhlSettings,
         dtt: f64,
         rec: &Recording,
@@ -1095,7 +1132,7 @@ impl HarmonicRun<'_> {
             natural_frequency_hertz_rad_s: omega_n_hertz,
             linearized_stiffness_n_m: self.k_lin,
             mass_kg: self.mass,
-            mass_group_psi_h: psi_h,
+            mass_group_psi_h: self.psi_h,
             settling_periods: s.settling_periods,
             settling_steps: rec.settling,
             periodicity_tol: s.periodicity_tol,
@@ -1106,7 +1143,7 @@ impl HarmonicRun<'_> {
             time_step_over_transit: dtt,
             damping_term: s.damping_term,
             grid: s.ehl.grid,
-            step_tol_film: s.step_tol_film,
+            step_tol_film: self.step_tol,
             settling_tol_film: s.settling_tol_film,
             max_cycles_per_step: s.max_cycles_per_step,
             step_coarsest: step_settings.coarsest,
@@ -1167,6 +1204,10 @@ pub fn characterize_harmonic_within(
     };
     let period = 2.0 * std::f64::consts::PI / omega;
     let n_per = s.steps_per_period;
+    let psi_h = crate::hertz::HertzGeometry::new(c.rx, c.ry, c.e_reduced).map_or(f64::NAN, |g| {
+        let h = g.contact(c.load);
+        mass_group(h.semi_minor, h.deflection, c.load, c.sum_velocity, mass)
+    });
     let run = HarmonicRun {
         c,
         s,
@@ -1176,6 +1217,8 @@ pub fn characterize_harmonic_within(
         omega,
         n_per,
         dt: period / n_per as f64,
+        psi_h,
+        step_tol: s.step_tol_film_at(psi_h),
         deadline,
     };
     let samples = vec![
@@ -1183,16 +1226,12 @@ pub fn characterize_harmonic_within(
         sample(centre, c.load),
         sample(&steady.hi, 1.05 * c.load),
     ];
-    let step_settings = step_settings(s);
+    let step_settings = step_settings(s, run.step_tol);
     let (mut solver, phase) = run.start_solver(&steady, &step_settings)?;
     let rec = run.run_periodic(&mut solver, phase)?;
     let (fit, law) = run.fit_recorded(&rec, centre)?;
     let excitation = run.excitation(
         omega_n_hertz,
-        crate::hertz::HertzGeometry::new(c.rx, c.ry, c.e_reduced).map_or(f64::NAN, |g| {
-            let h = g.contact(c.load);
-            mass_group(h.semi_minor, h.deflection, c.load, c.sum_velocity, mass)
-        }),
         &step_settings,
         solver.dt_dimensionless(),
         &rec,
@@ -1221,4 +1260,34 @@ pub fn characterize_harmonic_within(
         film: None,
         law,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The default step tolerance is 7e-6·Ψ_H within [7e-8, 7e-5]; a setting overrides it; a
+    /// mass group that is not a finite number > 0 gives the upper bound.
+    #[test]
+    fn the_default_step_tolerance_follows_the_mass_group() {
+        let d = HarmonicSettings::default();
+        assert_eq!(d.step_tol_film, None);
+        for (psi, tol) in [
+            (1.0, 7e-6),
+            (0.1, 7e-7),
+            (10.0, 7e-5),
+            (100.0, 7e-5),
+            (1e-3, 7e-8),
+            (f64::NAN, 7e-5),
+            (0.0, 7e-5),
+        ] {
+            let t = d.step_tol_film_at(psi);
+            assert!((t - tol).abs() <= 1e-12 * tol, "Ψ_H {psi}: {t} ≠ {tol}");
+        }
+        let fixed = HarmonicSettings {
+            step_tol_film: Some(2e-5),
+            ..d
+        };
+        assert_eq!(fixed.step_tol_film_at(0.1), 2e-5);
+    }
 }

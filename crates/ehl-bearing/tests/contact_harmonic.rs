@@ -330,7 +330,7 @@ fn harmonic_settings_are_validated() {
             ..HarmonicSettings::default()
         },
         HarmonicSettings {
-            step_tol_film: 0.0,
+            step_tol_film: Some(0.0),
             ..HarmonicSettings::default()
         },
         HarmonicSettings {
@@ -397,7 +397,7 @@ fn short_settling_gives_the_law_of_a_settled_run() {
         mass(),
         &HarmonicSettings {
             periodicity_tol: 0.0,
-            step_tol_film: 1e-5,
+            step_tol_film: Some(1e-5),
             ..base
         },
     )
@@ -512,12 +512,16 @@ fn loose_settling_steps_keep_the_law() {
         &c,
         mass(),
         &HarmonicSettings {
-            settling_tol_film: base.step_tol_film,
+            settling_tol_film: excitation(&loose).step_tol_film,
             ..base
         },
     )
     .unwrap();
     let x = excitation(&loose);
+    // The default step tolerance follows the contact's mass group: 7e-6·Ψ_H within [7e-8, 7e-5].
+    let psi = x.mass_group_psi_h;
+    assert!(psi > 0.0 && psi.is_finite(), "{psi}");
+    assert_eq!(x.step_tol_film, (7e-6 * psi).clamp(7e-8, 7e-5));
     assert_eq!(x.settling_tol_film, 1e-3);
     // 65² ≥ 4·(17 − 1) + 1: the steps ran on their own 17² level with 6 sweeps per visit.
     assert_eq!((x.step_coarsest, x.step_coarse_sweeps), (17, 6));

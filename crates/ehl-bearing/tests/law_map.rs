@@ -232,9 +232,12 @@ fn changing_one_group_changes_the_law() {
 /// oil takes to cross the Hertz semi-width, set by the ball's mass. Scaling a contact by λ = 2
 /// (lengths ×2, load ×4, sum velocity ×2) with its mass ×2 keeps every group and gives the same
 /// d, ΔF/w0 and ĉ = c·δ_H·u_s/(w0·b) to round-off (measured on the seed's inner contact at 65²:
-/// 5.6e-11, 2.8e-10, 1.0e-13; bound 1e-7); the mass of a real ball twice the size (×8) halves Ψ
-/// and moves ĉ by +1.13 % (d by 6.6e-5, ΔF/w0 by +0.05 %): a harmonic map needs Ψ as an axis
-/// (docs/law_map.md §7; the example `harmonic_groups` prints the same for another contact).
+/// 5.4e-11, 2.7e-10, 1.8e-13; bound 1e-7); the mass of a real ball twice the size (×8) halves Ψ
+/// and moves ĉ by +0.053 % (d by 2.6e-5, ΔF/w0 by +0.03 %): weakly, but 4000× more than
+/// round-off, so Ψ is a group of the law (bound 1e-4; docs/law_map.md §7; the example
+/// `harmonic_groups` prints the same for another contact). With the steps' film tolerance fixed
+/// at 7e-5 instead of following Ψ_H the move was +1.13 %, mostly the lag of the unconverged
+/// steps (docs/contact.md, "Known limits").
 #[test]
 fn the_harmonic_law_needs_the_mass_group_psi() {
     use ehl_bearing::contact::{ball_mass, characterize_harmonic, Excitation, HarmonicSettings};
@@ -271,7 +274,7 @@ fn the_harmonic_law_needs_the_mass_group_psi() {
     assert!((a[2] / b[2] - 1.0).abs() < 1e-7, "{a:?} {b:?}");
     eprintln!("equal groups: {a:?} {b:?}; Ψ halved: {r:?}");
     let dc = r[2] / a[2] - 1.0;
-    assert!(dc > 0.005, "ĉ moves with Ψ: {dc}");
+    assert!(dc.abs() > 1e-4, "ĉ moves with Ψ: {dc}");
 }
 
 /// The mass group a query can compute without an EHL solution, Ψ_H = (b/u_s)·√(w0/(δ_H·m))
@@ -281,10 +284,11 @@ fn the_harmonic_law_needs_the_mass_group_psi() {
 /// that gives the seed's Ψ_H (×3.7 and ×1.99 of the seed ball's), take every decision of the
 /// run alike (settling steps, FAS cycles of each of the 80 steps: asserted) and give the same
 /// harmonic law (K̂, d, ΔF̂, the approaches and ĉ) to round-off amplified by the time stepping:
-/// measured 3.3e-10 (size) and 1.9e-8, ĉ 1.3e-7 (modulus). The bound, 1e-6, is wider than the
-/// quasi-static test's 1e-9 and the Ψ test's 1e-7 because the modulus case measured 1.3e-7
-/// (the decisions being equal, no tolerance of the solver separates the two runs; a step
-/// iterated to a different cycle would move the law by its film tolerance, 7e-5). Ψ/Ψ_H =
+/// measured 5.1e-10 (size) and 1.3e-9, ĉ 6.5e-9 (modulus; 3.3e-10, 1.9e-8 and 1.3e-7 with the
+/// steps' film tolerance fixed at 7e-5 instead of following Ψ_H). The bound, 1e-7, is wider than
+/// the quasi-static test's 1e-9 because the time stepping amplifies round-off (the decisions
+/// being equal, no tolerance of the solver separates the two runs; a step iterated to a
+/// different cycle would move the law by its film tolerance, 7e-6·Ψ_H). Ψ/Ψ_H =
 /// √(k·δ_H/w0) is then equal too (1e-15): at fixed other groups Ψ_H and Ψ are in one-to-one
 /// relation. Ψ_H ×4 moves ĉ by far more than round-off, so Ψ_H is a group of the law.
 #[test]
@@ -337,7 +341,7 @@ fn the_harmonic_law_is_fixed_by_the_groups_and_psi_h() {
             mass / m,
             (r / ratio - 1.0).abs()
         );
-        assert!(diff < 1e-6 && dc < 1e-6, "{a:?} {b:?}");
+        assert!(diff < 1e-7 && dc < 1e-7, "{a:?} {b:?}");
         assert!((r / ratio - 1.0).abs() < 1e-7, "Ψ/Ψ_H {ratio} {r}");
     }
     let (_, four, _) = run(&base, m / 16.0);
@@ -1584,5 +1588,206 @@ mod bearing {
                 ..MapSettings::default()
             })
         );
+    }
+}
+
+mod sparse {
+    //! Sparse (Smolyak) maps (docs/law_map.md §5, "Sparse maps"): the combination technique on the
+    //! axes' nested Chebyshev–Gauss–Lobatto levels reproduces what it must reproduce exactly (its
+    //! polynomial space; the tensor interpolant at the full level), a sparse spec goes through the
+    //! study machinery (generate, assemble, query, map files), and invalid sparse specs are refused
+    //! naming the field, the value and the range.
+
+    use crate::small_map;
+    use ehl_bearing::law_map::{LawGroups, LawMap, LawMapSpec};
+    use ehl_bearing::study::{assemble_map, generate_map, held_out_points, MemoryStore, Shard};
+
+    /// Relative difference, against a floor of 1 (the dimensionless laws' components are O(1)).
+    fn rel(a: f64, b: f64) -> f64 {
+        (a - b).abs() / b.abs().max(1.0)
+    }
+
+    /// The axes' coordinates of `g` (ln of the group on log axes), scaled to [−1, 1].
+    fn unit_coords(spec: &LawMapSpec, g: &LawGroups) -> Vec<f64> {
+        spec.axes
+            .iter()
+            .map(|a| {
+                let c = |v: f64| if a.log { v.ln() } else { v };
+                let v = a.group.get(g).unwrap();
+                (2.0 * c(v) - c(a.min) - c(a.max)) / (c(a.max) - c(a.min))
+            })
+            .collect()
+    }
+
+    /// At the full level (every tensor node kept) the combination is the tensor interpolant: the
+    /// sparse subset of the first embedded map (17 × 5 × 9 nodes, depths 4 + 2 + 3 = 9) answers as
+    /// the map itself at 100 random points, to round-off (1e-9: the two sums add the same
+    /// products in another order and grouping).
+    #[test]
+    fn full_level_is_the_tensor_interpolant() {
+        let tensor = LawMap::embedded();
+        let full = tensor.sparse_subset(9).unwrap();
+        assert_eq!(full.laws.len(), 17 * 5 * 9);
+        for (g, _) in held_out_points(&tensor.spec, 100, 3) {
+            let (a, b) = (full.query(&g).unwrap(), tensor.query(&g).unwrap());
+            for (x, y) in [
+                (a.law.k_hat, b.law.k_hat),
+                (a.law.d, b.law.d),
+                (a.law.delta_f_hat, b.law.delta_f_hat),
+                (a.law.approach_hat, b.law.approach_hat),
+            ] {
+                assert!(rel(x, y) < 1e-9, "{g:?}: {x} vs {y}");
+            }
+        }
+    }
+
+    /// Synthetic laws on the first embedded map's spec: the level-4 combination is exact on the
+    /// sum of the tensor spaces of its multi-levels (level i: 2^i + 1 nodes, degree 2^i), so a
+    /// function with per-axis degrees within the axes' reach (16, 4 and 8: levels 4, 2, 3) and a
+    /// product of degrees (4, 2, 2) (levels 2 + 1 + 1 = 4) comes back to round-off with the node
+    /// count of a sparse grid, while the product of degrees (4, 4, 4) (levels 2 + 2 + 2 = 6 > 4) does
+    /// not and its error estimate says so.
+    #[test]
+    fn exact_on_its_polynomial_space() {
+        let tensor = LawMap::embedded();
+        let spec = LawMapSpec {
+            sparse_level: Some(4),
+            ..tensor.spec.clone()
+        };
+        let exact = |u: &[f64]| {
+            2.0 + u[0].powi(16) + 0.5 * u[0].powi(5) + u[1].powi(4) - u[2].powi(8)
+                + u[0].powi(4) * u[1] * u[1] * u[2] * u[2]
+        };
+        let not_exact = |u: &[f64]| 2.0 + (u[0] * u[1] * u[2]).powi(4);
+        let n = spec.node_count();
+        // Levels of sum ≤ 4 with caps (4, 2, 3): far fewer than the 765 tensor nodes.
+        assert!(n < 200, "{n} nodes");
+        let map_of = |f: &dyn Fn(&[f64]) -> f64| {
+            let mut map = tensor.sparse_subset(4).unwrap();
+            for i in 0..n {
+                map.laws[i].k_hat = f(&unit_coords(&spec, &spec.node_groups(i)));
+            }
+            map
+        };
+        let (good, bad) = (map_of(&exact), map_of(&not_exact));
+        let mut worst_bad = 0.0_f64;
+        let mut estimate_bad = 0.0_f64;
+        for (g, _) in held_out_points(&spec, 200, 5) {
+            let u = unit_coords(&spec, &g);
+            let q = good.query(&g).unwrap();
+            assert!(
+                rel(q.law.k_hat, exact(&u)) < 1e-11,
+                "{u:?}: {}",
+                q.law.k_hat
+            );
+            let q = bad.query(&g).unwrap();
+            worst_bad = worst_bad.max((q.law.k_hat - not_exact(&u)).abs());
+            estimate_bad = estimate_bad.max(q.error.k_hat);
+        }
+        // (u0·u1·u2)⁴ reaches 1 at the corners: missed by a visible amount, and estimated.
+        assert!(worst_bad > 1e-3, "{worst_bad}");
+        assert!(estimate_bad > 1e-3, "{estimate_bad}");
+    }
+
+    /// A 3 × 3 × 3 sparse spec of level 1 on grid 33 (seconds): 7 nodes (the middle and the six
+    /// face centres), generated by shards into a store, assembled, written and read back, queried.
+    /// At the middle node (level 0, in both combinations) the estimate is zero; at a face centre
+    /// (level 1, not in the level-0 combination) the law is the node's and the estimate is not zero.
+    /// Level 2 of the same axes reuses the 7 nodes and adds 12.
+    #[test]
+    fn a_sparse_spec_goes_through_the_study_machinery() {
+        let spec = LawMapSpec {
+            sparse_level: Some(1),
+            ..small_map::small()
+        };
+        spec.validate().unwrap();
+        assert_eq!(spec.node_count(), 7);
+        let store = MemoryStore::default();
+        let none = |_: &_| {};
+        for i in 1..=2 {
+            generate_map(&spec, &store, Shard::new(i, 2).unwrap(), false, &none).unwrap();
+        }
+        let map = assemble_map(&spec, &store).unwrap();
+        assert_eq!(map.laws.len(), 7);
+        let back = LawMap::parse(&map.to_binary()).unwrap();
+        assert_eq!(back, map);
+        assert_eq!(LawMap::from_json(&map.to_json()).unwrap(), map);
+        assert!(map.summary().to_string().contains("sparse level 1"));
+        // Node 0 is the middle of the box.
+        let middle = spec.node_groups(0);
+        assert!((middle.l - 22.0).abs() < 1e-12, "{middle:?}");
+        let q = map.query(&middle).unwrap();
+        assert!(rel(q.law.k_hat, map.laws[0].k_hat) < 1e-14);
+        assert_eq!(q.force_error, 0.0);
+        for i in 1..7 {
+            let q = map.query(&spec.node_groups(i)).unwrap();
+            assert!(rel(q.law.k_hat, map.laws[i].k_hat) < 1e-12, "node {i}");
+            assert!(rel(q.law.d, map.laws[i].d) < 1e-12, "node {i}");
+            assert!(q.force_error > 0.0, "node {i}");
+            assert!(q.nodes_converged);
+        }
+        // The next level reuses these nodes (numbered by level) and computes only its new ones; the
+        // tensor map of the same axes numbers its nodes otherwise and refuses them.
+        let level2 = LawMapSpec {
+            sparse_level: Some(2),
+            ..spec.clone()
+        };
+        let g = generate_map(&level2, &store, Shard::ALL, false, &none).unwrap();
+        assert_eq!((g.nodes, g.loaded, g.computed, g.failed), (19, 7, 12, 0));
+        let map2 = assemble_map(&level2, &store).unwrap();
+        assert_eq!(map2.laws[..7], map.laws[..]);
+        assert_eq!(map2.sparse_subset(1).unwrap().laws, map.laws);
+        let tensor = LawMapSpec {
+            sparse_level: None,
+            ..spec.clone()
+        };
+        assert!(!tensor.same_nodes(&spec) && level2.same_nodes(&spec) && spec.same_nodes(&level2));
+        let e = generate_map(&tensor, &store, Shard::ALL, false, &none)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("different map"), "{e}");
+        // Outside the envelope: the group, the value and the range.
+        let mut out = middle;
+        out.m = 2000.0;
+        let e = map.query(&out).unwrap_err().to_string();
+        assert!(e.contains("M = 2000") && e.contains("[300, 1000]"), "{e}");
+    }
+
+    /// A sparse level on an axis of 7 nodes, a level of 0 or past the full level, and a subset of a
+    /// sparse map at a higher level than its own are refused naming the field, the value and the
+    /// valid range; a lower level's subset is the first nodes.
+    #[test]
+    fn invalid_sparse_specs_are_refused() {
+        let tensor = LawMap::embedded();
+        let with = |nodes: usize, level: u32| {
+            let mut s = tensor.spec.clone();
+            s.axes[0].nodes = nodes;
+            s.sparse_level = Some(level);
+            s.validate().unwrap_err().to_string()
+        };
+        let e = with(7, 3);
+        assert!(
+            e.contains("axis M.nodes") && e.contains("= 7") && e.contains("3, 5, 9"),
+            "{e}"
+        );
+        for level in [0, 10] {
+            let e = with(17, level);
+            assert!(e.contains("sparse_level") && e.contains("1 to 9"), "{e}");
+        }
+        let sparse = tensor.sparse_subset(5).unwrap();
+        let e = sparse.sparse_subset(6).unwrap_err().to_string();
+        assert!(
+            e.contains("sparse_level = 6") && e.contains("at most 5"),
+            "{e}"
+        );
+        // A lower level of a sparse map is the same as of the tensor map (its first nodes: the
+        // node order is by level).
+        let lower = sparse.sparse_subset(4).unwrap();
+        assert_eq!(lower.laws, tensor.sparse_subset(4).unwrap().laws);
+        assert_eq!(lower.laws[..], sparse.laws[..lower.laws.len()]);
+        // The map of a 7-node axis has no sparse subset.
+        let oils = LawMap::embedded_maps()[4];
+        let e = oils.sparse_subset(4).unwrap_err().to_string();
+        assert!(e.contains("nodes") && e.contains("= 7"), "{e}");
     }
 }

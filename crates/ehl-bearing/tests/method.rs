@@ -42,7 +42,7 @@ fn names_defaults_and_options() {
     assert_eq!(h.settling_periods, 1);
     assert_eq!(h.mass, Some(1e-3));
     assert!(!h.damping_term);
-    assert_eq!(h.step_tol_film, 7e-7);
+    assert_eq!(h.step_tol_film, Some(7e-7));
 }
 
 #[test]

@@ -921,7 +921,7 @@ impl Method {
                 s.periodicity_tol = o.periodicity_tol.unwrap_or(s.periodicity_tol);
                 s.recorded_periods = o.recorded_periods.unwrap_or(s.recorded_periods);
                 s.steps_per_period = o.steps_per_period.unwrap_or(s.steps_per_period);
-                s.step_tol_film = o.step_tol_film.unwrap_or(s.step_tol_film);
+                s.step_tol_film = o.step_tol_film.or(s.step_tol_film);
                 if o.mass_kg.is_some() {
                     s.mass = o.mass_kg;
                 }

@@ -1,5 +1,5 @@
-//! The small map spec of the map machinery's tests (`law_map.rs`, `sparse_map.rs`, which include
-//! this file by path).
+//! The small map spec of the map machinery's tests (`law_map.rs`: its `map` and `sparse`
+//! modules).
 #![allow(dead_code)]
 
 use ehl_bearing::law_map::{Group, LawMapSpec, MapAxis};
