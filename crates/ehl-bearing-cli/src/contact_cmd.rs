@@ -61,9 +61,9 @@ pub struct ContactArgs {
     /// Harmonic method: time steps per period (default 64).
     #[arg(long)]
     pub steps_per_period: Option<usize>,
-    /// Harmonic method: per-step film tolerance, a relative change in (0, 0.01] (default 7e-5;
-    /// about 7e-6·Ψ_H for contacts of small mass group Ψ_H, whose damping c the default biases
-    /// upward: docs/contact.md, "Known limits").
+    /// Harmonic method: per-step film tolerance, a relative change in (0, 0.01] (default:
+    /// 7e-6·Ψ_H within [7e-8, 7e-5], following the contact's mass group Ψ_H, below which a
+    /// looser tolerance biases the damping c upward: docs/contact.md, "Known limits").
     #[arg(long)]
     pub step_tol_film: Option<f64>,
     /// Harmonic method: mass on the contact in kg (default: the ball's mass from the contact

@@ -1,7 +1,7 @@
 //! How the harmonic method's damping ĉ depends on the time steps' film tolerance
 //! (`HarmonicSettings::step_tol_film`; by default 7e-6·Ψ_H within [7e-8, 7e-5]) and on the mass
 //! group Ψ_H
-//! (docs/contact.md, "The damping's step tolerance at low Ψ_H"; docs/law_map.md §7).
+//! (docs/contact.md, "Known limits"; docs/law_map.md §7).
 //!
 //! One contact — the centre of the mineral-oils map's box: M 1162, L 19.25, Ry/Rx 25.1,
 //! α·p0 3.975, ln(η0/η∞) 5.55, on a contact with Rx = 5 mm and a steel pair's E′ — with the
