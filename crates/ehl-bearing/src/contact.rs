@@ -663,7 +663,7 @@ pub const STEP_TOL_FILM_MIN: f64 = 7e-8;
 
 impl HarmonicSettings {
     /// The per-step film tolerance of a contact with mass group `psi_h` (dimensionless,
-    /// [`mass_group`]): the setting if given, else [`STEP_TOL_FILM_PER_PSI_H`]·Ψ_H within
+    /// [`crate::law_map::mass_group`]): the setting if given, else [`STEP_TOL_FILM_PER_PSI_H`]·Ψ_H within
     /// [[`STEP_TOL_FILM_MIN`], [`STEP_TOL_FILM_MAX`]] ([`STEP_TOL_FILM_MAX`] if Ψ_H is not a
     /// finite number > 0). The rule keeps the bias of c from the steps' unconverged remainder
     /// within ≈ 0.6 % from Ψ_H 0.1 to 10 (measured against steps iterated to 7e-8:
