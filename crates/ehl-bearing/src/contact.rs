@@ -575,8 +575,8 @@ pub struct HarmonicSettings {
     /// Per-step convergence: relative change of h_c and H0 over the last cycle. `None` (the
     /// default): it follows the contact's mass group Ψ_H ([`HarmonicSettings::step_tol_film_at`]:
     /// 7e-6·Ψ_H within [7e-8, 7e-5]), because the lag of the unconverged remainder biases c
-    /// upward by about 2.8 %/Ψ_H at a fixed 7e-5 (28 % at Ψ_H = 0.1) and by at most 0.6 % at
-    /// 7e-6·Ψ_H from Ψ_H 0.1 to 10, while d and ΔF do not move (docs/contact.md, "Known
+    /// upward by about 2.8 %/Ψ_H at a fixed 7e-5 (28 % at Ψ_H = 0.1) and by 0.24–0.44 % with
+    /// the rule from Ψ_H 0.1 to 10, while d and ΔF do not move (docs/contact.md, "Known
     /// limits"). `Some(t)`: every recorded step uses t, in (0, 0.01].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub step_tol_film: Option<f64>,
@@ -666,7 +666,7 @@ impl HarmonicSettings {
     /// [`crate::law_map::mass_group`]): the setting if given, else [`STEP_TOL_FILM_PER_PSI_H`]·Ψ_H within
     /// [[`STEP_TOL_FILM_MIN`], [`STEP_TOL_FILM_MAX`]] ([`STEP_TOL_FILM_MAX`] if Ψ_H is not a
     /// finite number > 0). The rule keeps the bias of c from the steps' unconverged remainder
-    /// within ≈ 0.6 % from Ψ_H 0.1 to 10 (measured against steps iterated to 7e-8:
+    /// at 0.24–0.44 % from Ψ_H 0.1 to 10 (measured against steps iterated to 7e-8:
     /// `cargo run --release -p ehl-bearing --example harmonic_step_tolerance`).
     pub fn step_tol_film_at(&self, psi_h: f64) -> f64 {
         match self.step_tol_film {
