@@ -3,7 +3,9 @@
 //! for a `.json` file), side by side in one run. The first query of the `map` method that
 //! reaches a map pays its parse once (docs/law_map.md §5). And one query of the first embedded map
 //! (17 × 5 × 9 tensor nodes) against its sparse subsets of levels 5 and 9 (the full level, the
-//! same interpolant by the combination technique), at the same 64 points.
+//! same interpolant by the combination technique), at the same 64 points. And one query of each
+//! harmonic map: the seed oil's (4 groups, 11 × 5 × 9 × 3 tensor nodes) and the mineral oils'
+//! (6 groups, a sparse map of level 5, 2385 nodes), 64 points of each.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use ehl_bearing::law_map::LawMap;
@@ -65,6 +67,25 @@ fn query(c: &mut Criterion) {
         "sparse_level_9_765_nodes",
         &tensor.sparse_subset(9).unwrap(),
     );
+    g.finish();
+    let maps = LawMap::embedded_maps();
+    let mut g = c.benchmark_group("law_map_harmonic_query_64_points");
+    for (name, map) in [
+        ("seed_oil_tensor_1485_nodes", maps[12]),
+        ("mineral_oils_sparse_level_5_2385_nodes", maps[13]),
+    ] {
+        let points: Vec<_> = ehl_bearing::study::held_out_points(&map.spec, 64, 11)
+            .into_iter()
+            .map(|(g, psi_h)| (g, psi_h.unwrap()))
+            .collect();
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                for (p, psi_h) in &points {
+                    black_box(map.query_harmonic(black_box(p), *psi_h).unwrap());
+                }
+            })
+        });
+    }
     g.finish();
 }
 
