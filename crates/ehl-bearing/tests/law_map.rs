@@ -1468,8 +1468,8 @@ mod bearing {
 
     /// The seed bearing (examples/7006.toml) at 4000 rpm by the harmonic maps (the seed oil's;
     /// the harmonic fallback characterizes the light inner contact at M ≈ 111 and says so)
-    /// against the harmonic method (`harmonic_map_against_harmonic`). 35–50 s on 129² (the
-    /// harmonic method's 22 contacts), so not in the default run: `cargo test --release -p
+    /// against the harmonic method (`harmonic_map_against_harmonic`). The harmonic method's 22
+    /// contacts on 129² took 22–33 s in this session's runs, so not in the default run: `cargo test --release -p
     /// ehl-bearing --test law_map -- --ignored`; its fast version is
     /// `seed_bearing_by_harmonic_map_heaviest_contact_against_harmonic`.
     #[test]
