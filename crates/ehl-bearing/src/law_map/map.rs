@@ -1066,22 +1066,9 @@ impl LawMap {
     /// quality of the nodes of the cells holding `t` in its tensor terms.
     fn sparse_sums(&self, grid: &Smolyak, t: &[f64]) -> Sums {
         let axes = &self.spec.axes;
-        let q = self.spec.sparse_level.unwrap_or(1);
-        let index = grid.index();
-        // Each tensor term with its coefficients in the two combinations.
-        let mut terms: Vec<(Vec<u32>, f64, f64)> = grid
-            .terms(q)
-            .into_iter()
-            .map(|(l, c)| (l, c, 0.0))
-            .collect();
-        for (l, c) in grid.terms(q.saturating_sub(1)) {
-            match terms.iter_mut().find(|(m, _, _)| *m == l) {
-                Some(term) => term.2 = c,
-                None => terms.push((l, 0.0, c)),
-            }
-        }
-        // Per axis and level: its nodes, the basis at the query and the bracketing nodes (the
-        // terms share them).
+        let plan = grid.plan();
+        // Per axis and level: the basis at the query on its nodes and the positions of the two
+        // bracketing nodes among them (the terms share them).
         let per_level: Vec<Vec<AxisLevel>> = axes
             .iter()
             .zip(t)
@@ -1090,46 +1077,45 @@ impl LawMap {
                 (0..=m)
                     .map(|i| {
                         let nodes = sparse::level_nodes(i, m);
+                        let [lo, hi] = a.bracket(t, &nodes);
                         AxisLevel {
                             basis: a.basis_on(t, &nodes),
-                            near: a.bracket(t, &nodes),
-                            nodes,
+                            near: [
+                                nodes.iter().position(|&j| j == lo).unwrap_or(0),
+                                nodes.iter().position(|&j| j == hi).unwrap_or(0),
+                            ],
                         }
                     })
                     .collect()
             })
             .collect();
         let mut sums = Sums::new();
-        let mut j = vec![0usize; axes.len()];
-        for (l, cf, ch) in terms {
-            let at_level: Vec<&AxisLevel> = per_level
-                .iter()
-                .zip(&l)
-                .map(|(levels, &i)| &levels[i as usize])
-                .collect();
-            let nodes: Vec<&Vec<usize>> = at_level.iter().map(|x| &x.nodes).collect();
-            let basis: Vec<&Vec<f64>> = at_level.iter().map(|x| &x.basis).collect();
-            let near: Vec<[usize; 2]> = at_level.iter().map(|x| x.near).collect();
-            // Every node of the term's tensor grid (the last axis fastest).
-            let count: usize = nodes.iter().map(|n| n.len()).product();
-            let mut at = vec![0usize; axes.len()];
-            for _ in 0..count {
-                for ((x, &i), n) in j.iter_mut().zip(&at).zip(&nodes) {
-                    *x = n[i];
-                }
-                let w: f64 = at.iter().zip(&basis).map(|(&i, b)| b[i]).product();
-                // Every node of a term of the set is a node of the sparse grid.
-                if let Some(node) = index.of(&j) {
+        let mut at_level: Vec<&AxisLevel> = Vec::with_capacity(axes.len());
+        let mut at = vec![0usize; axes.len()];
+        for term in &plan.terms {
+            at_level.clear();
+            at_level.extend(
+                per_level
+                    .iter()
+                    .zip(&term.levels)
+                    .map(|(levels, &i)| &levels[i as usize]),
+            );
+            at.fill(0);
+            // Every node of the term's tensor grid (the last axis fastest), in the plan's order.
+            for &node in &term.nodes {
+                let w: f64 = at.iter().zip(&at_level).map(|(&i, x)| x.basis[i]).product();
+                if node != usize::MAX {
                     if w != 0.0 {
-                        sums.add(&self.laws[node], cf * w, ch * w);
+                        sums.add(&self.laws[node], term.fine * w, term.coarse * w);
                     }
-                    if cf != 0.0 && j.iter().zip(&near).all(|(j, n)| n.contains(j)) {
+                    if term.fine != 0.0 && at.iter().zip(&at_level).all(|(i, x)| x.near.contains(i))
+                    {
                         sums.quality(&self.quality[node]);
                     }
                 }
                 for k in (0..at.len()).rev() {
                     at[k] += 1;
-                    if at[k] < nodes[k].len() {
+                    if at[k] < at_level[k].basis.len() {
                         break;
                     }
                     at[k] = 0;
@@ -1140,10 +1126,9 @@ impl LawMap {
     }
 }
 
-/// One level of one axis of a sparse map at a query: its nodes, their interpolation basis at the
-/// query's coordinate and the two nodes bracketing it.
+/// One level of one axis of a sparse map at a query: the interpolation basis of its nodes at the
+/// query's coordinate and the positions of the two nodes bracketing it among them.
 struct AxisLevel {
-    nodes: Vec<usize>,
     basis: Vec<f64>,
     near: [usize; 2],
 }

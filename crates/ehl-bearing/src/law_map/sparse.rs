@@ -14,6 +14,8 @@
 //! within each the nodes new at exactly those levels (the last axis fastest). Node 0 is the middle
 //! of the box; a map's first nodes are its coarsest sparse grids.
 
+use std::sync::{Arc, Mutex};
+
 use super::{LawMap, LawMapError, LawMapSpec};
 
 impl LawMap {
@@ -238,6 +240,101 @@ impl Smolyak {
     }
 }
 
+/// What a query of a sparse map needs that depends on its grid only, made once per grid
+/// ([`Smolyak::plan`]) and shared by every map of that grid: the tensor terms of the map's
+/// combination (level q) and of its error estimate's (level q − 1), each with its two
+/// coefficients and the sparse index of every node of its tensor grid.
+#[derive(Debug)]
+pub(crate) struct SparsePlan {
+    pub(crate) terms: Vec<PlanTerm>,
+}
+
+/// One tensor term of a [`SparsePlan`].
+#[derive(Debug)]
+pub(crate) struct PlanTerm {
+    /// The term's level on each axis.
+    pub(crate) levels: Vec<u32>,
+    /// Its coefficient in the combination of level q (the map).
+    pub(crate) fine: f64,
+    /// Its coefficient in the combination of level q − 1 (the error estimate).
+    pub(crate) coarse: f64,
+    /// The sparse index of each node of the term's tensor grid, the last axis fastest (the
+    /// nodes of [`level_nodes`] on each axis).
+    pub(crate) nodes: Vec<usize>,
+}
+
+impl Smolyak {
+    /// The grid's query plan, made on the first call for this grid (axes' depths and level) in
+    /// the process and shared afterwards: building it costs about as much as a thousand queries
+    /// (the terms' coefficients run over every multi-level of the box and 2^d neighbours each).
+    pub(crate) fn plan(&self) -> Arc<SparsePlan> {
+        static PLANS: Mutex<Vec<(Smolyak, Arc<SparsePlan>)>> = Mutex::new(Vec::new());
+        // A poisoned lock only means another thread panicked while holding it; the list is
+        // never left half-written (a plan is pushed whole).
+        let mut plans = PLANS.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((_, plan)) = plans.iter().find(|(g, _)| g == self) {
+            return Arc::clone(plan);
+        }
+        let plan = Arc::new(self.make_plan());
+        plans.push((self.clone(), Arc::clone(&plan)));
+        plan
+    }
+
+    fn make_plan(&self) -> SparsePlan {
+        let q = self.level;
+        let mut terms: Vec<PlanTerm> = self
+            .terms(q)
+            .into_iter()
+            .map(|(levels, c)| PlanTerm {
+                levels,
+                fine: c,
+                coarse: 0.0,
+                nodes: Vec::new(),
+            })
+            .collect();
+        for (l, c) in self.terms(q.saturating_sub(1)) {
+            match terms.iter_mut().find(|t| t.levels == l) {
+                Some(term) => term.coarse = c,
+                None => terms.push(PlanTerm {
+                    levels: l,
+                    fine: 0.0,
+                    coarse: c,
+                    nodes: Vec::new(),
+                }),
+            }
+        }
+        let index = self.index();
+        for term in &mut terms {
+            let axes: Vec<Vec<usize>> = term
+                .levels
+                .iter()
+                .zip(&self.depths)
+                .map(|(&i, &m)| level_nodes(i, m))
+                .collect();
+            let count: usize = axes.iter().map(Vec::len).product();
+            let mut at = vec![0usize; axes.len()];
+            let mut j = vec![0usize; axes.len()];
+            term.nodes.reserve(count);
+            for _ in 0..count {
+                for ((x, &i), n) in j.iter_mut().zip(&at).zip(&axes) {
+                    *x = n[i];
+                }
+                // Every node of a term of the set is a node of the sparse grid
+                // (`terms_nodes_are_nodes_of_the_grid`).
+                term.nodes.push(index.of(&j).unwrap_or(usize::MAX));
+                for k in (0..at.len()).rev() {
+                    at[k] += 1;
+                    if at[k] < axes[k].len() {
+                        break;
+                    }
+                    at[k] = 0;
+                }
+            }
+        }
+        SparsePlan { terms }
+    }
+}
+
 fn mixed(l: &[u32], radix: &[usize]) -> usize {
     l.iter()
         .zip(radix)
@@ -342,6 +439,31 @@ mod tests {
             let k = 4 - l.iter().sum::<u32>();
             let expected = [1.0, -2.0, 1.0][k as usize];
             assert_eq!(c, expected, "{l:?}");
+        }
+    }
+
+    #[test]
+    fn terms_nodes_are_nodes_of_the_grid() {
+        for q in 0..=6 {
+            let s = Smolyak::new(&[9, 5, 3, 17, 3], q).unwrap();
+            let plan = s.plan();
+            let n = s.node_count();
+            for t in &plan.terms {
+                let size: usize = t
+                    .levels
+                    .iter()
+                    .zip(&s.depths)
+                    .map(|(&i, &m)| level_nodes(i, m).len())
+                    .product();
+                assert_eq!(t.nodes.len(), size, "level {q}, term {:?}", t.levels);
+                assert!(
+                    t.nodes.iter().all(|&k| k < n),
+                    "level {q}, term {:?}",
+                    t.levels
+                );
+            }
+            // The same grid gets the same plan, made once.
+            assert!(Arc::ptr_eq(&plan, &s.plan()));
         }
     }
 
