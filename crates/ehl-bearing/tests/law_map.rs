@@ -1448,25 +1448,30 @@ mod bearing {
     }
 
     /// A slow large bearing's heavy contacts: the 7210 of examples/7210_vg22.toml with the
-    /// envelope's conformities 0.52/0.53 (its own 0.515 gives Ry/Rx 41, beyond the map's 35) at
-    /// 7500 rpm and 10 kN axial (its contacts at M 4350–8070, L 11.3–12.3), by the 257² map of
-    /// the slow large bearings' heavy contacts alone against the quasi-static method at that
-    /// map's settings (257², the steady solver's tolerances × 0.1): contact loads within 0.2 %,
-    /// stiffness diagonal within 0.5 %. About 10 CPU minutes on 257², so not in the default run:
+    /// envelope's conformities 0.52/0.53 (its own 0.515 gives Ry/Rx 41, beyond the 257² maps' 35)
+    /// at 7500 rpm, at 10 kN axial (its contacts at M 4350–8070, L 11.3–12.3: the slow large
+    /// bearings' heavy-contact map) and at 20 kN (M 8090–13630: half of them by that map, half by
+    /// the very heavy contacts' map), by the maps alone against the quasi-static method at their
+    /// settings (257², the steady solver's tolerances × 0.1): contact loads within 0.2 %,
+    /// stiffness diagonal within 0.5 %. About 15 CPU minutes on 257², so not in the default run:
     /// `cargo test --release -p ehl-bearing --test law_map -- --ignored slow_heavy`.
     #[test]
     #[ignore]
-    fn slow_heavy_7210_by_the_257_map_against_quasi_static() {
+    fn slow_heavy_7210_by_the_257_maps_against_quasi_static() {
         let text = include_str!("../../../examples/7210_vg22.toml")
             .replace("inner_conformity = 0.515", "inner_conformity = 0.52")
             .replace("outer_conformity = 0.525", "outer_conformity = 0.53");
         let mut case = ehl_bearing::io::parse_case(&text, "7210, conformities 0.52/0.53").unwrap();
         assert_eq!(case.bearing.geometry.inner_conformity, 0.52);
         case.operating.inner_speed = 7500.0 * std::f64::consts::PI / 30.0;
-        case.operating.dofs[0] = ehl_bearing::bearing::Control::Load(10_000.0);
-        let spec = &LawMap::embedded_maps()[12].spec;
+        let maps = LawMap::embedded_maps();
+        assert_eq!(maps[12].spec.settings(), maps[13].spec.settings());
+        let spec = &maps[12].spec;
         assert_eq!((spec.grid, spec.tolerance_factor), (257, 0.1));
-        map_against_quasi_static(&case, spec, "7210 at 7500 rpm, 10 kN");
+        for axial in [10_000.0, 20_000.0] {
+            case.operating.dofs[0] = ehl_bearing::bearing::Control::Load(axial);
+            map_against_quasi_static(&case, spec, &format!("7210 at 7500 rpm, {axial} N"));
+        }
     }
 
     /// `case` by the harmonic maps (`law = "harmonic"`, with the harmonic fallback) against the
