@@ -1159,10 +1159,10 @@ mod embedded {
     /// its settings at held-out points (a fresh seed, not the 200 of docs/law_map.md §5), within
     /// the acceptance bounds. A point takes 2–40 CPU s on 257², so not in the default run
     /// (`oils_map_is_the_example_spec_and_reproduces_its_nodes` recomputes one node of each
-    /// there): `cargo test --release -p ehl-bearing --test law_map -- --ignored low_l_heavy`.
+    /// there): `cargo test --release -p ehl-bearing --test law_map -- --ignored grid_257`.
     #[test]
     #[ignore]
-    fn low_l_heavy_map_against_direct_characterizations() {
+    fn grid_257_maps_against_direct_characterizations() {
         let maps = LawMap::embedded_maps();
         for (map, seed, name) in [
             (
