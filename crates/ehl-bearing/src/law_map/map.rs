@@ -238,12 +238,12 @@ impl MapAxis {
         out
     }
 
-    /// The nodes bracketing coordinate `t` among the nodes `idx` (ascending): the last at or
-    /// below `t` and the next.
+    /// The positions in `idx` (ascending node numbers) of the two nodes bracketing coordinate
+    /// `t`: the last at or below `t` and the next.
     pub(super) fn bracket(&self, t: f64, idx: &[usize]) -> [usize; 2] {
         let x = self.node_coords();
         let i = idx.iter().rposition(|&j| x[j] <= t).unwrap_or(0);
-        [idx[i], idx[(i + 1).min(idx.len() - 1)]]
+        [i, (i + 1).min(idx.len() - 1)]
     }
 }
 
@@ -1048,7 +1048,8 @@ impl LawMap {
         let axes = &self.spec.axes;
         let full: Vec<Vec<f64>> = axes.iter().zip(t).map(|(a, &t)| a.basis(t, 1)).collect();
         let half: Vec<Vec<f64>> = axes.iter().zip(t).map(|(a, &t)| a.basis(t, 2)).collect();
-        // The nodes next to the query on each axis (for the fit quality there).
+        // The nodes next to the query on each axis (for the fit quality there; on all nodes a
+        // position is the node's number).
         let near: Vec<[usize; 2]> = axes
             .iter()
             .zip(t)
@@ -1085,13 +1086,9 @@ impl LawMap {
                 (0..=m)
                     .map(|i| {
                         let nodes = sparse::level_nodes(i, m);
-                        let [lo, hi] = a.bracket(t, &nodes);
                         AxisLevel {
                             basis: a.basis_on(t, &nodes),
-                            near: [
-                                nodes.iter().position(|&j| j == lo).unwrap_or(0),
-                                nodes.iter().position(|&j| j == hi).unwrap_or(0),
-                            ],
+                            near: a.bracket(t, &nodes),
                         }
                     })
                     .collect()
@@ -1121,13 +1118,7 @@ impl LawMap {
                         sums.quality(&self.quality[node]);
                     }
                 }
-                for k in (0..at.len()).rev() {
-                    at[k] += 1;
-                    if at[k] < at_level[k].basis.len() {
-                        break;
-                    }
-                    at[k] = 0;
-                }
+                sparse::advance(&mut at, |k| at_level[k].basis.len());
             }
         }
         sums

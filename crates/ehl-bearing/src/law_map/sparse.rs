@@ -322,16 +322,22 @@ impl Smolyak {
                 // Every node of a term of the set is a node of the sparse grid
                 // (`terms_nodes_are_nodes_of_the_grid`).
                 term.nodes.push(index.of(&j).unwrap_or(usize::MAX));
-                for k in (0..at.len()).rev() {
-                    at[k] += 1;
-                    if at[k] < axes[k].len() {
-                        break;
-                    }
-                    at[k] = 0;
-                }
+                advance(&mut at, |k| axes[k].len());
             }
         }
         SparsePlan { terms }
+    }
+}
+
+/// The next multi-index `at` of a tensor grid of `len(k)` nodes on axis k, the last axis
+/// fastest (back to all zeros after the last).
+pub(super) fn advance(at: &mut [usize], len: impl Fn(usize) -> usize) {
+    for k in (0..at.len()).rev() {
+        at[k] += 1;
+        if at[k] < len(k) {
+            return;
+        }
+        at[k] = 0;
     }
 }
 
