@@ -21,7 +21,7 @@ use ehl_bearing::material::{
     reduced_modulus, DensityModel, Lubricant, Solid, ViscosityModel, ROELANDS_P0,
 };
 
-/// The first embedded map of the harmonic law (the seed oil's, the fifteenth embedded map).
+/// The first embedded map of the harmonic law (the seed oil's, the sixteenth embedded map).
 fn harmonic_map() -> &'static ehl_bearing::law_map::LawMap {
     ehl_bearing::law_map::LawMap::embedded_first(ehl_bearing::law_map::LawKind::Harmonic).unwrap()
 }
@@ -980,10 +980,10 @@ mod embedded {
     fn embedded_map_is_the_example_spec_and_reproduces_its_nodes() {
         assert!(std::ptr::eq(LawMap::embedded(), LawMap::embedded_maps()[0]));
         // Each map is parsed once, whichever way it is reached.
-        assert_eq!(LawMap::embedded_maps().len(), 16);
+        assert_eq!(LawMap::embedded_maps().len(), 17);
         assert!(std::ptr::eq(
             LawMap::embedded_first(LawKind::Harmonic).unwrap(),
-            LawMap::embedded_maps()[14]
+            LawMap::embedded_maps()[15]
         ));
         assert!(std::ptr::eq(
             LawMap::embedded_first(LawKind::QuasiStatic).unwrap(),
@@ -1022,7 +1022,8 @@ mod embedded {
     /// The embedded maps with the rheology groups as axes (other oils) are what `law-map
     /// generate` and `assemble` give for examples/law_map_mineral_oils.toml and
     /// examples/law_map_mineral_oils_light.toml, _heavy.toml, _low_l.toml, _low_l_light.toml,
-    /// _high_l.toml, _lightest.toml, _heaviest.toml, _low_l_heavy.toml and _very_heavy.toml:
+    /// _high_l.toml, _lightest.toml, _heaviest.toml, _low_l_heavy.toml, _very_heavy.toml and
+    /// _ultra_heavy.toml:
     /// their specs are the files' and recomputed nodes (the first of most, the last of the first
     /// and of the heaviest, a cheap one of the 257² maps) reproduce their stored laws to round-off. One node per file shows that the file's laws are
     /// those of the spec's settings (laws generated at other settings differ at every node).
@@ -1103,6 +1104,14 @@ mod embedded {
             &[36],
             "oils, very heavy contacts (257², tolerances × 0.1, sparse)",
         );
+        // Node 80 is the cheapest of the fifteenth map (9.4 CPU s on 257²).
+        assert_reproduces(
+            14,
+            include_str!("../../../examples/law_map_mineral_oils_ultra_heavy.toml"),
+            Some(185),
+            &[80],
+            "oils, ultra heavy contacts (257², tolerances × 0.1, sparse)",
+        );
     }
 
     /// The oils maps of the first rheology axes against direct characterizations at held-out
@@ -1155,10 +1164,10 @@ mod embedded {
         );
     }
 
-    /// The two 257² maps — the slow large bearings' heavy contacts (M 3900–10000 at L 8–12.5) and
-    /// the very heavy contacts (M 9000–15000 at L 8–23); the steady solver's tolerances × 0.1,
-    /// sparse maps of level 3 — against direct characterizations at
-    /// its settings at held-out points (a fresh seed, not the 200 of docs/law_map.md §5), within
+    /// The three 257² maps — the slow large bearings' heavy contacts (M 3900–10000 at L 8–12.5),
+    /// the very heavy contacts (M 9000–15000 at L 8–23) and the ultra heavy ones (M 15000–30000
+    /// at L 9.8–17); the steady solver's tolerances × 0.1, sparse maps of level 3 — against
+    /// direct characterizations at its settings at held-out points (a fresh seed, not the 200 of docs/law_map.md §5), within
     /// the acceptance bounds. A point takes 2–40 CPU s on 257², so not in the default run
     /// (`oils_map_is_the_example_spec_and_reproduces_its_nodes` recomputes one node of each
     /// there): `cargo test --release -p ehl-bearing --test law_map -- --ignored grid_257`.
@@ -1173,6 +1182,7 @@ mod embedded {
                 "oils, slow large bearings' heavy contacts",
             ),
             (maps[13], 20261207, "oils, very heavy contacts"),
+            (maps[14], 20261208, "oils, ultra heavy contacts"),
         ] {
             let s = &map.spec;
             assert_eq!(
@@ -1216,23 +1226,23 @@ mod embedded {
     }
 
     /// The embedded harmonic maps are what `law-map generate` and `assemble` give for
-    /// examples/law_map_seed_oil_harmonic.toml (the fifteenth map; its first and last nodes
-    /// recomputed) and examples/law_map_mineral_oils_harmonic.toml (the sixteenth, a sparse map
+    /// examples/law_map_seed_oil_harmonic.toml (the sixteenth map; its first and last nodes
+    /// recomputed) and examples/law_map_mineral_oils_harmonic.toml (the seventeenth, a sparse map
     /// of level 5; its node 0, the middle of the box, recomputed).
     #[test]
     fn harmonic_map_is_the_example_spec_and_reproduces_its_nodes() {
         let maps = LawMap::embedded_maps();
-        assert_eq!(maps[14].spec.law, LawKind::Harmonic);
         assert_eq!(maps[15].spec.law, LawKind::Harmonic);
+        assert_eq!(maps[16].spec.law, LawKind::Harmonic);
         assert_reproduces(
-            14,
+            15,
             include_str!("../../../examples/law_map_seed_oil_harmonic.toml"),
             Some(11 * 5 * 9 * 3),
             &[0, 11 * 5 * 9 * 3 - 1],
             "seed oil, harmonic",
         );
         assert_reproduces(
-            15,
+            16,
             include_str!("../../../examples/law_map_mineral_oils_harmonic.toml"),
             Some(2385),
             &[0],
@@ -1247,8 +1257,8 @@ mod embedded {
     #[test]
     fn harmonic_map_against_direct_characterizations() {
         let maps = LawMap::embedded_maps();
-        assert_within_bounds(maps[14], 4, 20261130, "seed oil, harmonic");
-        assert_within_bounds(maps[15], 3, 20261205, "mineral oils, harmonic");
+        assert_within_bounds(maps[15], 4, 20261130, "seed oil, harmonic");
+        assert_within_bounds(maps[16], 3, 20261205, "mineral oils, harmonic");
     }
 
     /// Held-out points (a fresh seed, not the 200 of docs/law_map.md §5): the map against direct

@@ -798,7 +798,7 @@ pub struct MapQuery {
 
 /// The embedded map files in query order, with the law each samples (so a query parses only the
 /// maps of its law, and those only up to the first that holds it).
-const EMBEDDED: [(&[u8], LawKind); 16] = [
+const EMBEDDED: [(&[u8], LawKind); 17] = [
     (
         include_bytes!("../../data/law_map_seed_oil_g129.bin"),
         LawKind::QuasiStatic,
@@ -853,6 +853,10 @@ const EMBEDDED: [(&[u8], LawKind); 16] = [
     ),
     (
         include_bytes!("../../data/law_map_mineral_oils_very_heavy_g257.bin"),
+        LawKind::QuasiStatic,
+    ),
+    (
+        include_bytes!("../../data/law_map_mineral_oils_ultra_heavy_g257.bin"),
         LawKind::QuasiStatic,
     ),
     (
