@@ -1023,10 +1023,10 @@ mod embedded {
     /// generate` and `assemble` give for examples/law_map_mineral_oils.toml and
     /// examples/law_map_mineral_oils_light.toml, _heavy.toml, _low_l.toml, _low_l_light.toml,
     /// _high_l.toml, _lightest.toml, _heaviest.toml, _low_l_heavy.toml, _very_heavy.toml and
-    /// _ultra_heavy.toml:
-    /// their specs are the files' and recomputed nodes (the first of most, the last of the first
-    /// and of the heaviest, a cheap one of the 257² maps) reproduce their stored laws to round-off. One node per file shows that the file's laws are
-    /// those of the spec's settings (laws generated at other settings differ at every node).
+    /// _ultra_heavy.toml: their specs are the files' and recomputed nodes (the first of most, the
+    /// last of the first and of the heaviest, a cheap one of the 257² maps) reproduce their stored
+    /// laws to round-off. One node per file shows that the file's laws are those of the spec's
+    /// settings (laws generated at other settings differ at every node).
     #[test]
     fn oils_map_is_the_example_spec_and_reproduces_its_nodes() {
         assert_reproduces(
@@ -1167,8 +1167,8 @@ mod embedded {
     /// The three 257² maps — the slow large bearings' heavy contacts (M 3900–10000 at L 8–12.5),
     /// the very heavy contacts (M 9000–15000 at L 8–23) and the ultra heavy ones (M 15000–30000
     /// at L 9.8–17); the steady solver's tolerances × 0.1, sparse maps of level 3 — against
-    /// direct characterizations at its settings at held-out points (a fresh seed, not the 200 of docs/law_map.md §5), within
-    /// the acceptance bounds. A point takes 2–40 CPU s on 257², so not in the default run
+    /// direct characterizations at its settings at held-out points (a fresh seed, not the 200 of
+    /// docs/law_map.md §5), within the acceptance bounds. A point takes 2–40 CPU s on 257², so not in the default run
     /// (`oils_map_is_the_example_spec_and_reproduces_its_nodes` recomputes one node of each
     /// there): `cargo test --release -p ehl-bearing --test law_map -- --ignored grid_257`.
     #[test]
