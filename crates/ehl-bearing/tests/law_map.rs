@@ -1168,9 +1168,10 @@ mod embedded {
     /// the very heavy contacts (M 9000–15000 at L 8–23) and the ultra heavy ones (M 15000–30000
     /// at L 9.8–17); the steady solver's tolerances × 0.1, sparse maps of level 3 — against
     /// direct characterizations at its settings at held-out points (a fresh seed, not the 200 of
-    /// docs/law_map.md §5), within the acceptance bounds. A point takes 2–40 CPU s on 257², so not in the default run
-    /// (`oils_map_is_the_example_spec_and_reproduces_its_nodes` recomputes one node of each
-    /// there): `cargo test --release -p ehl-bearing --test law_map -- --ignored grid_257`.
+    /// docs/law_map.md §5), within the acceptance bounds. A point takes 2–40 CPU s on 257², so
+    /// not in the default run (`oils_map_is_the_example_spec_and_reproduces_its_nodes` recomputes
+    /// one node of each there): `cargo test --release -p ehl-bearing --test law_map -- --ignored
+    /// grid_257`.
     #[test]
     #[ignore]
     fn grid_257_maps_against_direct_characterizations() {
