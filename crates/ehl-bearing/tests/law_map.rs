@@ -21,7 +21,7 @@ use ehl_bearing::material::{
     reduced_modulus, DensityModel, Lubricant, Solid, ViscosityModel, ROELANDS_P0,
 };
 
-/// The first embedded map of the harmonic law (the seed oil's, the sixteenth embedded map).
+/// The first embedded map of the harmonic law (the seed oil's, the eighteenth embedded map).
 fn harmonic_map() -> &'static ehl_bearing::law_map::LawMap {
     ehl_bearing::law_map::LawMap::embedded_first(ehl_bearing::law_map::LawKind::Harmonic).unwrap()
 }
@@ -980,10 +980,10 @@ mod embedded {
     fn embedded_map_is_the_example_spec_and_reproduces_its_nodes() {
         assert!(std::ptr::eq(LawMap::embedded(), LawMap::embedded_maps()[0]));
         // Each map is parsed once, whichever way it is reached.
-        assert_eq!(LawMap::embedded_maps().len(), 17);
+        assert_eq!(LawMap::embedded_maps().len(), 19);
         assert!(std::ptr::eq(
             LawMap::embedded_first(LawKind::Harmonic).unwrap(),
-            LawMap::embedded_maps()[15]
+            LawMap::embedded_maps()[17]
         ));
         assert!(std::ptr::eq(
             LawMap::embedded_first(LawKind::QuasiStatic).unwrap(),
@@ -1022,9 +1022,10 @@ mod embedded {
     /// The embedded maps with the rheology groups as axes (other oils) are what `law-map
     /// generate` and `assemble` give for examples/law_map_mineral_oils.toml and
     /// examples/law_map_mineral_oils_light.toml, _heavy.toml, _low_l.toml, _low_l_light.toml,
-    /// _high_l.toml, _lightest.toml, _heaviest.toml, _low_l_heavy.toml, _very_heavy.toml and
-    /// _ultra_heavy.toml: their specs are the files' and recomputed nodes (the first of most, the
-    /// last of the first and of the heaviest, a cheap one of the 257² maps) reproduce their stored
+    /// _high_l.toml, _lightest.toml, _heaviest.toml, _low_l_heavy.toml, _very_heavy.toml,
+    /// _ultra_heavy.toml, _lightest_low_ry.toml and _lightest_high_ry.toml: their specs are the
+    /// files' and recomputed nodes (the first of most, the last of the first, of the heaviest and
+    /// of the two lightest, a cheap one of the 257² maps) reproduce their stored
     /// laws to round-off. One node per file shows that the file's laws are those of the spec's
     /// settings (laws generated at other settings differ at every node).
     #[test]
@@ -1112,6 +1113,20 @@ mod embedded {
             &[80],
             "oils, ultra heavy contacts (257², tolerances × 0.1, sparse)",
         );
+        assert_reproduces(
+            15,
+            include_str!("../../../examples/law_map_mineral_oils_lightest_low_ry.toml"),
+            Some(5 * 7 * 3 * 3 * 3),
+            &[0, 944],
+            "oils, the lightest contacts of outer raceways (narrow Z)",
+        );
+        assert_reproduces(
+            16,
+            include_str!("../../../examples/law_map_mineral_oils_lightest_high_ry.toml"),
+            Some(5 * 7 * 3 * 3 * 3),
+            &[0, 944],
+            "oils, the lightest contacts of inner raceways (narrow Z)",
+        );
     }
 
     /// The oils maps of the first rheology axes against direct characterizations at held-out
@@ -1195,8 +1210,9 @@ mod embedded {
         }
     }
 
-    /// The two oils maps whose rheology axes are ln(η0/η∞) and Roelands' Z (their nodes' α·p0 =
-    /// Z·ln(η0/η∞)) — high L, and the lightest contacts — against direct characterizations at
+    /// The four oils maps on 129² whose rheology axes are ln(η0/η∞) and Roelands' Z (their
+    /// nodes' α·p0 = Z·ln(η0/η∞)) — high L, the lightest contacts, and the lightest of outer and
+    /// of inner raceways below M 90 (Z 0.70–0.74) — against direct characterizations at
     /// held-out points (fresh seeds, not the 200 of docs/law_map.md §5), within the acceptance
     /// bounds; the held-out points' α·p0 is Z·ln(η0/η∞) of the sampled axes, inside the boxes.
     #[test]
@@ -1217,6 +1233,20 @@ mod embedded {
                 (12.5, 26.0),
                 (0.55, 0.8),
             ),
+            (
+                maps[15],
+                20261209,
+                "oils, the lightest of outer raceways",
+                (11.0, 23.0),
+                (0.70, 0.74),
+            ),
+            (
+                maps[16],
+                20261210,
+                "oils, the lightest of inner raceways",
+                (11.0, 20.0),
+                (0.70, 0.74),
+            ),
         ] {
             let r = assert_within_bounds(map, 3, seed, name);
             assert!(r.iter().all(|h| {
@@ -1227,23 +1257,23 @@ mod embedded {
     }
 
     /// The embedded harmonic maps are what `law-map generate` and `assemble` give for
-    /// examples/law_map_seed_oil_harmonic.toml (the sixteenth map; its first and last nodes
-    /// recomputed) and examples/law_map_mineral_oils_harmonic.toml (the seventeenth, a sparse map
+    /// examples/law_map_seed_oil_harmonic.toml (the eighteenth map; its first and last nodes
+    /// recomputed) and examples/law_map_mineral_oils_harmonic.toml (the nineteenth, a sparse map
     /// of level 5; its node 0, the middle of the box, recomputed).
     #[test]
     fn harmonic_map_is_the_example_spec_and_reproduces_its_nodes() {
         let maps = LawMap::embedded_maps();
-        assert_eq!(maps[15].spec.law, LawKind::Harmonic);
-        assert_eq!(maps[16].spec.law, LawKind::Harmonic);
+        assert_eq!(maps[17].spec.law, LawKind::Harmonic);
+        assert_eq!(maps[18].spec.law, LawKind::Harmonic);
         assert_reproduces(
-            15,
+            17,
             include_str!("../../../examples/law_map_seed_oil_harmonic.toml"),
             Some(11 * 5 * 9 * 3),
             &[0, 11 * 5 * 9 * 3 - 1],
             "seed oil, harmonic",
         );
         assert_reproduces(
-            16,
+            18,
             include_str!("../../../examples/law_map_mineral_oils_harmonic.toml"),
             Some(2385),
             &[0],
@@ -1258,8 +1288,8 @@ mod embedded {
     #[test]
     fn harmonic_map_against_direct_characterizations() {
         let maps = LawMap::embedded_maps();
-        assert_within_bounds(maps[15], 4, 20261130, "seed oil, harmonic");
-        assert_within_bounds(maps[16], 3, 20261205, "mineral oils, harmonic");
+        assert_within_bounds(maps[17], 4, 20261130, "seed oil, harmonic");
+        assert_within_bounds(maps[18], 3, 20261205, "mineral oils, harmonic");
     }
 
     /// Held-out points (a fresh seed, not the 200 of docs/law_map.md §5): the map against direct
