@@ -71,8 +71,8 @@ fn query(c: &mut Criterion) {
     let maps = LawMap::embedded_maps();
     let mut g = c.benchmark_group("law_map_harmonic_query_64_points");
     for (name, map) in [
-        ("seed_oil_tensor_1485_nodes", maps[17]),
-        ("mineral_oils_sparse_level_5_2385_nodes", maps[18]),
+        ("seed_oil_tensor_1485_nodes", maps[20]),
+        ("mineral_oils_sparse_level_5_2385_nodes", maps[21]),
     ] {
         let points: Vec<_> = ehl_bearing::study::held_out_points(&map.spec, 64, 11)
             .into_iter()

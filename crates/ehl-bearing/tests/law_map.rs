@@ -21,7 +21,7 @@ use ehl_bearing::material::{
     reduced_modulus, DensityModel, Lubricant, Solid, ViscosityModel, ROELANDS_P0,
 };
 
-/// The first embedded map of the harmonic law (the seed oil's, the eighteenth embedded map).
+/// The first embedded map of the harmonic law (the seed oil's, the twenty-first embedded map).
 fn harmonic_map() -> &'static ehl_bearing::law_map::LawMap {
     ehl_bearing::law_map::LawMap::embedded_first(ehl_bearing::law_map::LawKind::Harmonic).unwrap()
 }
@@ -980,10 +980,10 @@ mod embedded {
     fn embedded_map_is_the_example_spec_and_reproduces_its_nodes() {
         assert!(std::ptr::eq(LawMap::embedded(), LawMap::embedded_maps()[0]));
         // Each map is parsed once, whichever way it is reached.
-        assert_eq!(LawMap::embedded_maps().len(), 19);
+        assert_eq!(LawMap::embedded_maps().len(), 22);
         assert!(std::ptr::eq(
             LawMap::embedded_first(LawKind::Harmonic).unwrap(),
-            LawMap::embedded_maps()[17]
+            LawMap::embedded_maps()[20]
         ));
         assert!(std::ptr::eq(
             LawMap::embedded_first(LawKind::QuasiStatic).unwrap(),
@@ -1023,9 +1023,10 @@ mod embedded {
     /// generate` and `assemble` give for examples/law_map_mineral_oils.toml and
     /// examples/law_map_mineral_oils_light.toml, _heavy.toml, _low_l.toml, _low_l_light.toml,
     /// _high_l.toml, _lightest.toml, _heaviest.toml, _low_l_heavy.toml, _very_heavy.toml,
-    /// _ultra_heavy.toml, _lightest_low_ry.toml and _lightest_high_ry.toml: their specs are the
+    /// _ultra_heavy.toml, _lightest_low_ry.toml, _lightest_high_ry.toml,
+    /// _lightest_high_ry_m82.toml, _light_high_l.toml and _heavy_high_ry.toml: their specs are the
     /// files' and recomputed nodes (the first of most, the last of the first, of the heaviest and
-    /// of the two lightest, a cheap one of the 257² maps) reproduce their stored
+    /// of the narrow-Z maps, a cheap one of the 257² maps) reproduce their stored
     /// laws to round-off. One node per file shows that the file's laws are those of the spec's
     /// settings (laws generated at other settings differ at every node).
     #[test]
@@ -1127,6 +1128,27 @@ mod embedded {
             &[0, 944],
             "oils, the lightest contacts of inner raceways (narrow Z)",
         );
+        assert_reproduces(
+            17,
+            include_str!("../../../examples/law_map_mineral_oils_lightest_high_ry_m82.toml"),
+            Some(3 * 7 * 5 * 3 * 3),
+            &[0, 944],
+            "oils, the lightest contacts of inner raceways from M 82 (narrow Z)",
+        );
+        assert_reproduces(
+            18,
+            include_str!("../../../examples/law_map_mineral_oils_light_high_l.toml"),
+            Some(5 * 5 * 5 * 3 * 3),
+            &[0, 1124],
+            "oils, light contacts at high L (narrow Z)",
+        );
+        assert_reproduces(
+            19,
+            include_str!("../../../examples/law_map_mineral_oils_heavy_high_ry.toml"),
+            Some(5 * 3 * 3 * 3 * 3),
+            &[0, 404],
+            "oils, heavy contacts of inner raceways above L 23 (narrow Z, tolerances × 0.1)",
+        );
     }
 
     /// The oils maps of the first rheology axes against direct characterizations at held-out
@@ -1210,9 +1232,10 @@ mod embedded {
         }
     }
 
-    /// The four oils maps on 129² whose rheology axes are ln(η0/η∞) and Roelands' Z (their
-    /// nodes' α·p0 = Z·ln(η0/η∞)) — high L, the lightest contacts, and the lightest of outer and
-    /// of inner raceways below M 90 (Z 0.70–0.74) — against direct characterizations at
+    /// The seven oils maps on 129² whose rheology axes are ln(η0/η∞) and Roelands' Z (their
+    /// nodes' α·p0 = Z·ln(η0/η∞)) — high L, the lightest contacts, and the narrow-Z maps (Z
+    /// 0.70–0.74: the lightest of outer and of inner raceways below M 90, light contacts at high
+    /// L, heavy contacts of inner raceways above L 23) — against direct characterizations at
     /// held-out points (fresh seeds, not the 200 of docs/law_map.md §5), within the acceptance
     /// bounds; the held-out points' α·p0 is Z·ln(η0/η∞) of the sampled axes, inside the boxes.
     #[test]
@@ -1247,6 +1270,27 @@ mod embedded {
                 (11.0, 20.0),
                 (0.70, 0.74),
             ),
+            (
+                maps[17],
+                20261211,
+                "oils, the lightest of inner raceways from M 82",
+                (11.0, 22.0),
+                (0.70, 0.74),
+            ),
+            (
+                maps[18],
+                20261212,
+                "oils, light contacts at high L",
+                (26.0, 36.0),
+                (0.70, 0.74),
+            ),
+            (
+                maps[19],
+                20261213,
+                "oils, heavy contacts of inner raceways above L 23",
+                (23.0, 25.0),
+                (0.70, 0.74),
+            ),
         ] {
             let r = assert_within_bounds(map, 3, seed, name);
             assert!(r.iter().all(|h| {
@@ -1257,23 +1301,23 @@ mod embedded {
     }
 
     /// The embedded harmonic maps are what `law-map generate` and `assemble` give for
-    /// examples/law_map_seed_oil_harmonic.toml (the eighteenth map; its first and last nodes
-    /// recomputed) and examples/law_map_mineral_oils_harmonic.toml (the nineteenth, a sparse map
+    /// examples/law_map_seed_oil_harmonic.toml (the twenty-first map; its first and last nodes
+    /// recomputed) and examples/law_map_mineral_oils_harmonic.toml (the twenty-second, a sparse map
     /// of level 5; its node 0, the middle of the box, recomputed).
     #[test]
     fn harmonic_map_is_the_example_spec_and_reproduces_its_nodes() {
         let maps = LawMap::embedded_maps();
-        assert_eq!(maps[17].spec.law, LawKind::Harmonic);
-        assert_eq!(maps[18].spec.law, LawKind::Harmonic);
+        assert_eq!(maps[20].spec.law, LawKind::Harmonic);
+        assert_eq!(maps[21].spec.law, LawKind::Harmonic);
         assert_reproduces(
-            17,
+            20,
             include_str!("../../../examples/law_map_seed_oil_harmonic.toml"),
             Some(11 * 5 * 9 * 3),
             &[0, 11 * 5 * 9 * 3 - 1],
             "seed oil, harmonic",
         );
         assert_reproduces(
-            18,
+            21,
             include_str!("../../../examples/law_map_mineral_oils_harmonic.toml"),
             Some(2385),
             &[0],
@@ -1288,8 +1332,8 @@ mod embedded {
     #[test]
     fn harmonic_map_against_direct_characterizations() {
         let maps = LawMap::embedded_maps();
-        assert_within_bounds(maps[17], 4, 20261130, "seed oil, harmonic");
-        assert_within_bounds(maps[18], 3, 20261205, "mineral oils, harmonic");
+        assert_within_bounds(maps[20], 4, 20261130, "seed oil, harmonic");
+        assert_within_bounds(maps[21], 3, 20261205, "mineral oils, harmonic");
     }
 
     /// Held-out points (a fresh seed, not the 200 of docs/law_map.md §5): the map against direct
