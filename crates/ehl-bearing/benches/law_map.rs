@@ -73,6 +73,7 @@ fn query(c: &mut Criterion) {
     for (name, map) in [
         ("seed_oil_tensor_1485_nodes", maps[20]),
         ("mineral_oils_sparse_level_5_2385_nodes", maps[21]),
+        ("mineral_oils_lightest_sparse_level_4_993_nodes", maps[22]),
     ] {
         let points: Vec<_> = ehl_bearing::study::held_out_points(&map.spec, 64, 11)
             .into_iter()

@@ -292,7 +292,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!();
         println!("The harmonic law's mass group Ψ_H = (b/u_s)·√(w0/(δ_H·m)) (m the ball's mass, steel):\n");
         println!(
-            "| bearing | contacts | Ψ_H min | 5 % | median | 95 % | max | in the harmonic map |"
+            "| bearing | contacts | Ψ_H min | 5 % | median | 95 % | max | in a harmonic map |"
         );
         println!("|---|---:|---:|---:|---:|---:|---:|---:|");
         for (k, s) in SIZES.iter().enumerate() {
@@ -330,7 +330,7 @@ fn ranges(rows: &[&Row]) -> String {
     out
 }
 
-/// "contacts | Ψ_H min, 5 %, median, 95 %, max | share in the harmonic map" of `rows`.
+/// "contacts | Ψ_H min, 5 %, median, 95 %, max | share in a harmonic map" of `rows`.
 fn psi_ranges(rows: &[&Row]) -> String {
     if rows.is_empty() {
         return "0 | | | | | | |".into();

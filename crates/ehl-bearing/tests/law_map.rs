@@ -980,7 +980,7 @@ mod embedded {
     fn embedded_map_is_the_example_spec_and_reproduces_its_nodes() {
         assert!(std::ptr::eq(LawMap::embedded(), LawMap::embedded_maps()[0]));
         // Each map is parsed once, whichever way it is reached.
-        assert_eq!(LawMap::embedded_maps().len(), 22);
+        assert_eq!(LawMap::embedded_maps().len(), 23);
         assert!(std::ptr::eq(
             LawMap::embedded_first(LawKind::Harmonic).unwrap(),
             LawMap::embedded_maps()[20]
@@ -1302,13 +1302,15 @@ mod embedded {
 
     /// The embedded harmonic maps are what `law-map generate` and `assemble` give for
     /// examples/law_map_seed_oil_harmonic.toml (the twenty-first map; its first and last nodes
-    /// recomputed) and examples/law_map_mineral_oils_harmonic.toml (the twenty-second, a sparse map
-    /// of level 5; its node 0, the middle of the box, recomputed).
+    /// recomputed), examples/law_map_mineral_oils_harmonic.toml (the twenty-second, a sparse map
+    /// of level 5) and examples/law_map_mineral_oils_lightest_harmonic.toml (the twenty-third, a
+    /// sparse map of level 4; of both, node 0, the middle of the box, recomputed).
     #[test]
     fn harmonic_map_is_the_example_spec_and_reproduces_its_nodes() {
         let maps = LawMap::embedded_maps();
         assert_eq!(maps[20].spec.law, LawKind::Harmonic);
         assert_eq!(maps[21].spec.law, LawKind::Harmonic);
+        assert_eq!(maps[22].spec.law, LawKind::Harmonic);
         assert_reproduces(
             20,
             include_str!("../../../examples/law_map_seed_oil_harmonic.toml"),
@@ -1323,17 +1325,31 @@ mod embedded {
             &[0],
             "mineral oils, harmonic",
         );
+        assert_reproduces(
+            22,
+            include_str!("../../../examples/law_map_mineral_oils_lightest_harmonic.toml"),
+            Some(993),
+            &[0],
+            "mineral oils, the lightest contacts, harmonic",
+        );
     }
 
     /// The harmonic maps against direct harmonic characterizations at held-out points (fresh
     /// seeds, not the 200 of docs/law_map.md §7), within the bounds of `assert_within_bounds`
-    /// (ĉ's included). Of the 200 points of docs/law_map.md §7 none misses a
-    /// bound on either map (ĉ at most 0.48 % on the seed oil's, 1.4 % on the mineral oils').
+    /// (ĉ's included). Of the 200 points of docs/law_map.md §7 none misses a bound on any map (ĉ
+    /// at most 0.48 % on the seed oil's, 1.4 % on the mineral oils' and on their lightest
+    /// contacts').
     #[test]
     fn harmonic_map_against_direct_characterizations() {
         let maps = LawMap::embedded_maps();
         assert_within_bounds(maps[20], 4, 20261130, "seed oil, harmonic");
         assert_within_bounds(maps[21], 3, 20261205, "mineral oils, harmonic");
+        assert_within_bounds(
+            maps[22],
+            3,
+            20261214,
+            "mineral oils, the lightest contacts, harmonic",
+        );
     }
 
     /// Held-out points (a fresh seed, not the 200 of docs/law_map.md §5): the map against direct

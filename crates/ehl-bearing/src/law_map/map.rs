@@ -798,7 +798,7 @@ pub struct MapQuery {
 
 /// The embedded map files in query order, with the law each samples (so a query parses only the
 /// maps of its law, and those only up to the first that holds it).
-const EMBEDDED: [(&[u8], LawKind); 22] = [
+const EMBEDDED: [(&[u8], LawKind); 23] = [
     (
         include_bytes!("../../data/law_map_seed_oil_g129.bin"),
         LawKind::QuasiStatic,
@@ -885,6 +885,10 @@ const EMBEDDED: [(&[u8], LawKind); 22] = [
     ),
     (
         include_bytes!("../../data/law_map_mineral_oils_harmonic_g129.bin"),
+        LawKind::Harmonic,
+    ),
+    (
+        include_bytes!("../../data/law_map_mineral_oils_lightest_harmonic_g129.bin"),
         LawKind::Harmonic,
     ),
 ];
