@@ -943,12 +943,13 @@ impl LawMap {
     /// 129² (the quasi-static method's default grid) but the three heaviest boxes (M 3900–10000
     /// at L 8–12.5, M 9000–15000 at L 8–23, M 15000–30000 at L 9.8–17: sparse maps of level 3),
     /// on 257² where 129² does not resolve the film; the heavy boxes' nodes were solved with the
-    /// steady solver's tolerances × 0.1. The last two are of the
-    /// harmonic law (ĉ and the mass group Ψ_H, Ω = 0.005·ω_n, on 129²): the seed's oil, 11 × 5 ×
-    /// 9 × 3 nodes over M 120–4000, L 19–26, Ry/Rx 10–65 and Ψ_H 0.4–8
-    /// (`examples/law_map_seed_oil_harmonic.toml`), and mineral oils, a sparse map over six groups
-    /// (`examples/law_map_mineral_oils_harmonic.toml`). A query uses the first map of its law
-    /// that holds it; its law is of that map's grid.
+    /// steady solver's tolerances × 0.1. The last three are of the harmonic law (ĉ and the mass
+    /// group Ψ_H, Ω = 0.005·ω_n, on 129²): the seed's oil, 11 × 5 × 9 × 3 nodes over M 120–4000,
+    /// L 19–26, Ry/Rx 10–65 and Ψ_H 0.4–8 (`examples/law_map_seed_oil_harmonic.toml`), and two
+    /// sparse maps over six groups for mineral oils, their main box
+    /// (`examples/law_map_mineral_oils_harmonic.toml`) and their lightest contacts
+    /// (`examples/law_map_mineral_oils_lightest_harmonic.toml`). A query uses the first map of
+    /// its law that holds it; its law is of that map's grid.
     pub fn embedded_maps() -> &'static [&'static LawMap] {
         static ALL: std::sync::OnceLock<Vec<&'static LawMap>> = std::sync::OnceLock::new();
         ALL.get_or_init(|| (0..EMBEDDED.len()).map(embedded_map).collect())
