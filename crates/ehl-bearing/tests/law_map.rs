@@ -671,9 +671,9 @@ mod harmonic_spec {
             .to_string();
         assert!(e.contains("psi_h = 2") && e.contains("quasi-static"), "{e}");
         assert!(LawMap::query_embedded(&g).unwrap().0.law.c_hat.is_none());
-        // Every embedded map but the two harmonic ones is quasi-static and answers without Ψ_H.
+        // Every embedded map but the three harmonic ones is quasi-static and answers without Ψ_H.
         let kinds: Vec<LawKind> = LawMap::embedded_maps().iter().map(|m| m.spec.law).collect();
-        assert_eq!(kinds.iter().filter(|&&k| k == LawKind::Harmonic).count(), 2);
+        assert_eq!(kinds.iter().filter(|&&k| k == LawKind::Harmonic).count(), 3);
         // Method options.
         let t = |text: &str| text.parse::<toml::Table>().unwrap();
         assert_eq!(
