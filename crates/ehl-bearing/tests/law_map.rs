@@ -671,9 +671,9 @@ mod harmonic_spec {
             .to_string();
         assert!(e.contains("psi_h = 2") && e.contains("quasi-static"), "{e}");
         assert!(LawMap::query_embedded(&g).unwrap().0.law.c_hat.is_none());
-        // Every embedded map but the three harmonic ones is quasi-static and answers without Ψ_H.
+        // Every embedded map but the four harmonic ones is quasi-static and answers without Ψ_H.
         let kinds: Vec<LawKind> = LawMap::embedded_maps().iter().map(|m| m.spec.law).collect();
-        assert_eq!(kinds.iter().filter(|&&k| k == LawKind::Harmonic).count(), 3);
+        assert_eq!(kinds.iter().filter(|&&k| k == LawKind::Harmonic).count(), 4);
         // Method options.
         let t = |text: &str| text.parse::<toml::Table>().unwrap();
         assert_eq!(
@@ -980,7 +980,7 @@ mod embedded {
     fn embedded_map_is_the_example_spec_and_reproduces_its_nodes() {
         assert!(std::ptr::eq(LawMap::embedded(), LawMap::embedded_maps()[0]));
         // Each map is parsed once, whichever way it is reached.
-        assert_eq!(LawMap::embedded_maps().len(), 23);
+        assert_eq!(LawMap::embedded_maps().len(), 24);
         assert!(std::ptr::eq(
             LawMap::embedded_first(LawKind::Harmonic).unwrap(),
             LawMap::embedded_maps()[20]
@@ -1304,13 +1304,15 @@ mod embedded {
     /// examples/law_map_seed_oil_harmonic.toml (the twenty-first map; its first and last nodes
     /// recomputed), examples/law_map_mineral_oils_harmonic.toml (the twenty-second, a sparse map
     /// of level 5) and examples/law_map_mineral_oils_lightest_harmonic.toml (the twenty-third, a
-    /// sparse map of level 4; of both, node 0, the middle of the box, recomputed).
+    /// sparse map of level 4) and examples/law_map_mineral_oils_heavy_harmonic.toml (the
+    /// twenty-fourth, level 4; of the last three, node 0, the middle of the box, recomputed).
     #[test]
     fn harmonic_map_is_the_example_spec_and_reproduces_its_nodes() {
         let maps = LawMap::embedded_maps();
         assert_eq!(maps[20].spec.law, LawKind::Harmonic);
         assert_eq!(maps[21].spec.law, LawKind::Harmonic);
         assert_eq!(maps[22].spec.law, LawKind::Harmonic);
+        assert_eq!(maps[23].spec.law, LawKind::Harmonic);
         assert_reproduces(
             20,
             include_str!("../../../examples/law_map_seed_oil_harmonic.toml"),
@@ -1332,6 +1334,13 @@ mod embedded {
             &[0],
             "mineral oils, the lightest contacts, harmonic",
         );
+        assert_reproduces(
+            23,
+            include_str!("../../../examples/law_map_mineral_oils_heavy_harmonic.toml"),
+            Some(993),
+            &[0],
+            "mineral oils, heavy contacts, harmonic (tolerances × 0.1)",
+        );
     }
 
     /// The harmonic maps against direct harmonic characterizations at held-out points (fresh
@@ -1349,6 +1358,12 @@ mod embedded {
             3,
             20261214,
             "mineral oils, the lightest contacts, harmonic",
+        );
+        assert_within_bounds(
+            maps[23],
+            3,
+            20261215,
+            "mineral oils, heavy contacts, harmonic",
         );
     }
 

@@ -798,7 +798,7 @@ pub struct MapQuery {
 
 /// The embedded map files in query order, with the law each samples (so a query parses only the
 /// maps of its law, and those only up to the first that holds it).
-const EMBEDDED: [(&[u8], LawKind); 23] = [
+const EMBEDDED: [(&[u8], LawKind); 24] = [
     (
         include_bytes!("../../data/law_map_seed_oil_g129.bin"),
         LawKind::QuasiStatic,
@@ -891,6 +891,10 @@ const EMBEDDED: [(&[u8], LawKind); 23] = [
         include_bytes!("../../data/law_map_mineral_oils_lightest_harmonic_g129.bin"),
         LawKind::Harmonic,
     ),
+    (
+        include_bytes!("../../data/law_map_mineral_oils_heavy_harmonic_g129.bin"),
+        LawKind::Harmonic,
+    ),
 ];
 
 /// Embedded map `index` of [`EMBEDDED`], parsed on its first use. The files are valid and of
@@ -943,12 +947,13 @@ impl LawMap {
     /// 129² (the quasi-static method's default grid) but the three heaviest boxes (M 3900–10000
     /// at L 8–12.5, M 9000–15000 at L 8–23, M 15000–30000 at L 9.8–17: sparse maps of level 3),
     /// on 257² where 129² does not resolve the film; the heavy boxes' nodes were solved with the
-    /// steady solver's tolerances × 0.1. The last three are of the harmonic law (ĉ and the mass
+    /// steady solver's tolerances × 0.1. The last four are of the harmonic law (ĉ and the mass
     /// group Ψ_H, Ω = 0.005·ω_n, on 129²): the seed's oil, 11 × 5 × 9 × 3 nodes over M 120–4000,
-    /// L 19–26, Ry/Rx 10–65 and Ψ_H 0.4–8 (`examples/law_map_seed_oil_harmonic.toml`), and two
-    /// sparse maps over six groups for mineral oils, their main box
-    /// (`examples/law_map_mineral_oils_harmonic.toml`) and their lightest contacts
-    /// (`examples/law_map_mineral_oils_lightest_harmonic.toml`). A query uses the first map of
+    /// L 19–26, Ry/Rx 10–65 and Ψ_H 0.4–8 (`examples/law_map_seed_oil_harmonic.toml`), and three
+    /// sparse maps over six groups for mineral oils: their main box
+    /// (`examples/law_map_mineral_oils_harmonic.toml`), their lightest contacts
+    /// (`examples/law_map_mineral_oils_lightest_harmonic.toml`) and their heavy contacts to M
+    /// 5000 (`examples/law_map_mineral_oils_heavy_harmonic.toml`). A query uses the first map of
     /// its law that holds it; its law is of that map's grid.
     pub fn embedded_maps() -> &'static [&'static LawMap] {
         static ALL: std::sync::OnceLock<Vec<&'static LawMap>> = std::sync::OnceLock::new();
