@@ -1140,7 +1140,7 @@ pub unsafe extern "C" fn ehl_ross_table_csv(
 }
 
 /// The law maps embedded in the library (`method = "map"`), in the order a query tries them, as
-/// one JSON array into `*out_json` (free with ehl_string_free): per map its law, nodes,
+/// one JSON array into `*out_json` (free with ehl_string_free): per map its name, law, nodes,
 /// generation CPU time (s), nodes flagged not converged, worst node fit and spec (models, fixed
 /// groups, axes with range and nodes; groups dimensionless) — the keys of `ehl-bearing law-map
 /// info --json` and Python's `law_maps()`.
@@ -1148,10 +1148,7 @@ pub unsafe extern "C" fn ehl_ross_table_csv(
 pub unsafe extern "C" fn ehl_law_maps_json(out_json: *mut *mut c_char) -> c_int {
     guard(|| {
         out_ptr(out_json, "out_json")?;
-        let s: Vec<_> = ehl_bearing::law_map::LawMap::embedded_maps()
-            .iter()
-            .map(|m| m.summary())
-            .collect();
+        let s = ehl_bearing::law_map::LawMap::embedded_summaries();
         // SAFETY: checked above.
         unsafe { put_text(out_json, ehl_bearing::report::to_json_line(&s)) }
     })

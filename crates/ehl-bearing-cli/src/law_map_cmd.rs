@@ -312,27 +312,26 @@ fn convert(input: &Path, output: &Path, sparse_level: Option<u32>) -> anyhow::Re
 /// `law-map info`: the summaries of the map files `maps` (or of the embedded maps), as text or
 /// as one JSON array.
 fn info(maps: &[PathBuf], json: bool) -> anyhow::Result<()> {
-    let owned: Vec<LawMap> = maps.iter().map(|p| read_map(p)).collect::<Result<_, _>>()?;
-    let (names, all): (Vec<String>, Vec<&LawMap>) = if maps.is_empty() {
-        let e = LawMap::embedded_maps();
-        (
-            (1..=e.len())
-                .map(|i| format!("embedded map {i} of {}", e.len()))
-                .collect(),
-            e.to_vec(),
-        )
+    let (names, all): (Vec<String>, Vec<_>) = if maps.is_empty() {
+        let s = LawMap::embedded_summaries();
+        let n = s.len();
+        let names = s
+            .iter()
+            .enumerate()
+            .map(|(i, m)| format!("embedded map {} of {n} ({})", i + 1, m.name.unwrap_or("?")));
+        (names.collect(), s)
     } else {
+        let s = maps.iter().map(|p| read_map(p).map(|m| m.summary()));
         (
             maps.iter().map(|p| p.display().to_string()).collect(),
-            owned.iter().collect(),
+            s.collect::<Result<_, _>>()?,
         )
     };
     if json {
-        let s: Vec<_> = all.iter().map(|m| m.summary()).collect();
-        println!("{}", serde_json::to_string_pretty(&s)?);
+        println!("{}", serde_json::to_string_pretty(&all)?);
     } else {
         for (name, m) in names.iter().zip(&all) {
-            println!("{name}: {}", m.summary());
+            println!("{name}: {m}");
         }
     }
     Ok(())

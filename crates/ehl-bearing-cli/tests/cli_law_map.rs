@@ -618,7 +618,7 @@ fn info_lists_the_embedded_maps() {
     assert_eq!(heads.len(), maps.len(), "{text}");
     assert!(
         heads[0].starts_with(&format!(
-            "embedded map 1 of {}: quasi-static law, grid 129²",
+            "embedded map 1 of {} (seed_oil): quasi-static law, grid 129²",
             maps.len()
         )) && heads[maps.len() - 1].contains("harmonic law"),
         "{text}"
@@ -635,6 +635,7 @@ fn info_lists_the_embedded_maps() {
     for (j, m) in v.iter().zip(maps) {
         assert_eq!(j["nodes"].as_u64(), Some(m.laws.len() as u64));
         assert_eq!(j["law"], m.spec.law.name());
+        assert!(j["name"].as_str().is_some_and(|n| !n.is_empty()));
         assert_eq!(j["spec"]["grid"].as_u64(), Some(m.spec.grid as u64));
         assert!(j["worst_node_rms_hat"].as_f64().unwrap() > 0.0);
     }

@@ -1107,16 +1107,13 @@ pub(crate) fn square(a: &PyReadonlyArray2<'_, f64>, n: usize, what: &str) -> PyR
 }
 
 /// The law maps embedded in the library, in the order a `method = "map"` query tries them: one
-/// dict per map with the keys of `ehl-bearing law-map info --json` (`law`, `nodes`,
+/// dict per map with the keys of `ehl-bearing law-map info --json` (`name`, `law`, `nodes`,
 /// `cpu_seconds` in s, `nodes_not_converged`, `worst_node_rms_hat`, `worst_node_r_squared`, and
 /// `spec`: the models, fixed groups, axes with `group`, `min`, `max`, `nodes`, `log`, and the
 /// method's settings; groups dimensionless), docs/law_map.md §5.
 #[pyfunction]
 fn law_maps(py: Python<'_>) -> PyResult<PyObject> {
-    let s: Vec<_> = ehl_bearing::law_map::LawMap::embedded_maps()
-        .iter()
-        .map(|m| m.summary())
-        .collect();
+    let s = ehl_bearing::law_map::LawMap::embedded_summaries();
     to_py(py, &s)
 }
 

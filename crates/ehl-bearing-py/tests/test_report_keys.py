@@ -100,6 +100,7 @@ def test_law_maps_are_the_cli_info(cli: str) -> None:
     maps = eb.law_maps()
     assert maps == run_json(cli, "law-map", "info")
     assert maps[0]["law"] == "quasi-static" and maps[-1]["law"] == "harmonic"
+    assert maps[0]["name"] == "seed_oil" and len({x["name"] for x in maps}) == len(maps)
     m = maps[0]["spec"]["axis"][0]
     assert (m["group"], m["min"], m["max"], m["nodes"], m["log"]) == ("m", 120.0, 4000.0, 17, True)
     assert all(x["nodes"] > 0 and x["worst_node_r_squared"] <= 1.0 for x in maps)

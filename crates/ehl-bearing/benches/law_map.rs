@@ -68,13 +68,19 @@ fn query(c: &mut Criterion) {
         &tensor.sparse_subset(9).unwrap(),
     );
     g.finish();
-    let maps = LawMap::embedded_maps();
     let mut g = c.benchmark_group("law_map_harmonic_query_64_points");
     for (name, map) in [
-        ("seed_oil_tensor_1485_nodes", maps[20]),
-        ("mineral_oils_sparse_level_5_2385_nodes", maps[21]),
-        ("mineral_oils_lightest_sparse_level_4_993_nodes", maps[22]),
+        ("seed_oil_tensor_1485_nodes", "seed_oil_harmonic"),
+        (
+            "mineral_oils_sparse_level_5_2385_nodes",
+            "mineral_oils_harmonic",
+        ),
+        (
+            "mineral_oils_lightest_sparse_level_4_993_nodes",
+            "mineral_oils_lightest_harmonic",
+        ),
     ] {
+        let map = LawMap::embedded_named(map).unwrap();
         let points: Vec<_> = ehl_bearing::study::held_out_points(&map.spec, 64, 11)
             .into_iter()
             .map(|(g, psi_h)| (g, psi_h.unwrap()))

@@ -21,9 +21,16 @@ use ehl_bearing::material::{
     reduced_modulus, DensityModel, Lubricant, Solid, ViscosityModel, ROELANDS_P0,
 };
 
-/// The first embedded map of the harmonic law (the seed oil's, the twenty-first embedded map).
+/// The first embedded map of the harmonic law (the seed oil's).
 fn harmonic_map() -> &'static ehl_bearing::law_map::LawMap {
     ehl_bearing::law_map::LawMap::embedded_first(ehl_bearing::law_map::LawKind::Harmonic).unwrap()
+}
+
+/// The embedded map `name` (one of `LawMap::embedded_names`: the stem of its example spec,
+/// `examples/law_map_<name>.toml`).
+fn map(name: &str) -> &'static ehl_bearing::law_map::LawMap {
+    ehl_bearing::law_map::LawMap::embedded_named(name)
+        .unwrap_or_else(|| panic!("no embedded map {name}"))
 }
 
 fn settings() -> QuasiStaticSettings {
@@ -671,9 +678,20 @@ mod harmonic_spec {
             .to_string();
         assert!(e.contains("psi_h = 2") && e.contains("quasi-static"), "{e}");
         assert!(LawMap::query_embedded(&g).unwrap().0.law.c_hat.is_none());
-        // Every embedded map but the four harmonic ones is quasi-static and answers without Ψ_H.
-        let kinds: Vec<LawKind> = LawMap::embedded_maps().iter().map(|m| m.spec.law).collect();
-        assert_eq!(kinds.iter().filter(|&&k| k == LawKind::Harmonic).count(), 4);
+        // The embedded maps named `*_harmonic` are of the harmonic law, the others quasi-static
+        // (they answer without Ψ_H); there are both.
+        let harmonic = LawMap::embedded_names()
+            .zip(LawMap::embedded_maps())
+            .map(|(n, m)| {
+                assert_eq!(
+                    n.ends_with("_harmonic"),
+                    m.spec.law == LawKind::Harmonic,
+                    "{n}"
+                );
+                m.spec.law == LawKind::Harmonic
+            });
+        let harmonic: Vec<bool> = harmonic.collect();
+        assert!(harmonic.contains(&true) && harmonic.contains(&false));
         // Method options.
         let t = |text: &str| text.parse::<toml::Table>().unwrap();
         assert_eq!(
@@ -722,6 +740,7 @@ mod harmonic_spec {
 
 /// The map file's two forms (JSON text and the compact binary form of the embedded maps).
 mod file {
+    use crate::map;
     use ehl_bearing::law_map::{LawMap, LawMapError, BINARY_MAGIC};
 
     /// The embedded map files, read from the source tree (what `include_bytes!` embeds).
@@ -765,7 +784,7 @@ mod file {
     /// expected; never read as a map.
     #[test]
     fn binary_map_file_errors_name_the_field() {
-        let map = LawMap::embedded_maps()[2];
+        let map = map("seed_oil_low_m");
         let good = map.to_binary();
         let msg = |b: &[u8]| LawMap::parse(b).unwrap_err().to_string();
         // The header: its length field, then the header itself.
@@ -841,7 +860,7 @@ mod file {
     /// an error), every value of an accepted binary map finite.
     #[test]
     fn damaged_map_files_never_panic() {
-        let map = LawMap::embedded_maps()[2];
+        let map = map("seed_oil_low_m");
         let forms = [map.to_binary(), map.to_json().into_bytes()];
         let (mut accepted, mut refused) = (0, 0);
         for i in 0..3000u64 {
@@ -909,23 +928,56 @@ mod file {
 }
 
 mod embedded {
-    use super::{difference, SAME};
-    use ehl_bearing::law_map::{LawKind, LawMap, LawMapSpec};
+    use super::{difference, map, SAME};
+    use ehl_bearing::law_map::{Group, LawKind, LawMap, LawMapSpec};
     use ehl_bearing::study::{characterize_node, held_out_check};
 
-    /// Embedded map `index` has the spec of `spec_toml`, `laws` nodes (where given), and its
-    /// nodes `nodes` recomputed now (by the spec's method: the harmonic one with the mass from
-    /// the node's Ψ_H for a harmonic map) reproduce its stored laws to round-off ([`SAME`]), ĉ
-    /// included where the law has it.
-    fn assert_reproduces(
-        index: usize,
-        spec_toml: &str,
-        laws: Option<usize>,
-        nodes: &[usize],
-        name: &str,
-    ) {
-        let map = &LawMap::embedded_maps()[index];
-        let spec = LawMapSpec::from_toml(spec_toml).unwrap();
+    /// The example spec `examples/law_map_<name>.toml`.
+    fn example_spec(name: &str) -> LawMapSpec {
+        let path = format!(
+            "{}/../../examples/law_map_{name}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+        LawMapSpec::from_toml(&text).unwrap()
+    }
+
+    /// Every embedded map has the spec of its example file, `examples/law_map_<name>.toml`, and
+    /// every such file is embedded; the names are unique.
+    #[test]
+    fn every_embedded_map_is_its_example_spec() {
+        let names: Vec<_> = LawMap::embedded_names().collect();
+        assert_eq!(names.len(), LawMap::embedded_maps().len());
+        for (name, m) in names.iter().zip(LawMap::embedded_maps()) {
+            assert_eq!(m.spec, example_spec(name), "{name}");
+            assert!(std::ptr::eq(map(name), *m), "{name}");
+        }
+        let mut files: Vec<String> =
+            std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples"))
+                .unwrap()
+                .filter_map(|e| {
+                    let f = e.unwrap().file_name().into_string().unwrap();
+                    Some(
+                        f.strip_prefix("law_map_")?
+                            .strip_suffix(".toml")?
+                            .to_string(),
+                    )
+                })
+                .collect();
+        files.sort();
+        let mut sorted = names.clone();
+        sorted.sort();
+        assert_eq!(files, sorted);
+        assert!(LawMap::embedded_named("no_such_map").is_none());
+    }
+
+    /// Embedded map `name` has the spec of `examples/law_map_<name>.toml`, `laws` nodes (where
+    /// given), and its nodes `nodes` recomputed now (by the spec's method: the harmonic one with
+    /// the mass from the node's Ψ_H for a harmonic map) reproduce its stored laws to round-off
+    /// ([`SAME`]), ĉ included where the law has it.
+    fn assert_reproduces(map_name: &str, laws: Option<usize>, nodes: &[usize], name: &str) {
+        let map = map(map_name);
+        let spec = example_spec(map_name);
         assert_eq!(map.spec, spec, "{name}");
         if let Some(n) = laws {
             assert_eq!(map.laws.len(), n, "{name}");
@@ -978,41 +1030,21 @@ mod embedded {
     /// equal groups above); so are the other seed-oil maps'.
     #[test]
     fn embedded_map_is_the_example_spec_and_reproduces_its_nodes() {
-        assert!(std::ptr::eq(LawMap::embedded(), LawMap::embedded_maps()[0]));
+        assert!(std::ptr::eq(LawMap::embedded(), map("seed_oil")));
         // Each map is parsed once, whichever way it is reached.
-        assert_eq!(LawMap::embedded_maps().len(), 24);
         assert!(std::ptr::eq(
             LawMap::embedded_first(LawKind::Harmonic).unwrap(),
-            LawMap::embedded_maps()[20]
+            map("seed_oil_harmonic")
         ));
         assert!(std::ptr::eq(
             LawMap::embedded_first(LawKind::QuasiStatic).unwrap(),
             LawMap::embedded()
         ));
+        assert_reproduces("seed_oil", Some(17 * 5 * 9), &[0, 382, 764], "seed");
+        assert_reproduces("seed_oil_high_l", None, &[4, 764], "high-L");
+        assert_reproduces("seed_oil_low_m", Some(9 * 5 * 5), &[0, 224], "low-M");
         assert_reproduces(
-            0,
-            include_str!("../../../examples/law_map_seed_oil.toml"),
-            Some(17 * 5 * 9),
-            &[0, 382, 764],
-            "seed",
-        );
-        assert_reproduces(
-            1,
-            include_str!("../../../examples/law_map_seed_oil_high_l.toml"),
-            None,
-            &[4, 764],
-            "high-L",
-        );
-        assert_reproduces(
-            2,
-            include_str!("../../../examples/law_map_seed_oil_low_m.toml"),
-            Some(9 * 5 * 5),
-            &[0, 224],
-            "low-M",
-        );
-        assert_reproduces(
-            3,
-            include_str!("../../../examples/law_map_seed_oil_high_m.toml"),
+            "seed_oil_high_m",
             Some(7 * 5 * 9),
             &[0, 157],
             "high-M (tolerances × 0.1)",
@@ -1031,51 +1063,39 @@ mod embedded {
     /// settings (laws generated at other settings differ at every node).
     #[test]
     fn oils_map_is_the_example_spec_and_reproduces_its_nodes() {
+        assert_reproduces("mineral_oils", Some(7 * 9 * 5 * 3 * 3), &[0, 2834], "oils");
         assert_reproduces(
-            4,
-            include_str!("../../../examples/law_map_mineral_oils.toml"),
-            Some(7 * 9 * 5 * 3 * 3),
-            &[0, 2834],
-            "oils",
-        );
-        assert_reproduces(
-            5,
-            include_str!("../../../examples/law_map_mineral_oils_light.toml"),
+            "mineral_oils_light",
             Some(7 * 7 * 5 * 3 * 3),
             &[0],
             "oils, light contacts",
         );
         assert_reproduces(
-            6,
-            include_str!("../../../examples/law_map_mineral_oils_heavy.toml"),
+            "mineral_oils_heavy",
             Some(7 * 7 * 5 * 3 * 3),
             &[0],
             "oils, heavy contacts (tolerances × 0.1)",
         );
         assert_reproduces(
-            7,
-            include_str!("../../../examples/law_map_mineral_oils_low_l.toml"),
+            "mineral_oils_low_l",
             Some(7 * 7 * 5 * 3 * 3),
             &[0],
             "oils, slow large bearings",
         );
         assert_reproduces(
-            8,
-            include_str!("../../../examples/law_map_mineral_oils_low_l_light.toml"),
+            "mineral_oils_low_l_light",
             Some(5 * 7 * 5 * 3 * 3),
             &[0],
             "oils, slow large bearings' light contacts",
         );
         assert_reproduces(
-            9,
-            include_str!("../../../examples/law_map_mineral_oils_high_l.toml"),
+            "mineral_oils_high_l",
             Some(7 * 5 * 5 * 3 * 3),
             &[0],
             "oils, high L (axes ln(η0/η∞) and Z)",
         );
         assert_reproduces(
-            10,
-            include_str!("../../../examples/law_map_mineral_oils_lightest.toml"),
+            "mineral_oils_lightest",
             Some(7 * 7 * 5 * 3 * 3),
             &[0],
             "oils, the lightest contacts (axes ln(η0/η∞) and Z)",
@@ -1083,8 +1103,7 @@ mod embedded {
         // Node 944 (the far corner: M 9000, L 23, Ry/Rx 45) takes 0.6 CPU s; node 0 (M 7200, L
         // 12.5, Ry/Rx 14) 12.8.
         assert_reproduces(
-            11,
-            include_str!("../../../examples/law_map_mineral_oils_heaviest.toml"),
+            "mineral_oils_heaviest",
             Some(3 * 7 * 5 * 3 * 3),
             &[944],
             "oils, the heaviest contacts (tolerances × 0.1)",
@@ -1092,59 +1111,51 @@ mod embedded {
         // Node 9 is the cheapest of the thirteenth map (M 3900, 1.5 CPU s on 257²; node 0, the
         // middle of the box, takes 20).
         assert_reproduces(
-            12,
-            include_str!("../../../examples/law_map_mineral_oils_low_l_heavy.toml"),
+            "mineral_oils_low_l_heavy",
             Some(185),
             &[9],
             "oils, slow large bearings' heavy contacts (257², tolerances × 0.1, sparse)",
         );
         // Node 36 is the cheapest of the fourteenth map (6.8 CPU s on 257²).
         assert_reproduces(
-            13,
-            include_str!("../../../examples/law_map_mineral_oils_very_heavy.toml"),
+            "mineral_oils_very_heavy",
             Some(185),
             &[36],
             "oils, very heavy contacts (257², tolerances × 0.1, sparse)",
         );
         // Node 80 is the cheapest of the fifteenth map (9.4 CPU s on 257²).
         assert_reproduces(
-            14,
-            include_str!("../../../examples/law_map_mineral_oils_ultra_heavy.toml"),
+            "mineral_oils_ultra_heavy",
             Some(185),
             &[80],
             "oils, ultra heavy contacts (257², tolerances × 0.1, sparse)",
         );
         assert_reproduces(
-            15,
-            include_str!("../../../examples/law_map_mineral_oils_lightest_low_ry.toml"),
+            "mineral_oils_lightest_low_ry",
             Some(5 * 7 * 3 * 3 * 3),
             &[0, 944],
             "oils, the lightest contacts of outer raceways (narrow Z)",
         );
         assert_reproduces(
-            16,
-            include_str!("../../../examples/law_map_mineral_oils_lightest_high_ry.toml"),
+            "mineral_oils_lightest_high_ry",
             Some(5 * 7 * 3 * 3 * 3),
             &[0, 944],
             "oils, the lightest contacts of inner raceways (narrow Z)",
         );
         assert_reproduces(
-            17,
-            include_str!("../../../examples/law_map_mineral_oils_lightest_high_ry_m82.toml"),
+            "mineral_oils_lightest_high_ry_m82",
             Some(3 * 7 * 5 * 3 * 3),
             &[0, 944],
             "oils, the lightest contacts of inner raceways from M 82 (narrow Z)",
         );
         assert_reproduces(
-            18,
-            include_str!("../../../examples/law_map_mineral_oils_light_high_l.toml"),
+            "mineral_oils_light_high_l",
             Some(5 * 5 * 5 * 3 * 3),
             &[0, 1124],
             "oils, light contacts at high L (narrow Z)",
         );
         assert_reproduces(
-            19,
-            include_str!("../../../examples/law_map_mineral_oils_heavy_high_ry.toml"),
+            "mineral_oils_heavy_high_ry",
             Some(5 * 3 * 3 * 3 * 3),
             &[0, 404],
             "oils, heavy contacts of inner raceways above L 23 (narrow Z, tolerances × 0.1)",
@@ -1156,19 +1167,24 @@ mod embedded {
     /// 3 % included: the heavy-contact maps (129², the steady solver's tolerances × 0.1) too.
     #[test]
     fn oils_map_against_direct_characterizations() {
-        let maps = LawMap::embedded_maps();
-        assert_within_bounds(maps[4], 6, 20261127, "oils");
-        assert_within_bounds(maps[5], 6, 20261128, "oils, light contacts");
-        for (k, seed, name) in [
-            (6, 20261129, "oils, heavy contacts"),
-            (11, 20261204, "oils, the heaviest contacts"),
+        assert_within_bounds(map("mineral_oils"), 6, 20261127, "oils");
+        assert_within_bounds(
+            map("mineral_oils_light"),
+            6,
+            20261128,
+            "oils, light contacts",
+        );
+        for (m, seed, name) in [
+            ("mineral_oils_heavy", 20261129, "oils, heavy contacts"),
+            (
+                "mineral_oils_heaviest",
+                20261204,
+                "oils, the heaviest contacts",
+            ),
         ] {
-            assert_eq!(
-                (maps[k].spec.grid, maps[k].spec.tolerance_factor),
-                (129, 0.1),
-                "{name}"
-            );
-            assert_within_bounds(maps[k], 3, seed, name);
+            let m = map(m);
+            assert_eq!((m.spec.grid, m.spec.tolerance_factor), (129, 0.1), "{name}");
+            assert_within_bounds(m, 3, seed, name);
         }
     }
 
@@ -1180,7 +1196,7 @@ mod embedded {
     /// points' largest ΔF error is 0.58 %.
     #[test]
     fn heavy_seed_map_against_direct_characterizations() {
-        let map = LawMap::embedded_maps()[3];
+        let map = map("seed_oil_high_m");
         assert_eq!((map.spec.grid, map.spec.tolerance_factor), (129, 0.1));
         assert_within_bounds(map, 3, 20261131, "seed oil, heavy contacts");
     }
@@ -1190,11 +1206,15 @@ mod embedded {
     /// bounds (force at the nominal approach 0.5 %, d 0.005, ΔF 3 %).
     #[test]
     fn low_l_map_against_direct_characterizations() {
-        let maps = LawMap::embedded_maps();
-        assert_eq!(maps[7].spec.grid, 129);
-        assert_within_bounds(maps[7], 4, 20261130, "oils, slow large bearings");
+        assert_eq!(map("mineral_oils_low_l").spec.grid, 129);
         assert_within_bounds(
-            maps[8],
+            map("mineral_oils_low_l"),
+            4,
+            20261130,
+            "oils, slow large bearings",
+        );
+        assert_within_bounds(
+            map("mineral_oils_low_l_light"),
             3,
             20261201,
             "oils, slow large bearings' light contacts",
@@ -1212,15 +1232,22 @@ mod embedded {
     #[test]
     #[ignore]
     fn grid_257_maps_against_direct_characterizations() {
-        let maps = LawMap::embedded_maps();
         for (map, seed, name) in [
             (
-                maps[12],
+                map("mineral_oils_low_l_heavy"),
                 20261206,
                 "oils, slow large bearings' heavy contacts",
             ),
-            (maps[13], 20261207, "oils, very heavy contacts"),
-            (maps[14], 20261208, "oils, ultra heavy contacts"),
+            (
+                map("mineral_oils_very_heavy"),
+                20261207,
+                "oils, very heavy contacts",
+            ),
+            (
+                map("mineral_oils_ultra_heavy"),
+                20261208,
+                "oils, ultra heavy contacts",
+            ),
         ] {
             let s = &map.spec;
             assert_eq!(
@@ -1240,62 +1267,44 @@ mod embedded {
     /// bounds; the held-out points' α·p0 is Z·ln(η0/η∞) of the sampled axes, inside the boxes.
     #[test]
     fn z_axis_maps_against_direct_characterizations() {
-        let maps = LawMap::embedded_maps();
-        for (map, seed, name, l, z) in [
+        for (m, seed, name) in [
+            ("mineral_oils_high_l", 20261202, "oils, high L"),
+            ("mineral_oils_lightest", 20261203, "oils, the lightest"),
             (
-                maps[9],
-                20261202,
-                "oils, high L",
-                (26.0, 36.0),
-                (0.55, 0.85),
-            ),
-            (
-                maps[10],
-                20261203,
-                "oils, the lightest",
-                (12.5, 26.0),
-                (0.55, 0.8),
-            ),
-            (
-                maps[15],
+                "mineral_oils_lightest_low_ry",
                 20261209,
                 "oils, the lightest of outer raceways",
-                (11.0, 23.0),
-                (0.70, 0.74),
             ),
             (
-                maps[16],
+                "mineral_oils_lightest_high_ry",
                 20261210,
                 "oils, the lightest of inner raceways",
-                (11.0, 20.0),
-                (0.70, 0.74),
             ),
             (
-                maps[17],
+                "mineral_oils_lightest_high_ry_m82",
                 20261211,
                 "oils, the lightest of inner raceways from M 82",
-                (11.0, 22.0),
-                (0.70, 0.74),
             ),
             (
-                maps[18],
+                "mineral_oils_light_high_l",
                 20261212,
                 "oils, light contacts at high L",
-                (26.0, 36.0),
-                (0.70, 0.74),
             ),
             (
-                maps[19],
+                "mineral_oils_heavy_high_ry",
                 20261213,
                 "oils, heavy contacts of inner raceways above L 23",
-                (23.0, 25.0),
-                (0.70, 0.74),
             ),
         ] {
-            let r = assert_within_bounds(map, 3, seed, name);
+            let m = map(m);
+            let range = |g: Group| {
+                let a = m.spec.axes.iter().find(|a| a.group == g).unwrap();
+                a.min..=a.max
+            };
+            let r = assert_within_bounds(m, 3, seed, name);
             assert!(r.iter().all(|h| {
                 let zh = h.groups.alpha_p0.unwrap() / h.groups.ln_eta0_ratio.unwrap();
-                (z.0..=z.1).contains(&zh) && (l.0..=l.1).contains(&h.groups.l)
+                range(Group::RoelandsZ).contains(&zh) && range(Group::L).contains(&h.groups.l)
             }));
         }
     }
@@ -1308,35 +1317,36 @@ mod embedded {
     /// twenty-fourth, level 4; of the last three, node 0, the middle of the box, recomputed).
     #[test]
     fn harmonic_map_is_the_example_spec_and_reproduces_its_nodes() {
-        let maps = LawMap::embedded_maps();
-        assert_eq!(maps[20].spec.law, LawKind::Harmonic);
-        assert_eq!(maps[21].spec.law, LawKind::Harmonic);
-        assert_eq!(maps[22].spec.law, LawKind::Harmonic);
-        assert_eq!(maps[23].spec.law, LawKind::Harmonic);
+        assert_eq!(map("seed_oil_harmonic").spec.law, LawKind::Harmonic);
+        assert_eq!(map("mineral_oils_harmonic").spec.law, LawKind::Harmonic);
+        assert_eq!(
+            map("mineral_oils_lightest_harmonic").spec.law,
+            LawKind::Harmonic
+        );
+        assert_eq!(
+            map("mineral_oils_heavy_harmonic").spec.law,
+            LawKind::Harmonic
+        );
         assert_reproduces(
-            20,
-            include_str!("../../../examples/law_map_seed_oil_harmonic.toml"),
+            "seed_oil_harmonic",
             Some(11 * 5 * 9 * 3),
             &[0, 11 * 5 * 9 * 3 - 1],
             "seed oil, harmonic",
         );
         assert_reproduces(
-            21,
-            include_str!("../../../examples/law_map_mineral_oils_harmonic.toml"),
+            "mineral_oils_harmonic",
             Some(2385),
             &[0],
             "mineral oils, harmonic",
         );
         assert_reproduces(
-            22,
-            include_str!("../../../examples/law_map_mineral_oils_lightest_harmonic.toml"),
+            "mineral_oils_lightest_harmonic",
             Some(993),
             &[0],
             "mineral oils, the lightest contacts, harmonic",
         );
         assert_reproduces(
-            23,
-            include_str!("../../../examples/law_map_mineral_oils_heavy_harmonic.toml"),
+            "mineral_oils_heavy_harmonic",
             Some(993),
             &[0],
             "mineral oils, heavy contacts, harmonic (tolerances × 0.1)",
@@ -1350,17 +1360,21 @@ mod embedded {
     /// contacts', 0.50 % on their heavy contacts').
     #[test]
     fn harmonic_map_against_direct_characterizations() {
-        let maps = LawMap::embedded_maps();
-        assert_within_bounds(maps[20], 4, 20261130, "seed oil, harmonic");
-        assert_within_bounds(maps[21], 3, 20261205, "mineral oils, harmonic");
+        assert_within_bounds(map("seed_oil_harmonic"), 4, 20261130, "seed oil, harmonic");
         assert_within_bounds(
-            maps[22],
+            map("mineral_oils_harmonic"),
+            3,
+            20261205,
+            "mineral oils, harmonic",
+        );
+        assert_within_bounds(
+            map("mineral_oils_lightest_harmonic"),
             3,
             20261214,
             "mineral oils, the lightest contacts, harmonic",
         );
         assert_within_bounds(
-            maps[23],
+            map("mineral_oils_heavy_harmonic"),
             3,
             20261215,
             "mineral oils, heavy contacts, harmonic",
@@ -1378,6 +1392,7 @@ mod embedded {
 }
 
 mod bearing {
+    use crate::map;
     use ehl_bearing::characterize::{
         characterize_bearing, BearingCharacterization, CharacterizeSettings,
     };
@@ -1560,7 +1575,7 @@ mod bearing {
         )))
         .unwrap();
         case.operating.inner_speed = 7500.0 * std::f64::consts::PI / 30.0;
-        let spec = &LawMap::embedded_maps()[7].spec;
+        let spec = &map("mineral_oils_low_l").spec;
         assert_eq!(spec.grid, 129);
         map_against_quasi_static(&case, spec, "7210 at 7500 rpm");
     }
@@ -1582,9 +1597,11 @@ mod bearing {
         let mut case = ehl_bearing::io::parse_case(&text, "7210, conformities 0.52/0.53").unwrap();
         assert_eq!(case.bearing.geometry.inner_conformity, 0.52);
         case.operating.inner_speed = 7500.0 * std::f64::consts::PI / 30.0;
-        let maps = LawMap::embedded_maps();
-        assert_eq!(maps[12].spec.settings(), maps[13].spec.settings());
-        let spec = &maps[12].spec;
+        assert_eq!(
+            map("mineral_oils_low_l_heavy").spec.settings(),
+            map("mineral_oils_very_heavy").spec.settings()
+        );
+        let spec = &map("mineral_oils_low_l_heavy").spec;
         assert_eq!((spec.grid, spec.tolerance_factor), (257, 0.1));
         for axial in [10_000.0, 20_000.0] {
             case.operating.dofs[0] = ehl_bearing::bearing::Control::Load(axial);
@@ -1795,7 +1812,9 @@ mod bearing {
         assert!(
             e.contains("M = ")
                 && e.contains("outside the map's envelope")
-                && e.contains("fallback = true"),
+                && e.contains("fallback = true")
+                && e.contains("seed_oil: ")
+                && e.contains("mineral_oils_low_l: "),
             "{e}"
         );
         // The default is the fallback: `method = "map"` alone gives every case its laws.
@@ -1816,7 +1835,7 @@ mod sparse {
     //! study machinery (generate, assemble, query, map files), and invalid sparse specs are refused
     //! naming the field, the value and the range.
 
-    use crate::small_map;
+    use crate::{map, small_map};
     use ehl_bearing::law_map::{LawGroups, LawMap, LawMapSpec};
     use ehl_bearing::study::{assemble_map, generate_map, held_out_points, MemoryStore, Shard};
 
@@ -2004,7 +2023,7 @@ mod sparse {
         assert_eq!(lower.laws, tensor.sparse_subset(4).unwrap().laws);
         assert_eq!(lower.laws[..], sparse.laws[..lower.laws.len()]);
         // The map of a 7-node axis has no sparse subset.
-        let oils = LawMap::embedded_maps()[4];
+        let oils = map("mineral_oils");
         let e = oils.sparse_subset(4).unwrap_err().to_string();
         assert!(e.contains("nodes") && e.contains("= 7"), "{e}");
     }

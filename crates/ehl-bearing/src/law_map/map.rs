@@ -796,105 +796,137 @@ pub struct MapQuery {
     pub nodes_converged: bool,
 }
 
-/// The embedded map files in query order, with the law each samples (so a query parses only the
-/// maps of its law, and those only up to the first that holds it).
-const EMBEDDED: [(&[u8], LawKind); 24] = [
-    (
-        include_bytes!("../../data/law_map_seed_oil_g129.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_seed_oil_high_l_g129.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_seed_oil_low_m_g129.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_seed_oil_high_m_g129.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_g129.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_light_g129.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_heavy_g129.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_low_l_g129.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_low_l_light_g129.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_high_l_g129.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_lightest_g129.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_heaviest_g129.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_low_l_heavy_g257.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_very_heavy_g257.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_ultra_heavy_g257.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_lightest_low_ry_g129.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_lightest_high_ry_g129.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_lightest_high_ry_m82_g129.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_light_high_l_g129.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_heavy_high_ry_g129.bin"),
-        LawKind::QuasiStatic,
-    ),
-    (
-        include_bytes!("../../data/law_map_seed_oil_harmonic_g129.bin"),
-        LawKind::Harmonic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_harmonic_g129.bin"),
-        LawKind::Harmonic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_lightest_harmonic_g129.bin"),
-        LawKind::Harmonic,
-    ),
-    (
-        include_bytes!("../../data/law_map_mineral_oils_heavy_harmonic_g129.bin"),
-        LawKind::Harmonic,
-    ),
+/// An embedded map file: its name (the stem of its example spec, `examples/law_map_<name>.toml`),
+/// its bytes, and the law it samples (so a query parses only the maps of its law, and those only
+/// up to the first that holds it).
+struct Embedded {
+    name: &'static str,
+    bytes: &'static [u8],
+    law: LawKind,
+}
+
+/// The embedded map files in query order.
+const EMBEDDED: [Embedded; 24] = [
+    Embedded {
+        name: "seed_oil",
+        bytes: include_bytes!("../../data/law_map_seed_oil_g129.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "seed_oil_high_l",
+        bytes: include_bytes!("../../data/law_map_seed_oil_high_l_g129.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "seed_oil_low_m",
+        bytes: include_bytes!("../../data/law_map_seed_oil_low_m_g129.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "seed_oil_high_m",
+        bytes: include_bytes!("../../data/law_map_seed_oil_high_m_g129.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "mineral_oils",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_g129.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "mineral_oils_light",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_light_g129.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "mineral_oils_heavy",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_heavy_g129.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "mineral_oils_low_l",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_low_l_g129.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "mineral_oils_low_l_light",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_low_l_light_g129.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "mineral_oils_high_l",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_high_l_g129.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "mineral_oils_lightest",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_lightest_g129.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "mineral_oils_heaviest",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_heaviest_g129.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "mineral_oils_low_l_heavy",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_low_l_heavy_g257.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "mineral_oils_very_heavy",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_very_heavy_g257.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "mineral_oils_ultra_heavy",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_ultra_heavy_g257.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "mineral_oils_lightest_low_ry",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_lightest_low_ry_g129.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "mineral_oils_lightest_high_ry",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_lightest_high_ry_g129.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "mineral_oils_lightest_high_ry_m82",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_lightest_high_ry_m82_g129.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "mineral_oils_light_high_l",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_light_high_l_g129.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "mineral_oils_heavy_high_ry",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_heavy_high_ry_g129.bin"),
+        law: LawKind::QuasiStatic,
+    },
+    Embedded {
+        name: "seed_oil_harmonic",
+        bytes: include_bytes!("../../data/law_map_seed_oil_harmonic_g129.bin"),
+        law: LawKind::Harmonic,
+    },
+    Embedded {
+        name: "mineral_oils_harmonic",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_harmonic_g129.bin"),
+        law: LawKind::Harmonic,
+    },
+    Embedded {
+        name: "mineral_oils_lightest_harmonic",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_lightest_harmonic_g129.bin"),
+        law: LawKind::Harmonic,
+    },
+    Embedded {
+        name: "mineral_oils_heavy_harmonic",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_heavy_harmonic_g129.bin"),
+        law: LawKind::Harmonic,
+    },
 ];
 
 /// Embedded map `index` of [`EMBEDDED`], parsed on its first use. The files are valid and of
@@ -903,9 +935,9 @@ fn embedded_map(index: usize) -> &'static LawMap {
     static MAPS: [std::sync::OnceLock<LawMap>; EMBEDDED.len()] =
         [const { std::sync::OnceLock::new() }; EMBEDDED.len()];
     MAPS[index].get_or_init(|| {
-        let (bytes, law) = EMBEDDED[index];
-        let map = LawMap::from_binary(bytes).expect("the embedded maps are valid");
-        assert_eq!(map.spec.law, law, "embedded map {index}: its law");
+        let e = &EMBEDDED[index];
+        let map = LawMap::from_binary(e.bytes).expect("the embedded maps are valid");
+        assert_eq!(map.spec.law, e.law, "embedded map {}: its law", e.name);
         map
     })
 }
@@ -960,6 +992,19 @@ impl LawMap {
         ALL.get_or_init(|| (0..EMBEDDED.len()).map(embedded_map).collect())
     }
 
+    /// The names of the embedded maps, in the order of [`LawMap::embedded_maps`]: each the stem of
+    /// the spec that generated it, `examples/law_map_<name>.toml` (e.g. `"seed_oil"`,
+    /// `"mineral_oils_heavy_harmonic"`).
+    pub fn embedded_names() -> impl ExactSizeIterator<Item = &'static str> {
+        EMBEDDED.iter().map(|e| e.name)
+    }
+
+    /// The embedded map named `name` (one of [`LawMap::embedded_names`]), parsing only it.
+    pub fn embedded_named(name: &str) -> Option<&'static LawMap> {
+        let index = EMBEDDED.iter().position(|e| e.name == name)?;
+        Some(embedded_map(index))
+    }
+
     /// The first embedded map (M 120–4000, L 19–26, Ry/Rx 10–65), the only one parsed.
     pub fn embedded() -> &'static LawMap {
         embedded_map(0)
@@ -967,7 +1012,7 @@ impl LawMap {
 
     /// The first embedded map of the law `law` (parsing only it).
     pub fn embedded_first(law: LawKind) -> Option<&'static LawMap> {
-        let index = EMBEDDED.iter().position(|(_, kind)| *kind == law)?;
+        let index = EMBEDDED.iter().position(|e| e.law == law)?;
         Some(embedded_map(index))
     }
 
@@ -996,11 +1041,10 @@ impl LawMap {
             None => LawKind::QuasiStatic,
         };
         let mut reasons = Vec::new();
-        let indices = (0..EMBEDDED.len()).filter(|&i| EMBEDDED[i].1 == kind);
-        for m in indices.map(embedded_map) {
-            match m.query_at(g, psi_h) {
-                Ok(q) => return Ok((q, m)),
-                Err(e) => reasons.push(e.to_string()),
+        for (i, e) in EMBEDDED.iter().enumerate().filter(|(_, e)| e.law == kind) {
+            match embedded_map(i).query_at(g, psi_h) {
+                Ok(q) => return Ok((q, embedded_map(i))),
+                Err(err) => reasons.push(format!("{}: {err}", e.name)),
             }
         }
         Err(LawMapError::OutsideEveryMap {

@@ -8,6 +8,9 @@ use serde::Serialize;
 /// A map file in brief (all values dimensionless but the CPU time).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct MapSummary {
+    /// An embedded map's name, the stem of the spec that generated it
+    /// (`examples/law_map_<name>.toml`); `None` (JSON `null`) for a map file.
+    pub name: Option<&'static str>,
     /// The law sampled: "quasi-static" or "harmonic".
     pub law: &'static str,
     /// Number of nodes.
@@ -26,9 +29,10 @@ pub struct MapSummary {
 }
 
 impl LawMap {
-    /// The map in brief.
+    /// The map in brief (`name` `None`: see [`LawMap::embedded_summaries`]).
     pub fn summary(&self) -> MapSummary {
         MapSummary {
+            name: None,
             law: self.spec.law.name(),
             nodes: self.laws.len(),
             cpu_seconds: self.cpu_seconds,
@@ -37,6 +41,19 @@ impl LawMap {
             worst_node_r_squared: self.quality.iter().map(|q| q.r_squared).fold(1.0, f64::min),
             spec: self.spec.clone(),
         }
+    }
+
+    /// The embedded maps in brief, in the order a query tries them, each with its name — what
+    /// `law-map info`, Python's `law_maps()` and C's `ehl_law_maps_json` show.
+    pub fn embedded_summaries() -> Vec<MapSummary> {
+        Self::embedded_maps()
+            .iter()
+            .zip(Self::embedded_names())
+            .map(|(m, name)| MapSummary {
+                name: Some(name),
+                ..m.summary()
+            })
+            .collect()
     }
 }
 
