@@ -480,7 +480,7 @@ int ehl_ross_table_csv(const char *coefficients_json, char **out_csv);
 
 /**
  * The law maps embedded in the library (`method = "map"`), in the order a query tries them, as
- * one JSON array into `*out_json` (free with ehl_string_free): per map its law, nodes,
+ * one JSON array into `*out_json` (free with ehl_string_free): per map its name, law, nodes,
  * generation CPU time (s), nodes flagged not converged, worst node fit and spec (models, fixed
  * groups, axes with range and nodes; groups dimensionless) — the keys of `ehl-bearing law-map
  * info --json` and Python's `law_maps()`.
