@@ -806,7 +806,7 @@ struct Embedded {
 }
 
 /// The embedded map files in query order.
-const EMBEDDED: [Embedded; 24] = [
+const EMBEDDED: [Embedded; 25] = [
     Embedded {
         name: "seed_oil",
         bytes: include_bytes!("../../data/law_map_seed_oil_g129.bin"),
@@ -927,6 +927,11 @@ const EMBEDDED: [Embedded; 24] = [
         bytes: include_bytes!("../../data/law_map_mineral_oils_heavy_harmonic_g129.bin"),
         law: LawKind::Harmonic,
     },
+    Embedded {
+        name: "mineral_oils_low_l_harmonic",
+        bytes: include_bytes!("../../data/law_map_mineral_oils_low_l_harmonic_g129.bin"),
+        law: LawKind::Harmonic,
+    },
 ];
 
 /// Embedded map `index` of [`EMBEDDED`], parsed on its first use. The files are valid and of
@@ -979,14 +984,14 @@ impl LawMap {
     /// 129² (the quasi-static method's default grid) but the three heaviest boxes (M 3900–10000
     /// at L 8–12.5, M 9000–15000 at L 8–23, M 15000–30000 at L 9.8–17: sparse maps of level 3),
     /// on 257² where 129² does not resolve the film; the heavy boxes' nodes were solved with the
-    /// steady solver's tolerances × 0.1. The last four are of the harmonic law (ĉ and the mass
-    /// group Ψ_H, Ω = 0.005·ω_n, on 129²): the seed's oil, 11 × 5 × 9 × 3 nodes over M 120–4000,
-    /// L 19–26, Ry/Rx 10–65 and Ψ_H 0.4–8 (`examples/law_map_seed_oil_harmonic.toml`), and three
-    /// sparse maps over six groups for mineral oils: their main box
-    /// (`examples/law_map_mineral_oils_harmonic.toml`), their lightest contacts
-    /// (`examples/law_map_mineral_oils_lightest_harmonic.toml`) and their heavy contacts to M
-    /// 5000 (`examples/law_map_mineral_oils_heavy_harmonic.toml`). A query uses the first map of
-    /// its law that holds it; its law is of that map's grid.
+    /// steady solver's tolerances × 0.1. The others are of the harmonic law (ĉ and the mass group
+    /// Ψ_H, Ω = 0.005·ω_n, on 129²): the seed's oil, 11 × 5 × 9 × 3 nodes over M 120–4000, L
+    /// 19–26, Ry/Rx 10–65 and Ψ_H 0.4–8 (`examples/law_map_seed_oil_harmonic.toml`), and sparse
+    /// maps over six groups for mineral oils (`examples/law_map_mineral_oils*_harmonic.toml`):
+    /// their main box, their lightest contacts, their heavy contacts to M 5000 and the contacts
+    /// of slow large bearings (L 8–12.5, M 500–2700). Each map has a name, the stem of its spec
+    /// ([`LawMap::embedded_names`]). A query uses the first map of its law that holds it; its
+    /// law is of that map's grid.
     pub fn embedded_maps() -> &'static [&'static LawMap] {
         static ALL: std::sync::OnceLock<Vec<&'static LawMap>> = std::sync::OnceLock::new();
         ALL.get_or_init(|| (0..EMBEDDED.len()).map(embedded_map).collect())
