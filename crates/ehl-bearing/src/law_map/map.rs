@@ -805,133 +805,45 @@ struct Embedded {
     law: LawKind,
 }
 
+/// The [`Embedded`] entry of the map `name` on `grid`² of the law `law`: the file
+/// `data/law_map_<name>_g<grid>.bin`.
+macro_rules! embedded {
+    ($name:literal, $grid:literal, $law:ident) => {
+        Embedded {
+            name: $name,
+            bytes: include_bytes!(concat!("../../data/law_map_", $name, "_g", $grid, ".bin")),
+            law: LawKind::$law,
+        }
+    };
+}
+
 /// The embedded map files in query order.
 const EMBEDDED: [Embedded; 25] = [
-    Embedded {
-        name: "seed_oil",
-        bytes: include_bytes!("../../data/law_map_seed_oil_g129.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "seed_oil_high_l",
-        bytes: include_bytes!("../../data/law_map_seed_oil_high_l_g129.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "seed_oil_low_m",
-        bytes: include_bytes!("../../data/law_map_seed_oil_low_m_g129.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "seed_oil_high_m",
-        bytes: include_bytes!("../../data/law_map_seed_oil_high_m_g129.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "mineral_oils",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_g129.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "mineral_oils_light",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_light_g129.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "mineral_oils_heavy",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_heavy_g129.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "mineral_oils_low_l",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_low_l_g129.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "mineral_oils_low_l_light",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_low_l_light_g129.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "mineral_oils_high_l",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_high_l_g129.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "mineral_oils_lightest",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_lightest_g129.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "mineral_oils_heaviest",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_heaviest_g129.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "mineral_oils_low_l_heavy",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_low_l_heavy_g257.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "mineral_oils_very_heavy",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_very_heavy_g257.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "mineral_oils_ultra_heavy",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_ultra_heavy_g257.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "mineral_oils_lightest_low_ry",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_lightest_low_ry_g129.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "mineral_oils_lightest_high_ry",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_lightest_high_ry_g129.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "mineral_oils_lightest_high_ry_m82",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_lightest_high_ry_m82_g129.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "mineral_oils_light_high_l",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_light_high_l_g129.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "mineral_oils_heavy_high_ry",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_heavy_high_ry_g129.bin"),
-        law: LawKind::QuasiStatic,
-    },
-    Embedded {
-        name: "seed_oil_harmonic",
-        bytes: include_bytes!("../../data/law_map_seed_oil_harmonic_g129.bin"),
-        law: LawKind::Harmonic,
-    },
-    Embedded {
-        name: "mineral_oils_harmonic",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_harmonic_g129.bin"),
-        law: LawKind::Harmonic,
-    },
-    Embedded {
-        name: "mineral_oils_lightest_harmonic",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_lightest_harmonic_g129.bin"),
-        law: LawKind::Harmonic,
-    },
-    Embedded {
-        name: "mineral_oils_heavy_harmonic",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_heavy_harmonic_g129.bin"),
-        law: LawKind::Harmonic,
-    },
-    Embedded {
-        name: "mineral_oils_low_l_harmonic",
-        bytes: include_bytes!("../../data/law_map_mineral_oils_low_l_harmonic_g129.bin"),
-        law: LawKind::Harmonic,
-    },
+    embedded!("seed_oil", 129, QuasiStatic),
+    embedded!("seed_oil_high_l", 129, QuasiStatic),
+    embedded!("seed_oil_low_m", 129, QuasiStatic),
+    embedded!("seed_oil_high_m", 129, QuasiStatic),
+    embedded!("mineral_oils", 129, QuasiStatic),
+    embedded!("mineral_oils_light", 129, QuasiStatic),
+    embedded!("mineral_oils_heavy", 129, QuasiStatic),
+    embedded!("mineral_oils_low_l", 129, QuasiStatic),
+    embedded!("mineral_oils_low_l_light", 129, QuasiStatic),
+    embedded!("mineral_oils_high_l", 129, QuasiStatic),
+    embedded!("mineral_oils_lightest", 129, QuasiStatic),
+    embedded!("mineral_oils_heaviest", 129, QuasiStatic),
+    embedded!("mineral_oils_low_l_heavy", 257, QuasiStatic),
+    embedded!("mineral_oils_very_heavy", 257, QuasiStatic),
+    embedded!("mineral_oils_ultra_heavy", 257, QuasiStatic),
+    embedded!("mineral_oils_lightest_low_ry", 129, QuasiStatic),
+    embedded!("mineral_oils_lightest_high_ry", 129, QuasiStatic),
+    embedded!("mineral_oils_lightest_high_ry_m82", 129, QuasiStatic),
+    embedded!("mineral_oils_light_high_l", 129, QuasiStatic),
+    embedded!("mineral_oils_heavy_high_ry", 129, QuasiStatic),
+    embedded!("seed_oil_harmonic", 129, Harmonic),
+    embedded!("mineral_oils_harmonic", 129, Harmonic),
+    embedded!("mineral_oils_lightest_harmonic", 129, Harmonic),
+    embedded!("mineral_oils_heavy_harmonic", 129, Harmonic),
+    embedded!("mineral_oils_low_l_harmonic", 129, Harmonic),
 ];
 
 /// Embedded map `index` of [`EMBEDDED`], parsed on its first use. The files are valid and of
