@@ -818,7 +818,7 @@ macro_rules! embedded {
 }
 
 /// The embedded map files in query order.
-const EMBEDDED: [Embedded; 26] = [
+const EMBEDDED: [Embedded; 27] = [
     embedded!("seed_oil", 129, QuasiStatic),
     embedded!("seed_oil_high_l", 129, QuasiStatic),
     embedded!("seed_oil_low_m", 129, QuasiStatic),
@@ -845,6 +845,7 @@ const EMBEDDED: [Embedded; 26] = [
     embedded!("mineral_oils_heavy_harmonic", 129, Harmonic),
     embedded!("mineral_oils_low_l_harmonic", 129, Harmonic),
     embedded!("mineral_oils_low_l_heavy_harmonic", 129, Harmonic),
+    embedded!("mineral_oils_low_l_light_harmonic", 129, Harmonic),
 ];
 
 /// Embedded map `index` of [`EMBEDDED`], parsed on its first use. The files are valid and of
@@ -902,7 +903,7 @@ impl LawMap {
     /// 19–26, Ry/Rx 10–65 and Ψ_H 0.4–8 (`examples/law_map_seed_oil_harmonic.toml`), and sparse
     /// maps over six groups for mineral oils (`examples/law_map_mineral_oils*_harmonic.toml`):
     /// their main box, their lightest contacts, their heavy contacts to M 5000 and the contacts
-    /// of slow large bearings (L 8–12.5, M 500–2700 and 2700–3900). Each map has a name, the stem of its spec
+    /// of slow large bearings (L 8–12.5, M 500–2700, 2700–3900 and 100–500). Each map has a name, the stem of its spec
     /// ([`LawMap::embedded_names`]). A query uses the first map of its law that holds it; its
     /// law is of that map's grid.
     pub fn embedded_maps() -> &'static [&'static LawMap] {
