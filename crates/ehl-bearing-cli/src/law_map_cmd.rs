@@ -313,13 +313,11 @@ fn convert(input: &Path, output: &Path, sparse_level: Option<u32>) -> anyhow::Re
 /// as one JSON array.
 fn info(maps: &[PathBuf], json: bool) -> anyhow::Result<()> {
     let (names, all): (Vec<String>, Vec<_>) = if maps.is_empty() {
-        let s = LawMap::embedded_summaries();
-        let n = s.len();
-        let names = s
-            .iter()
+        let n = LawMap::embedded_names().len();
+        let names = LawMap::embedded_names()
             .enumerate()
-            .map(|(i, m)| format!("embedded map {} of {n} ({})", i + 1, m.name.unwrap_or("?")));
-        (names.collect(), s)
+            .map(|(i, name)| format!("embedded map {} of {n} ({name})", i + 1));
+        (names.collect(), LawMap::embedded_summaries())
     } else {
         let s = maps.iter().map(|p| read_map(p).map(|m| m.summary()));
         (

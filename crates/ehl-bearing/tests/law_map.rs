@@ -1309,6 +1309,47 @@ mod embedded {
         }
     }
 
+    /// The mineral oils' sparse harmonic maps: name, nodes, the seed of their held-out points in
+    /// `harmonic_map_against_direct_characterizations`, and what they hold.
+    const MINERAL_OILS_HARMONIC: [(&str, usize, u64, &str); 6] = [
+        (
+            "mineral_oils_harmonic",
+            2385,
+            20261205,
+            "mineral oils, harmonic",
+        ),
+        (
+            "mineral_oils_lightest_harmonic",
+            993,
+            20261214,
+            "mineral oils, the lightest contacts, harmonic",
+        ),
+        (
+            "mineral_oils_heavy_harmonic",
+            993,
+            20261215,
+            "mineral oils, heavy contacts, harmonic (tolerances × 0.1)",
+        ),
+        (
+            "mineral_oils_low_l_harmonic",
+            329,
+            20261216,
+            "mineral oils, slow large bearings, harmonic",
+        ),
+        (
+            "mineral_oils_low_l_heavy_harmonic",
+            329,
+            20261217,
+            "mineral oils, slow large bearings' heavier contacts, harmonic (tolerances × 0.1)",
+        ),
+        (
+            "mineral_oils_low_l_light_harmonic",
+            329,
+            20261218,
+            "mineral oils, slow large bearings' light contacts, harmonic",
+        ),
+    ];
+
     /// The embedded harmonic maps are what `law-map generate` and `assemble` give for their
     /// example specs: examples/law_map_seed_oil_harmonic.toml (a tensor map; its first and last
     /// nodes recomputed), and the mineral oils' sparse maps over six groups,
@@ -1323,34 +1364,7 @@ mod embedded {
             &[0, 11 * 5 * 9 * 3 - 1],
             "seed oil, harmonic",
         );
-        for (m, nodes, name) in [
-            ("mineral_oils_harmonic", 2385, "mineral oils, harmonic"),
-            (
-                "mineral_oils_lightest_harmonic",
-                993,
-                "mineral oils, the lightest contacts, harmonic",
-            ),
-            (
-                "mineral_oils_heavy_harmonic",
-                993,
-                "mineral oils, heavy contacts, harmonic (tolerances × 0.1)",
-            ),
-            (
-                "mineral_oils_low_l_harmonic",
-                329,
-                "mineral oils, slow large bearings, harmonic",
-            ),
-            (
-                "mineral_oils_low_l_heavy_harmonic",
-                329,
-                "mineral oils, slow large bearings' heavier contacts, harmonic (tolerances × 0.1)",
-            ),
-            (
-                "mineral_oils_low_l_light_harmonic",
-                329,
-                "mineral oils, slow large bearings' light contacts, harmonic",
-            ),
-        ] {
+        for (m, nodes, _, name) in MINERAL_OILS_HARMONIC {
             assert_reproduces(m, Some(nodes), &[0], name);
         }
     }
@@ -1364,34 +1378,7 @@ mod embedded {
     #[test]
     fn harmonic_map_against_direct_characterizations() {
         assert_within_bounds(map("seed_oil_harmonic"), 4, 20261130, "seed oil, harmonic");
-        for (m, seed, name) in [
-            ("mineral_oils_harmonic", 20261205, "mineral oils, harmonic"),
-            (
-                "mineral_oils_lightest_harmonic",
-                20261214,
-                "mineral oils, the lightest contacts, harmonic",
-            ),
-            (
-                "mineral_oils_heavy_harmonic",
-                20261215,
-                "mineral oils, heavy contacts, harmonic",
-            ),
-            (
-                "mineral_oils_low_l_harmonic",
-                20261216,
-                "mineral oils, slow large bearings, harmonic",
-            ),
-            (
-                "mineral_oils_low_l_heavy_harmonic",
-                20261217,
-                "mineral oils, slow large bearings' heavier contacts, harmonic",
-            ),
-            (
-                "mineral_oils_low_l_light_harmonic",
-                20261218,
-                "mineral oils, slow large bearings' light contacts, harmonic",
-            ),
-        ] {
+        for (m, _, seed, name) in MINERAL_OILS_HARMONIC {
             assert_within_bounds(map(m), 3, seed, name);
         }
     }

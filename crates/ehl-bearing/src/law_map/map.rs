@@ -903,9 +903,9 @@ impl LawMap {
     /// 19–26, Ry/Rx 10–65 and Ψ_H 0.4–8 (`examples/law_map_seed_oil_harmonic.toml`), and sparse
     /// maps over six groups for mineral oils (`examples/law_map_mineral_oils*_harmonic.toml`):
     /// their main box, their lightest contacts, their heavy contacts to M 5000 and the contacts
-    /// of slow large bearings (L 8–12.5, M 500–2700, 2700–3900 and 100–500). Each map has a name, the stem of its spec
-    /// ([`LawMap::embedded_names`]). A query uses the first map of its law that holds it; its
-    /// law is of that map's grid.
+    /// of slow large bearings (L 8–12.5, M 500–2700, 2700–3900 and 100–500). Each map has a
+    /// name, the stem of its spec ([`LawMap::embedded_names`]). A query uses the first map of its
+    /// law that holds it; its law is of that map's grid.
     pub fn embedded_maps() -> &'static [&'static LawMap] {
         static ALL: std::sync::OnceLock<Vec<&'static LawMap>> = std::sync::OnceLock::new();
         ALL.get_or_init(|| (0..EMBEDDED.len()).map(embedded_map).collect())
@@ -961,8 +961,9 @@ impl LawMap {
         };
         let mut reasons = Vec::new();
         for (i, e) in EMBEDDED.iter().enumerate().filter(|(_, e)| e.law == kind) {
-            match embedded_map(i).query_at(g, psi_h) {
-                Ok(q) => return Ok((q, embedded_map(i))),
+            let m = embedded_map(i);
+            match m.query_at(g, psi_h) {
+                Ok(q) => return Ok((q, m)),
                 Err(err) => reasons.push(format!("{}: {err}", e.name)),
             }
         }
